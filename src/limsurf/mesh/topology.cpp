@@ -1,0 +1,351 @@
+#include "limsurf/mesh/topology.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+
+#include "limsurf/core/error.h"
+#include "limsurf/detail/connectivity.h"
+#include "limsurf/mesh/validate.h"
+
+namespace limsurf {
+namespace {
+
+using std::size_t;
+
+size_t at(Index i) {
+    return static_cast<size_t>(i);
+}
+
+/// Throws when the connectivity check found errors; isolated vertices count
+/// as errors here because a Topology has none (build_control_mesh drops them).
+void throw_if_unusable(const ValidationReport& report) {
+    ValidationReport fatal;
+    for (const Issue& issue : report.issues) {
+        if (issue.severity == Severity::Error) {
+            fatal.issues.push_back(issue);
+        } else if (issue.problem == Problem::IsolatedVertex) {
+            fatal.issues.push_back({issue.problem, Severity::Error, issue.location,
+                                    issue.message + "; a Topology cannot hold isolated vertices"});
+        }
+    }
+    if (fatal.has_errors() && fatal.issues.front().problem == Problem::IsolatedVertex) {
+        throw TopologyError(fatal.summary());
+    }
+    fatal.throw_if_errors();
+}
+
+/// Component roots with path halving.
+Index find_root(std::vector<Index>& parent, Index x) {
+    while (parent[at(x)] != x) {
+        parent[at(x)] = parent[at(parent[at(x)])];
+        x = parent[at(x)];
+    }
+    return x;
+}
+
+}  // namespace
+
+Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
+                   const SharpnessTags& sharpness)
+    : num_vertices_(num_vertices),
+      face_offsets_(face_offsets.begin(), face_offsets.end()),
+      face_vertices_(face_vertices.begin(), face_vertices.end()) {
+    ValidationReport report;
+    detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report);
+    throw_if_unusable(report);
+    build_edges();
+    build_one_rings();
+    build_boundary_loops();
+    build_components();
+    apply_sharpness(sharpness);
+}
+
+Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vector<Index>>& faces,
+                                 const SharpnessTags& sharpness) {
+    std::vector<Index> offsets{0};
+    std::vector<Index> corners;
+    for (const auto& face : faces) {
+        corners.insert(corners.end(), face.begin(), face.end());
+        offsets.push_back(static_cast<Index>(corners.size()));
+    }
+    return Topology(num_vertices, offsets, corners, sharpness);
+}
+
+void Topology::build_edges() {
+    // Each corner k of face f starts the half-edge corner k -> corner k+1.
+    struct HalfEdge {
+        std::uint64_t key;
+        Index corner;
+    };
+    std::vector<Index> corner_face(face_vertices_.size());
+    std::vector<HalfEdge> half_edges(face_vertices_.size());
+    for (Index f = 0; f < num_faces(); ++f) {
+        const Index begin = face_offsets_[at(f)];
+        const Index n = face_degree(f);
+        for (Index k = 0; k < n; ++k) {
+            const Index a = face_vertices_[at(begin + k)];
+            const Index b = face_vertices_[at(begin + (k + 1) % n)];
+            const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+            const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+            half_edges[at(begin + k)] = {(lo << 32U) | hi, begin + k};
+            corner_face[at(begin + k)] = f;
+        }
+    }
+    std::sort(half_edges.begin(), half_edges.end(),
+              [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
+
+    // Number edges in order of first appearance in the face list (locality, like Vtr).
+    std::vector<std::pair<Index, size_t>> groups;  // (first corner, first half-edge of the group)
+    for (size_t i = 0; i < half_edges.size(); ++i) {
+        if (i == 0 || half_edges[i].key != half_edges[i - 1].key) {
+            groups.emplace_back(half_edges[i].corner, i);
+        }
+    }
+    std::sort(groups.begin(), groups.end());
+
+    face_edges_.assign(face_vertices_.size(), invalid_index);
+    face_edge_signs_.assign(face_vertices_.size(), 0);
+    edge_vertices_.reserve(2 * groups.size());
+    edge_face_offsets_.assign(1, 0);
+    for (size_t e = 0; e < groups.size(); ++e) {
+        const std::uint64_t key = half_edges[groups[e].second].key;
+        const auto lo = static_cast<Index>(key >> 32U);
+        edge_vertices_.push_back(lo);
+        edge_vertices_.push_back(static_cast<Index>(key & 0xffffffffU));
+        // Faces of this edge, the one traversing lower -> higher first.
+        std::vector<Index> faces;
+        for (size_t i = groups[e].second; i < half_edges.size() && half_edges[i].key == key; ++i) {
+            const Index corner = half_edges[i].corner;
+            const bool forward = face_vertices_[at(corner)] == lo;
+            face_edges_[at(corner)] = static_cast<Index>(e);
+            face_edge_signs_[at(corner)] = forward ? 1 : -1;
+            faces.insert(forward ? faces.begin() : faces.end(), corner_face[at(corner)]);
+        }
+        edge_faces_.insert(edge_faces_.end(), faces.begin(), faces.end());
+        edge_face_offsets_.push_back(static_cast<Index>(edge_faces_.size()));
+    }
+}
+
+std::span<const Index> Topology::edge_faces(Index e) const {
+    const auto begin = at(edge_face_offsets_[at(e)]);
+    return std::span<const Index>(edge_faces_).subspan(begin, at(edge_face_offsets_[at(e) + 1]) - begin);
+}
+
+Index Topology::find_edge(Index a, Index b) const {
+    if (a < 0 || b < 0 || a >= num_vertices_ || b >= num_vertices_) {
+        return invalid_index;
+    }
+    for (const Index e : vertex_edges(a)) {
+        if (other_vertex(e, a) == b) {
+            return e;
+        }
+    }
+    return invalid_index;
+}
+
+void Topology::build_one_rings() {
+    // Corners grouped by vertex, in face order.
+    std::vector<Index> offsets(at(num_vertices_) + 1, 0);
+    for (const Index v : face_vertices_) {
+        ++offsets[at(v) + 1];
+    }
+    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+    std::vector<Index> corners(face_vertices_.size());
+    std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+    for (size_t c = 0; c < face_vertices_.size(); ++c) {
+        corners[at(fill[at(face_vertices_[c])]++)] = static_cast<Index>(c);
+    }
+    std::vector<Index> corner_face(face_vertices_.size());
+    for (Index f = 0; f < num_faces(); ++f) {
+        std::fill(corner_face.begin() + face_offsets_[at(f)], corner_face.begin() + face_offsets_[at(f) + 1], f);
+    }
+    auto incoming_edge = [&](Index corner) {  // edge from the previous corner to this one
+        const Index f = corner_face[at(corner)];
+        const Index k = corner - face_offsets_[at(f)];
+        const Index n = face_degree(f);
+        return face_edges_[at(face_offsets_[at(f)] + (k + n - 1) % n)];
+    };
+
+    vertex_face_offsets_.assign(1, 0);
+    vertex_edge_offsets_.assign(1, 0);
+    vertex_is_boundary_.assign(at(num_vertices_), 0);
+    for (Index v = 0; v < num_vertices_; ++v) {
+        const auto mine = std::span<const Index>(corners).subspan(at(offsets[at(v)]),
+                                                                  at(offsets[at(v) + 1] - offsets[at(v)]));
+        // A boundary vertex starts at the corner whose outgoing edge is a boundary edge.
+        Index start = mine.front();
+        for (const Index c : mine) {
+            if (is_boundary_edge(face_edges_[at(c)])) {
+                start = c;
+                vertex_is_boundary_[at(v)] = 1;
+                break;
+            }
+        }
+        Index corner = start;
+        for (size_t step = 0; step < mine.size(); ++step) {
+            const Index f = corner_face[at(corner)];
+            vertex_faces_.push_back(f);
+            vertex_face_corners_.push_back(corner - face_offsets_[at(f)]);
+            vertex_edges_.push_back(face_edges_[at(corner)]);
+            // Counter-clockwise, the next face shares this face's incoming edge.
+            const Index in = incoming_edge(corner);
+            const auto across = edge_faces(in);
+            if (across.size() == 1) {
+                vertex_edges_.push_back(in);  // closing boundary edge
+                break;
+            }
+            const Index g = across[0] == f ? across[1] : across[0];
+            const auto g_corners = face_vertices(g);
+            const auto local = std::find(g_corners.begin(), g_corners.end(), v) - g_corners.begin();
+            corner = face_offsets_[at(g)] + static_cast<Index>(local);
+        }
+        LIMSURF_ASSERT(vertex_faces_.size() - at(vertex_face_offsets_.back()) == mine.size(),
+                       "one-ring walk of vertex ", v, " missed faces");
+        vertex_face_offsets_.push_back(static_cast<Index>(vertex_faces_.size()));
+        vertex_edge_offsets_.push_back(static_cast<Index>(vertex_edges_.size()));
+    }
+}
+
+std::span<const Index> Topology::vertex_faces(Index v) const {
+    const auto begin = at(vertex_face_offsets_[at(v)]);
+    return std::span<const Index>(vertex_faces_).subspan(begin, at(vertex_face_offsets_[at(v) + 1]) - begin);
+}
+
+std::span<const Index> Topology::vertex_face_corners(Index v) const {
+    const auto begin = at(vertex_face_offsets_[at(v)]);
+    return std::span<const Index>(vertex_face_corners_).subspan(begin, at(vertex_face_offsets_[at(v) + 1]) - begin);
+}
+
+std::span<const Index> Topology::vertex_edges(Index v) const {
+    const auto begin = at(vertex_edge_offsets_[at(v)]);
+    return std::span<const Index>(vertex_edges_).subspan(begin, at(vertex_edge_offsets_[at(v) + 1]) - begin);
+}
+
+void Topology::build_boundary_loops() {
+    // Each boundary edge runs (as its single face traverses it) from the
+    // vertex where it is the first one-ring edge; the next edge of the loop is
+    // the first one-ring edge of the vertex it enters.
+    std::vector<std::uint8_t> visited(at(num_edges()), 0);
+    boundary_loop_offsets_.assign(1, 0);
+    for (Index v = 0; v < num_vertices_; ++v) {
+        const Index start = is_boundary_vertex(v) ? vertex_edges(v).front() : invalid_index;
+        if (start == invalid_index || visited[at(start)] != 0) {
+            continue;
+        }
+        Index u = v;
+        Index e = start;
+        while (visited[at(e)] == 0) {
+            visited[at(e)] = 1;
+            boundary_loop_vertices_.push_back(u);
+            u = other_vertex(e, u);
+            e = vertex_edges(u).front();
+        }
+        boundary_loop_offsets_.push_back(static_cast<Index>(boundary_loop_vertices_.size()));
+    }
+}
+
+std::span<const Index> Topology::boundary_loop(Index i) const {
+    const auto begin = at(boundary_loop_offsets_[at(i)]);
+    return std::span<const Index>(boundary_loop_vertices_).subspan(begin,
+                                                                  at(boundary_loop_offsets_[at(i) + 1]) - begin);
+}
+
+void Topology::build_components() {
+    std::vector<Index> parent(at(num_faces()));
+    std::iota(parent.begin(), parent.end(), Index{0});
+    for (Index e = 0; e < num_edges(); ++e) {
+        const auto faces = edge_faces(e);
+        if (faces.size() == 2) {
+            parent[at(find_root(parent, faces[1]))] = find_root(parent, faces[0]);
+        }
+    }
+    // Number components in order of their first face.
+    std::vector<Index> number(at(num_faces()), invalid_index);
+    face_component_.assign(at(num_faces()), 0);
+    num_components_ = 0;
+    for (Index f = 0; f < num_faces(); ++f) {
+        Index& n = number[at(find_root(parent, f))];
+        if (n == invalid_index) {
+            n = num_components_++;
+        }
+        face_component_[at(f)] = n;
+    }
+    // chi and boundary loops per component give the genus of each.
+    std::vector<Index> chi(at(num_components_), 0);
+    std::vector<Index> loops(at(num_components_), 0);
+    for (Index f = 0; f < num_faces(); ++f) {
+        ++chi[at(face_component_[at(f)])];
+    }
+    for (Index v = 0; v < num_vertices_; ++v) {
+        ++chi[at(vertex_component(v))];
+    }
+    for (Index e = 0; e < num_edges(); ++e) {
+        --chi[at(face_component_[at(edge_faces(e).front())])];
+    }
+    for (Index i = 0; i < num_boundary_loops(); ++i) {
+        ++loops[at(vertex_component(boundary_loop(i).front()))];
+    }
+    genus_ = 0;
+    for (Index c = 0; c < num_components_; ++c) {
+        LIMSURF_ASSERT((2 - chi[at(c)] - loops[at(c)]) % 2 == 0, "odd 2 - chi - b in component ", c);
+        genus_ += (2 - chi[at(c)] - loops[at(c)]) / 2;
+    }
+}
+
+Index Topology::vertex_component(Index v) const {
+    return face_component_[at(vertex_faces(v).front())];
+}
+
+bool Topology::all_faces_have_degree(Index degree) const noexcept {
+    for (Index f = 0; f < num_faces(); ++f) {
+        if (face_offsets_[at(f) + 1] - face_offsets_[at(f)] != degree) {
+            return false;
+        }
+    }
+    return true;
+}
+
+void Topology::apply_sharpness(const SharpnessTags& sharpness) {
+    for (const CreaseTag& crease : sharpness.creases) {
+        if (crease.sharpness > 0.0) {
+            edge_sharpness_.resize(at(num_edges()), 0.0);
+            edge_sharpness_[at(find_edge(crease.v0, crease.v1))] = crease.sharpness;
+        }
+    }
+    for (const CornerTag& corner : sharpness.corners) {
+        if (corner.sharpness > 0.0) {
+            vertex_sharpness_.resize(at(num_vertices_), 0.0);
+            vertex_sharpness_[at(corner.vertex)] = corner.sharpness;
+        }
+    }
+    for (const HoleTag& hole : sharpness.holes) {
+        holes_.resize(at(num_faces()), 0);
+        holes_[at(hole.face)] = 1;
+    }
+}
+
+SharpnessTags Topology::sharpness_tags() const {
+    SharpnessTags tags;
+    for (size_t e = 0; e < edge_sharpness_.size(); ++e) {
+        if (edge_sharpness_[e] > 0.0) {
+            const auto ends = edge_vertices(static_cast<Index>(e));
+            tags.creases.push_back({ends[0], ends[1], edge_sharpness_[e], 0});
+        }
+    }
+    for (size_t v = 0; v < vertex_sharpness_.size(); ++v) {
+        if (vertex_sharpness_[v] > 0.0) {
+            tags.corners.push_back({static_cast<Index>(v), vertex_sharpness_[v], 0});
+        }
+    }
+    for (size_t f = 0; f < holes_.size(); ++f) {
+        if (holes_[f] != 0) {
+            tags.holes.push_back({static_cast<Index>(f), 0});
+        }
+    }
+    return tags;
+}
+
+}  // namespace limsurf
