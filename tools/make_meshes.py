@@ -1,0 +1,999 @@
+#!/usr/bin/env python3
+"""Generate limsurf's bundled example meshes and their test oracle.
+
+Writes every mesh into data/meshes/<name>.obj, a generated table
+data/meshes/README.md, and tests/data/bundled_meshes.csv (the expected
+topological invariants the C++ tests compare against).
+
+Standard library only, deterministic: running it twice gives byte-identical
+output. `--check` regenerates into a temporary directory and exits non-zero
+when the committed files differ.
+
+Independence of the oracle: V/E/F are counted here from the script's own
+undirected-edge set; genus, boundary loops and components are the values known
+from each construction. The script then asserts that V - E + F equals
+2*components - 2*genus - boundary_loops, that its own boundary walk and
+union-find agree with the construction, and that every mesh is a consistently
+oriented 2-manifold with outward (counter-clockwise) faces. Any failure aborts.
+
+Coordinates are rounded to 12 decimals (and -0.0 normalised to 0.0) before
+use, so the OBJ files do not depend on the last bit of the platform's libm;
+each float is then written with repr(), which round-trips exactly.
+"""
+
+import argparse
+import filecmp
+import math
+import os
+import sys
+import tempfile
+
+SCRIPT = "tools/make_meshes.py"
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MESH_SUBDIR = os.path.join("data", "meshes")
+CSV_PATH = os.path.join("tests", "data", "bundled_meshes.csv")
+
+CSV_HEADER = (
+    "name,file,num_vertices,num_edges,num_faces,euler_characteristic,genus,"
+    "num_boundary_loops,num_components,closed,triangles_only,quads_only,"
+    "extraordinary_valences,description"
+)
+
+
+class MeshError(Exception):
+    pass
+
+
+# --------------------------------------------------------------------------
+# Small vector helpers
+# --------------------------------------------------------------------------
+
+def clean(x):
+    """Round to 12 decimals and normalise -0.0, so output is platform-stable."""
+    return round(x, 12) + 0.0
+
+
+def vsub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def vadd(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def vscale(a, s):
+    return (a[0] * s, a[1] * s, a[2] * s)
+
+
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def norm(a):
+    return math.sqrt(dot(a, a))
+
+
+def normalize(a):
+    n = norm(a)
+    return (a[0] / n, a[1] / n, a[2] / n)
+
+
+# --------------------------------------------------------------------------
+# Mesh container
+# --------------------------------------------------------------------------
+
+class Mesh:
+    """A polygon mesh with its construction-known invariants."""
+
+    def __init__(self, name, description, verts, faces, genus, boundary_loops, components,
+                 orientation, required_valences=()):
+        self.name = name
+        self.description = description
+        self.verts = [tuple(clean(c) for c in v) for v in verts]
+        self.faces = [tuple(f) for f in faces]
+        self.genus = genus
+        self.boundary_loops = boundary_loops
+        self.components = components
+        # "volume" (closed: signed volume > 0 per component), "plus_z" (planar,
+        # normals +z), or "radial_z" (tube about the z axis, normals outward).
+        self.orientation = orientation
+        # Valences the construction guarantees to be present (e.g. the poles).
+        self.required_valences = tuple(required_valences)
+
+
+class Builder:
+    """Collects vertices keyed by a construction label, so shared vertices are welded."""
+
+    def __init__(self):
+        self.verts = []
+        self.index = {}
+        self.faces = []
+
+    def vertex(self, key, pos):
+        if key not in self.index:
+            self.index[key] = len(self.verts)
+            self.verts.append(pos)
+        return self.index[key]
+
+    def face(self, ids):
+        self.faces.append(tuple(ids))
+
+
+# --------------------------------------------------------------------------
+# Convex polyhedra from vertices + known outward face normals
+# --------------------------------------------------------------------------
+
+def hull_faces(verts, normals):
+    """For each outward normal, the vertices maximising dot(v, n), sorted CCW about n."""
+    faces = []
+    for n in normals:
+        dots = [dot(v, n) for v in verts]
+        top = max(dots)
+        ids = [i for i, d in enumerate(dots) if d > top - 1e-9]
+        if len(ids) < 3:
+            raise MeshError("hull face with fewer than 3 vertices")
+        c = (0.0, 0.0, 0.0)
+        for i in ids:
+            c = vadd(c, verts[i])
+        c = vscale(c, 1.0 / len(ids))
+        u = normalize(vsub(verts[ids[0]], c))
+        w = cross(n, u)
+        ids.sort(key=lambda i: math.atan2(dot(vsub(verts[i], c), w), dot(vsub(verts[i], c), u)) % (2 * math.pi))
+        k = ids.index(min(ids))
+        faces.append(tuple(ids[k:] + ids[:k]))
+    return faces
+
+
+PHI = (1.0 + math.sqrt(5.0)) / 2.0
+
+
+def icosahedron_verts():
+    """Regular icosahedron, unit circumradius."""
+    raw = []
+    for a in (-1.0, 1.0):
+        for b in (-PHI, PHI):
+            raw.append((0.0, a, b))
+            raw.append((a, b, 0.0))
+            raw.append((b, 0.0, a))
+    return [normalize(v) for v in raw]
+
+
+def dodecahedron_verts():
+    """Regular dodecahedron, unit circumradius."""
+    raw = []
+    for x in (-1.0, 1.0):
+        for y in (-1.0, 1.0):
+            for z in (-1.0, 1.0):
+                raw.append((x, y, z))
+    ip = 1.0 / PHI
+    for a in (-ip, ip):
+        for b in (-PHI, PHI):
+            # (0, +-phi, +-1/phi) and cyclic: the dual orientation of icosahedron_verts().
+            raw.append((0.0, b, a))
+            raw.append((b, a, 0.0))
+            raw.append((a, 0.0, b))
+    return [normalize(v) for v in raw]
+
+
+def cube_verts(half=0.5, centre=(0.0, 0.0, 0.0)):
+    vs = []
+    for x in (-half, half):
+        for y in (-half, half):
+            for z in (-half, half):
+                vs.append(vadd(centre, (x, y, z)))
+    return vs
+
+
+AXES = [(1.0, 0.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+        (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)]
+
+
+def tetra_verts(centre=(0.0, 0.0, 0.0), scale=1.0):
+    """Regular tetrahedron inscribed in a cube; unit circumradius times scale."""
+    s = scale / math.sqrt(3.0)
+    raw = [(1.0, 1.0, 1.0), (1.0, -1.0, -1.0), (-1.0, 1.0, -1.0), (-1.0, -1.0, 1.0)]
+    return [vadd(centre, vscale(v, s)) for v in raw]
+
+
+TETRA_NORMALS = [(-1.0, -1.0, -1.0), (-1.0, 1.0, 1.0), (1.0, -1.0, 1.0), (1.0, 1.0, -1.0)]
+
+
+# --------------------------------------------------------------------------
+# Mesh constructions
+# --------------------------------------------------------------------------
+
+def make_cube():
+    vs = cube_verts()
+    return Mesh("cube", "axis-aligned unit cube (edge 1) centred at the origin; 6 quads",
+                vs, hull_faces(vs, AXES), 0, 0, 1, "volume", (3,))
+
+
+def make_tetrahedron():
+    vs = tetra_verts()
+    return Mesh("tetrahedron", "regular tetrahedron with unit circumradius",
+                vs, hull_faces(vs, TETRA_NORMALS), 0, 0, 1, "volume", (3,))
+
+
+def make_octahedron():
+    vs = [(1.0, 0.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+          (0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)]
+    normals = [(x, y, z) for x in (-1.0, 1.0) for y in (-1.0, 1.0) for z in (-1.0, 1.0)]
+    return Mesh("octahedron", "regular octahedron with unit circumradius (vertices at +-e_i)",
+                vs, hull_faces(vs, normals), 0, 0, 1, "volume", (4,))
+
+
+def make_icosahedron():
+    vs = icosahedron_verts()
+    return Mesh("icosahedron", "regular icosahedron with unit circumradius",
+                vs, hull_faces(vs, dodecahedron_verts()), 0, 0, 1, "volume", (5,))
+
+
+def make_dodecahedron():
+    vs = dodecahedron_verts()
+    return Mesh("dodecahedron", "regular dodecahedron with unit circumradius; 12 pentagons",
+                vs, hull_faces(vs, icosahedron_verts()), 0, 0, 1, "volume", (3,))
+
+
+def torus_grid(nu, nv, major=1.0, minor=0.4):
+    """Grid vertices (i around the z axis, j around the tube) and CCW quads (outward)."""
+    vs = []
+    for i in range(nu):
+        u = 2.0 * math.pi * i / nu
+        for j in range(nv):
+            v = 2.0 * math.pi * j / nv
+            r = major + minor * math.cos(v)
+            vs.append((r * math.cos(u), r * math.sin(u), minor * math.sin(v)))
+
+    def vid(i, j):
+        return (i % nu) * nv + (j % nv)
+
+    quads = []
+    for i in range(nu):
+        for j in range(nv):
+            quads.append((vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)))
+    return vs, quads
+
+
+def split_quads(quads):
+    """Split every quad (a, b, c, d) along the diagonal a-c."""
+    tris = []
+    for a, b, c, d in quads:
+        tris.append((a, b, c))
+        tris.append((a, c, d))
+    return tris
+
+
+def make_quad_torus():
+    vs, quads = torus_grid(8, 6)
+    return Mesh("quad_torus", "torus (R=1 r=0.4) as an 8x6 grid of quads; all valences 4",
+                vs, quads, 1, 0, 1, "volume", (4,))
+
+
+def make_tri_torus():
+    vs, quads = torus_grid(8, 6)
+    return Mesh("tri_torus", "the quad_torus grid with every quad split along one diagonal; all valences 6",
+                vs, split_quads(quads), 1, 0, 1, "volume", (6,))
+
+
+def make_genus2():
+    """Outer surface of a 5x3x1 slab of voxels with two one-voxel holes (a figure 8)."""
+    holes = {(1, 1), (3, 1)}
+    cells = {(x, y, 0) for x in range(5) for y in range(3) if (x, y) not in holes}
+    scale = 0.5
+    offset = (-2.5, -1.5, -0.5)
+    b = Builder()
+
+    def corner(p):
+        return b.vertex(p, tuple(scale * (p[k] + offset[k]) for k in range(3)))
+
+    for cell in sorted(cells):
+        for axis in range(3):
+            for sign in (1, -1):
+                nb = list(cell)
+                nb[axis] += sign
+                if tuple(nb) in cells:
+                    continue
+                # Face of the voxel on the side (axis, sign); tangent axes u, w
+                # with u x w = +e_axis.
+                ua, wa = (axis + 1) % 3, (axis + 2) % 3
+                base = list(cell)
+                if sign > 0:
+                    base[axis] += 1
+                pts = []
+                for du, dw in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                    p = list(base)
+                    p[ua] += du
+                    p[wa] += dw
+                    pts.append(tuple(p))
+                if sign < 0:
+                    pts.reverse()
+                b.face([corner(p) for p in pts])
+    return Mesh("genus2", "closed genus-2 quad surface: boundary of a 5x3x1 voxel slab with two holes (scaled 0.5)",
+                b.verts, b.faces, 2, 0, 1, "volume", (3, 5))
+
+
+def make_sphere_quads():
+    """Cube faces split 2x bilinearly (4x4 quads each), projected to the unit sphere."""
+    n = 4
+    b = Builder()
+    for axis in range(3):
+        for sign in (1, -1):
+            ua, wa = (axis + 1) % 3, (axis + 2) % 3
+            if sign < 0:
+                ua, wa = wa, ua
+
+            def point(i, j, axis=axis, sign=sign, ua=ua, wa=wa):
+                p = [0, 0, 0]
+                p[axis] = sign * n
+                p[ua] = 2 * i - n
+                p[wa] = 2 * j - n
+                key = tuple(p)
+                return b.vertex(key, normalize(tuple(float(c) for c in key)))
+
+            for i in range(n):
+                for j in range(n):
+                    b.face([point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)])
+    return Mesh("sphere_quads", "unit cube split twice bilinearly (4x4 quads per face) projected to the unit sphere",
+                b.verts, b.faces, 0, 0, 1, "volume", (3,))
+
+
+def make_sphere_tris():
+    base = icosahedron_verts()
+    base_faces = hull_faces(base, dodecahedron_verts())
+    b = Builder()
+    for i, v in enumerate(base):
+        b.vertex(("v", i), v)
+    for f in base_faces:
+        a, c, d = f
+        mids = []
+        for p, q in ((a, c), (c, d), (d, a)):
+            key = ("e", min(p, q), max(p, q))
+            mids.append(b.vertex(key, normalize(vscale(vadd(base[p], base[q]), 0.5))))
+        mab, mbc, mca = mids
+        b.face((a, mab, mca))
+        b.face((c, mbc, mab))
+        b.face((d, mca, mbc))
+        b.face((mab, mbc, mca))
+    return Mesh("sphere_tris", "icosphere level 1: icosahedron split 1-to-4 and projected to the unit sphere",
+                b.verts, b.faces, 0, 0, 1, "volume", (5,))
+
+
+def make_cube_ngons():
+    t = 0.25
+    vs = [v for v in cube_verts() if v != (0.5, 0.5, 0.5)]
+    vs += [(0.5 - t, 0.5, 0.5), (0.5, 0.5 - t, 0.5), (0.5, 0.5, 0.5 - t)]
+    normals = AXES + [normalize((1.0, 1.0, 1.0))]
+    return Mesh("cube_ngons", "unit cube with one corner truncated: 3 quads + 3 pentagons + 1 triangle",
+                vs, hull_faces(vs, normals), 0, 0, 1, "volume", (3,))
+
+
+def make_prism_hex():
+    vs = []
+    for z in (-0.5, 0.5):
+        for i in range(6):
+            a = 2.0 * math.pi * i / 6
+            vs.append((math.cos(a), math.sin(a), z))
+    normals = [(0.0, 0.0, 1.0), (0.0, 0.0, -1.0)]
+    for i in range(6):
+        a = 2.0 * math.pi * (i + 0.5) / 6
+        normals.append((math.cos(a), math.sin(a), 0.0))
+    return Mesh("prism_hex", "regular hexagonal prism (circumradius 1 height 1): 2 hexagons + 6 quads",
+                vs, hull_faces(vs, normals), 0, 0, 1, "volume", (3,))
+
+
+def make_tetra_and_cube():
+    tv = tetra_verts(centre=(-1.5, 0.0, 0.0))
+    tf = hull_faces(tv, TETRA_NORMALS)
+    cv = cube_verts(centre=(1.5, 0.0, 0.0))
+    cf = hull_faces(cv, AXES)
+    off = len(tv)
+    faces = tf + [tuple(i + off for i in f) for f in cf]
+    return Mesh("tetra_and_cube", "two components: the tetrahedron at x=-1.5 and the cube at x=+1.5",
+                tv + cv, faces, 0, 0, 2, "volume", (3,))
+
+
+def plane_grid(n, lo=-1.0, hi=1.0):
+    vs = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            vs.append((lo + (hi - lo) * i / n, lo + (hi - lo) * j / n, 0.0))
+
+    def vid(i, j):
+        return j * (n + 1) + i
+
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1))
+             for j in range(n) for i in range(n)]
+    return vs, quads
+
+
+def make_quad_grid():
+    vs, quads = plane_grid(4)
+    return Mesh("quad_grid", "4x4 quads on [-1 1]^2 in the plane z=0",
+                vs, quads, 0, 1, 1, "plus_z", (4,))
+
+
+def make_tri_grid():
+    vs, quads = plane_grid(4)
+    return Mesh("tri_grid", "the quad_grid with every quad split along the same diagonal; interior valence 6",
+                vs, split_quads(quads), 0, 1, 1, "plus_z", (6,))
+
+
+def make_disk_ev5_quads():
+    """Five sectors (a Catmull-Clark split pentagon), each an n x n quad grid."""
+    k, n = 5, 3
+    spokes = []
+    corners = []
+    for i in range(k):
+        a = 2.0 * math.pi * i / k
+        r = math.cos(math.pi / k)
+        spokes.append((r * math.cos(a), r * math.sin(a), 0.0))
+        c = a + math.pi / k
+        corners.append((math.cos(c), math.sin(c), 0.0))
+    b = Builder()
+
+    def point(sec, a, c):
+        if a == 0 and c == 0:
+            key = ("C",)
+        elif c == 0:
+            key = ("S", sec, a)
+        elif a == 0:
+            key = ("S", (sec + 1) % k, c)
+        else:
+            key = ("I", sec, a, c)
+        s, t = a / n, c / n
+        m0, m1, p = spokes[sec], spokes[(sec + 1) % k], corners[sec]
+        pos = vadd(vadd(vscale(m0, s * (1 - t)), vscale(m1, (1 - s) * t)), vscale(p, s * t))
+        return b.vertex(key, pos)
+
+    for sec in range(k):
+        for a in range(n):
+            for c in range(n):
+                b.face([point(sec, a, c), point(sec, a + 1, c), point(sec, a + 1, c + 1), point(sec, a, c + 1)])
+    return Mesh("disk_ev5_quads", "planar quad disk: a regular pentagon split into 5 sectors of 3x3 quads; "
+                "the centre is the only extraordinary vertex (valence 5)",
+                b.verts, b.faces, 0, 1, 1, "plus_z", (5,))
+
+
+def make_disk_ev7_tris():
+    """Seven triangular sectors around the centre, each split into n^2 triangles."""
+    k, n = 7, 3
+    rim = [(math.cos(2.0 * math.pi * i / k), math.sin(2.0 * math.pi * i / k), 0.0) for i in range(k)]
+    b = Builder()
+
+    def point(sec, a, c):
+        if a == 0 and c == 0:
+            key = ("C",)
+        elif c == 0:
+            key = ("S", sec, a)
+        elif a == 0:
+            key = ("S", (sec + 1) % k, c)
+        else:
+            key = ("I", sec, a, c)
+        pos = vadd(vscale(rim[sec], a / n), vscale(rim[(sec + 1) % k], c / n))
+        return b.vertex(key, pos)
+
+    for sec in range(k):
+        for a in range(n):
+            for c in range(n - a):
+                b.face([point(sec, a, c), point(sec, a + 1, c), point(sec, a, c + 1)])
+                if a + c + 2 <= n:
+                    b.face([point(sec, a + 1, c), point(sec, a + 1, c + 1), point(sec, a, c + 1)])
+    return Mesh("disk_ev7_tris", "planar triangle disk: 7 sectors of 9 triangles around a centre of valence 7; "
+                "all other interior vertices have valence 6",
+                b.verts, b.faces, 0, 1, 1, "plus_z", (7,))
+
+
+def make_cylinder_open():
+    k, rows = 8, 3
+    vs = []
+    for j in range(rows + 1):
+        for i in range(k):
+            a = 2.0 * math.pi * i / k
+            vs.append((0.5 * math.cos(a), 0.5 * math.sin(a), -0.5 + j / rows))
+
+    def vid(i, j):
+        return j * k + (i % k)
+
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)) for j in range(rows) for i in range(k)]
+    return Mesh("cylinder_open", "open tube (radius 0.5 height 1): 8 quads around x 3 rows; two boundary loops",
+                vs, quads, 0, 2, 1, "radial_z", (4,))
+
+
+def make_annulus():
+    k, rows = 8, 2
+    vs = []
+    for j in range(rows + 1):
+        r = 0.5 + 0.5 * j / rows
+        for i in range(k):
+            a = 2.0 * math.pi * i / k
+            vs.append((r * math.cos(a), r * math.sin(a), 0.0))
+
+    def vid(i, j):
+        return j * k + (i % k)
+
+    quads = [(vid(i, j), vid(i, j + 1), vid(i + 1, j + 1), vid(i + 1, j)) for j in range(rows) for i in range(k)]
+    return Mesh("annulus", "planar quad ring (radii 0.5 to 1): 8 quads around x 2 rings; two boundary loops",
+                vs, quads, 0, 2, 1, "plus_z", (4,))
+
+
+def make_single_quad():
+    vs = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)]
+    return Mesh("single_quad", "one unit square in the plane z=0", vs, [(0, 1, 2, 3)], 0, 1, 1, "plus_z")
+
+
+def make_single_triangle():
+    vs = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+    return Mesh("single_triangle", "one right triangle in the plane z=0", vs, [(0, 1, 2)], 0, 1, 1, "plus_z")
+
+
+def make_hexagon_fan():
+    vs = [(0.0, 0.0, 0.0)]
+    for i in range(6):
+        a = 2.0 * math.pi * i / 6
+        vs.append((math.cos(a), math.sin(a), 0.0))
+    faces = [(0, 1 + i, 1 + (i + 1) % 6) for i in range(6)]
+    return Mesh("hexagon_fan", "6 triangles around a centre of valence 6 (regular hexagon circumradius 1)",
+                vs, faces, 0, 1, 1, "plus_z", (6,))
+
+
+def make_pentagon():
+    vs = []
+    for i in range(5):
+        a = math.pi / 2 + 2.0 * math.pi * i / 5
+        vs.append((math.cos(a), math.sin(a), 0.0))
+    return Mesh("pentagon", "a single regular pentagon face (circumradius 1) in the plane z=0",
+                vs, [(0, 1, 2, 3, 4)], 0, 1, 1, "plus_z")
+
+
+def sphere_point(polar, azimuth):
+    s = math.sin(polar)
+    return (s * math.cos(azimuth), s * math.sin(azimuth), math.cos(polar))
+
+
+def make_quad_valence(k, rings=3):
+    """Closed quad sphere with poles of valence k.
+
+    Latitude rings r = 1..rings of k vertices each on the unit sphere, odd and
+    even rings offset by half a sector (pi/k). Every vertex at level L (north
+    pole = level 0, south pole = rings + 1) owns the "kite" quads below it,
+    spanning levels L, L+1, L+2: the north pole owns k kites, each ring vertex
+    up to ring rings-1 owns one. Poles have valence k, rings 1 and `rings` have
+    valence 3, the rest valence 4.
+    """
+    b = Builder()
+    north = b.vertex("N", (0.0, 0.0, 1.0))
+    south = b.vertex("S", (0.0, 0.0, -1.0))
+    ring = []
+    for r in range(1, rings + 1):
+        polar = math.pi * r / (rings + 1)
+        off = 0.0 if r % 2 == 1 else 0.5
+        ring.append([b.vertex(("R", r, j), sphere_point(polar, 2.0 * math.pi * (j + off) / k))
+                     for j in range(k)])
+    # Ring r (1-based) vertex j sits at azimuth j + off(r) sectors. For a vertex on an
+    # odd ring, the neighbours below at j - 1/2 and j + 1/2 are even-ring indices
+    # j - 1 and j; for a vertex on an even ring (at j + 1/2) they are j and j + 1.
+
+    def below(r, j):
+        """(left, right) neighbours on ring r+1, seen from outside, left = smaller azimuth."""
+        if r % 2 == 1:
+            return ring[r][(j - 1) % k], ring[r][j % k]
+        return ring[r][j % k], ring[r][(j + 1) % k]
+
+    # North pole kites: N, ring1[j], ring2 between j and j+1, ring1[j+1].
+    for j in range(k):
+        b.face((north, ring[0][j], ring[1][j], ring[0][(j + 1) % k]))
+    for r in range(1, rings):
+        for j in range(k):
+            top = ring[r - 1][j]
+            left, right = below(r, j)
+            bottom = south if r + 1 == rings else ring[r + 1][j]
+            # Seen from outside (azimuth grows to the right, +z is up),
+            # top -> left -> bottom -> right is counter-clockwise.
+            b.face((top, left, bottom, right))
+    return Mesh("quad_valence_%d" % k,
+                "closed quad sphere: poles of valence %d joined by %d latitude rings of %d vertices (kites)"
+                % (k, rings, k),
+                b.verts, b.faces, 0, 0, 1, "volume", (k,))
+
+
+def make_tri_valence(k, rings=3):
+    """Closed triangle sphere with poles of valence k: caps of k triangles and antiprism bands."""
+    b = Builder()
+    north = b.vertex("N", (0.0, 0.0, 1.0))
+    south = b.vertex("S", (0.0, 0.0, -1.0))
+    ring = []
+    for r in range(1, rings + 1):
+        polar = math.pi * r / (rings + 1)
+        off = 0.0 if r % 2 == 1 else 0.5
+        ring.append([b.vertex(("R", r, j), sphere_point(polar, 2.0 * math.pi * (j + off) / k))
+                     for j in range(k)])
+    for j in range(k):
+        b.face((north, ring[0][j], ring[0][(j + 1) % k]))
+        b.face((south, ring[-1][(j + 1) % k], ring[-1][j]))
+    for r in range(rings - 1):
+        up, dn = ring[r], ring[r + 1]
+        for j in range(k):
+            if r % 2 == 0:
+                # Upper ring at j, lower ring at j + 1/2.
+                b.face((up[j], dn[(j - 1) % k], dn[j]))
+                b.face((up[j], dn[j], up[(j + 1) % k]))
+            else:
+                # Upper ring at j + 1/2, lower ring at j.
+                b.face((up[j], dn[j], dn[(j + 1) % k]))
+                b.face((up[j], dn[(j + 1) % k], up[(j + 1) % k]))
+    return Mesh("tri_valence_%d" % k,
+                "closed triangle sphere: poles of valence %d joined by %d latitude rings of %d vertices"
+                % (k, rings, k),
+                b.verts, b.faces, 0, 0, 1, "volume", (k,))
+
+
+def all_meshes():
+    meshes = [
+        make_cube(), make_tetrahedron(), make_octahedron(), make_icosahedron(), make_dodecahedron(),
+        make_quad_torus(), make_tri_torus(), make_genus2(), make_sphere_quads(), make_sphere_tris(),
+        make_cube_ngons(), make_prism_hex(), make_tetra_and_cube(),
+        make_quad_grid(), make_tri_grid(), make_disk_ev5_quads(), make_disk_ev7_tris(),
+        make_cylinder_open(), make_annulus(), make_single_quad(), make_single_triangle(),
+        make_hexagon_fan(), make_pentagon(),
+    ]
+    meshes += [make_quad_valence(k) for k in range(3, 9)]
+    meshes += [make_tri_valence(k) for k in range(3, 13)]
+    return meshes
+
+
+# --------------------------------------------------------------------------
+# Independent analysis and self-checks
+# --------------------------------------------------------------------------
+
+class UnionFind:
+    def __init__(self, n):
+        self.parent = list(range(n))
+
+    def find(self, x):
+        while self.parent[x] != x:
+            self.parent[x] = self.parent[self.parent[x]]
+            x = self.parent[x]
+        return x
+
+    def union(self, a, b):
+        ra, rb = self.find(a), self.find(b)
+        if ra != rb:
+            self.parent[max(ra, rb)] = min(ra, rb)
+
+
+def fail(mesh, msg):
+    raise MeshError("%s: %s" % (mesh.name, msg))
+
+
+def analyse(mesh):
+    """Counts and checks; returns a dict of the mesh's invariants."""
+    nv = len(mesh.verts)
+    if mesh.faces == []:
+        fail(mesh, "no faces")
+    # Faces: indices in range, degree >= 3, no repeated vertex.
+    for f in mesh.faces:
+        if len(f) < 3:
+            fail(mesh, "face %r has degree < 3" % (f,))
+        if len(set(f)) != len(f):
+            fail(mesh, "face %r repeats a vertex" % (f,))
+        for v in f:
+            if not 0 <= v < nv:
+                fail(mesh, "face %r index out of range" % (f,))
+    # No isolated vertices; no two vertices at the same position.
+    used = set(v for f in mesh.faces for v in f)
+    if len(used) != nv:
+        fail(mesh, "%d isolated vertices" % (nv - len(used)))
+    keys = set(tuple(round(c, 9) for c in p) for p in mesh.verts)
+    if len(keys) != nv:
+        fail(mesh, "coincident vertex positions")
+    # Directed edges at most once; undirected edges in 1 or 2 faces.
+    directed = {}
+    undirected = {}
+    for fi, f in enumerate(mesh.faces):
+        for k in range(len(f)):
+            a, c = f[k], f[(k + 1) % len(f)]
+            if (a, c) in directed:
+                fail(mesh, "directed edge %d->%d used twice (inconsistent orientation)" % (a, c))
+            directed[(a, c)] = fi
+            undirected.setdefault((min(a, c), max(a, c)), []).append(fi)
+    for e, fs in undirected.items():
+        if len(fs) not in (1, 2):
+            fail(mesh, "edge %r in %d faces" % (e, len(fs)))
+    ne = len(undirected)
+    nf = len(mesh.faces)
+    # Vertex manifoldness: the faces around each vertex form one fan.
+    faces_at = [[] for _ in range(nv)]
+    for fi, f in enumerate(mesh.faces):
+        for v in f:
+            faces_at[v].append(fi)
+    for v in range(nv):
+        local = {fi: i for i, fi in enumerate(faces_at[v])}
+        uf = UnionFind(len(local))
+        for fi in faces_at[v]:
+            f = mesh.faces[fi]
+            k = f.index(v)
+            for w in (f[(k + 1) % len(f)], f[k - 1]):
+                for fj in undirected[(min(v, w), max(v, w))]:
+                    uf.union(local[fi], local[fj])
+        if len(set(uf.find(i) for i in range(len(local)))) != 1:
+            fail(mesh, "vertex %d is non-manifold (more than one fan)" % v)
+    # Boundary: directed edges without a twin; walk them into loops.
+    boundary_next = {}
+    for (a, c) in directed:
+        if (c, a) not in directed:
+            if a in boundary_next:
+                fail(mesh, "vertex %d has two outgoing boundary edges" % a)
+            boundary_next[a] = c
+    if sorted(boundary_next.keys()) != sorted(boundary_next.values()):
+        fail(mesh, "boundary edges do not form closed loops")
+    seen = set()
+    loops = 0
+    for start in sorted(boundary_next):
+        if start in seen:
+            continue
+        loops += 1
+        v = start
+        while v not in seen:
+            seen.add(v)
+            v = boundary_next[v]
+        if v != start:
+            fail(mesh, "boundary walk from %d does not return" % start)
+    # Components by union-find over edges.
+    uf = UnionFind(nv)
+    for (a, c) in undirected:
+        uf.union(a, c)
+    comp_of = [uf.find(v) for v in range(nv)]
+    components = len(set(comp_of))
+
+    chi = nv - ne + nf
+    expected_chi = 2 * mesh.components - 2 * mesh.genus - mesh.boundary_loops
+    if chi != expected_chi:
+        fail(mesh, "V-E+F = %d but construction says 2c-2g-b = %d" % (chi, expected_chi))
+    if loops != mesh.boundary_loops:
+        fail(mesh, "walked %d boundary loops, construction says %d" % (loops, mesh.boundary_loops))
+    if components != mesh.components:
+        fail(mesh, "union-find found %d components, construction says %d" % (components, mesh.components))
+    closed = loops == 0
+
+    check_orientation(mesh, comp_of, closed)
+
+    # Valences (number of incident edges).
+    valence = [0] * nv
+    for (a, c) in undirected:
+        valence[a] += 1
+        valence[c] += 1
+    on_boundary = set(boundary_next)
+    for k in mesh.required_valences:
+        if k not in valence:
+            fail(mesh, "construction promises a vertex of valence %d" % k)
+    degrees = [len(f) for f in mesh.faces]
+    tris = all(d == 3 for d in degrees)
+    quads = all(d == 4 for d in degrees)
+    extraordinary = []
+    if tris or quads:
+        regular = 6 if tris else 4
+        extraordinary = sorted(valence[v] for v in range(nv) if v not in on_boundary and valence[v] != regular)
+    return {
+        "V": nv, "E": ne, "F": nf, "chi": expected_chi, "closed": closed,
+        "tris": tris, "quads": quads, "extraordinary": extraordinary,
+        "degrees": degrees, "valence": valence, "boundary": on_boundary,
+    }
+
+
+def newell_normal(mesh, f):
+    n = (0.0, 0.0, 0.0)
+    for k in range(len(f)):
+        n = vadd(n, cross(mesh.verts[f[k]], mesh.verts[f[(k + 1) % len(f)]]))
+    return vscale(n, 0.5)
+
+
+def check_orientation(mesh, comp_of, closed):
+    for f in mesh.faces:
+        if not norm(newell_normal(mesh, f)) > 1e-6:
+            fail(mesh, "face %r is degenerate (no area)" % (f,))
+    if mesh.orientation == "volume" and closed and mesh.genus == 0 and mesh.components == 1:
+        # Genus-0 closed meshes here are star-shaped about the origin: every
+        # face must also face away from it individually.
+        for f in mesh.faces:
+            c = (0.0, 0.0, 0.0)
+            for v in f:
+                c = vadd(c, mesh.verts[v])
+            if not dot(newell_normal(mesh, f), c) > 1e-9:
+                fail(mesh, "face %r faces the origin (not outward)" % (f,))
+    if mesh.orientation == "volume":
+        if not closed:
+            fail(mesh, "volume orientation check needs a closed mesh")
+        volume = {}
+        for f in mesh.faces:
+            p0 = mesh.verts[f[0]]
+            for k in range(1, len(f) - 1):
+                p1, p2 = mesh.verts[f[k]], mesh.verts[f[k + 1]]
+                c = comp_of[f[0]]
+                volume[c] = volume.get(c, 0.0) + dot(p0, cross(p1, p2)) / 6.0
+        for c, vol in volume.items():
+            if not vol > 1e-6:
+                fail(mesh, "component of vertex %d has signed volume %r (not outward)" % (c, vol))
+    elif mesh.orientation == "plus_z":
+        for f in mesh.faces:
+            if any(mesh.verts[v][2] != 0.0 for v in f):
+                fail(mesh, "planar mesh has z != 0")
+            area = 0.0
+            for k in range(len(f)):
+                p, q = mesh.verts[f[k]], mesh.verts[f[(k + 1) % len(f)]]
+                area += p[0] * q[1] - q[0] * p[1]
+            if not area > 1e-9:
+                fail(mesh, "face %r is not counter-clockwise about +z" % (f,))
+    elif mesh.orientation == "radial_z":
+        for f in mesh.faces:
+            c = (0.0, 0.0, 0.0)
+            for v in f:
+                c = vadd(c, mesh.verts[v])
+            c = vscale(c, 1.0 / len(f))
+            p0, p1, p2 = mesh.verts[f[0]], mesh.verts[f[1]], mesh.verts[f[2]]
+            n = cross(vsub(p1, p0), vsub(p2, p0))
+            if not dot(n, (c[0], c[1], 0.0)) > 1e-9:
+                fail(mesh, "face %r does not face away from the z axis" % (f,))
+    else:
+        fail(mesh, "unknown orientation check %r" % mesh.orientation)
+
+
+# --------------------------------------------------------------------------
+# Output
+# --------------------------------------------------------------------------
+
+def obj_text(mesh):
+    lines = ["# generated by %s \u2014 %s" % (SCRIPT, mesh.description)]
+    for p in mesh.verts:
+        lines.append("v %r %r %r" % p)
+    for f in mesh.faces:
+        lines.append("f " + " ".join(str(v + 1) for v in f))
+    return "\n".join(lines) + "\n"
+
+
+def histogram(values):
+    counts = {}
+    for v in values:
+        counts[v] = counts.get(v, 0) + 1
+    return " ".join("%d\u00d7%d" % (k, counts[k]) for k in sorted(counts))
+
+
+README_HEAD = """\
+# Bundled example meshes
+
+<!-- generated by tools/make_meshes.py; do not edit by hand -->
+
+Every mesh here is generated by `tools/make_meshes.py` (Python standard library
+only, deterministic). Do not edit these files: change the script and rerun
+`python3 tools/make_meshes.py`; `python3 tools/make_meshes.py --check` verifies
+that the committed files are reproducible. The same script writes the test
+oracle `tests/data/bundled_meshes.csv` (read by `tests/support/mesh_zoo.h`).
+
+Conventions: OBJ with `v x y z` (floats rounded to 12 decimals, written
+round-trip exact) and 1-based `f` lines; every face is counter-clockwise seen
+from outside (open planar meshes: normal +z). All meshes are consistently
+oriented 2-manifolds (with boundary) without isolated vertices; the script
+checks this, and that V - E + F = 2c - 2g - b, before writing anything.
+
+Scale: the cube has edge 1; the tetrahedron, octahedron, icosahedron,
+dodecahedron and all spheres have unit circumradius.
+
+Columns: V, E, F; χ = V - E + F; g genus; b boundary loops; c components;
+face degrees as `degree×count`; valences (edges per vertex) as
+`valence×count`, interior and boundary vertices separately.
+
+| file | what it is | V | E | F | χ | g | b | c | face degrees | interior valences | boundary valences |
+|---|---|---|---|---|---|---|---|---|---|---|---|
+"""
+
+
+def readme_text(meshes, infos):
+    lines = [README_HEAD.rstrip("\n")]
+    for m, info in zip(meshes, infos):
+        interior = [info["valence"][v] for v in range(info["V"]) if v not in info["boundary"]]
+        boundary = [info["valence"][v] for v in range(info["V"]) if v in info["boundary"]]
+        lines.append("| `%s.obj` | %s | %d | %d | %d | %d | %d | %d | %d | %s | %s | %s |" % (
+            m.name, m.description, info["V"], info["E"], info["F"], info["chi"], m.genus,
+            m.boundary_loops, m.components, histogram(info["degrees"]),
+            histogram(interior) or "\u2013", histogram(boundary) or "\u2013"))
+    return "\n".join(lines) + "\n"
+
+
+def csv_text(meshes, infos):
+    lines = [CSV_HEADER]
+    for m, info in zip(meshes, infos):
+        for bad in (",", '"', "\n"):
+            if bad in m.description:
+                fail(m, "description must not contain %r" % bad)
+        lines.append(",".join([
+            m.name, m.name + ".obj", str(info["V"]), str(info["E"]), str(info["F"]), str(info["chi"]),
+            str(m.genus), str(m.boundary_loops), str(m.components),
+            "1" if info["closed"] else "0", "1" if info["tris"] else "0", "1" if info["quads"] else "0",
+            " ".join(str(v) for v in info["extraordinary"]), m.description,
+        ]))
+    return "\n".join(lines) + "\n"
+
+
+def generate(root):
+    """Build, check and write everything under root. Returns the meshes and infos."""
+    meshes = all_meshes()
+    names = [m.name for m in meshes]
+    if len(set(names)) != len(names):
+        raise MeshError("duplicate mesh names")
+    infos = [analyse(m) for m in meshes]
+    mesh_dir = os.path.join(root, MESH_SUBDIR)
+    os.makedirs(mesh_dir, exist_ok=True)
+    os.makedirs(os.path.dirname(os.path.join(root, CSV_PATH)), exist_ok=True)
+    wanted = set()
+    for m in meshes:
+        path = os.path.join(mesh_dir, m.name + ".obj")
+        wanted.add(m.name + ".obj")
+        write(path, obj_text(m))
+    # Remove stale generated meshes (only .obj files in data/meshes).
+    for fname in sorted(os.listdir(mesh_dir)):
+        if fname.endswith(".obj") and fname not in wanted:
+            os.remove(os.path.join(mesh_dir, fname))
+    write(os.path.join(mesh_dir, "README.md"), readme_text(meshes, infos))
+    write(os.path.join(root, CSV_PATH), csv_text(meshes, infos))
+    return meshes, infos
+
+
+def write(path, text):
+    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+        fh.write(text)
+
+
+def check(root):
+    """Regenerate into a temporary directory; return the list of differences."""
+    problems = []
+    with tempfile.TemporaryDirectory(prefix="limsurf-meshes-") as tmp:
+        generate(tmp)
+        fresh_dir = os.path.join(tmp, MESH_SUBDIR)
+        have_dir = os.path.join(root, MESH_SUBDIR)
+        fresh = set(os.listdir(fresh_dir))
+        have = set(os.listdir(have_dir)) if os.path.isdir(have_dir) else set()
+        for name in sorted(fresh - have):
+            problems.append("missing: %s" % os.path.join(MESH_SUBDIR, name))
+        for name in sorted(have - fresh):
+            problems.append("not generated: %s" % os.path.join(MESH_SUBDIR, name))
+        for name in sorted(fresh & have):
+            if not filecmp.cmp(os.path.join(fresh_dir, name), os.path.join(have_dir, name), shallow=False):
+                problems.append("differs: %s" % os.path.join(MESH_SUBDIR, name))
+        fresh_csv = os.path.join(tmp, CSV_PATH)
+        have_csv = os.path.join(root, CSV_PATH)
+        if not os.path.isfile(have_csv):
+            problems.append("missing: %s" % CSV_PATH)
+        elif not filecmp.cmp(fresh_csv, have_csv, shallow=False):
+            problems.append("differs: %s" % CSV_PATH)
+    return problems
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--check", action="store_true",
+                        help="regenerate into a temporary directory and fail if the committed files differ")
+    parser.add_argument("--root", default=ROOT, help="repository root (default: the script's parent)")
+    args = parser.parse_args(argv)
+    try:
+        if args.check:
+            problems = check(args.root)
+            if problems:
+                for p in problems:
+                    print("make_meshes --check: " + p, file=sys.stderr)
+                print("make_meshes --check: FAILED; rerun python3 tools/make_meshes.py", file=sys.stderr)
+                return 1
+            print("make_meshes --check: data/meshes and %s are up to date" % CSV_PATH)
+            return 0
+        meshes, _ = generate(args.root)
+        print("make_meshes: wrote %d meshes to %s and %s" % (len(meshes), MESH_SUBDIR, CSV_PATH))
+        return 0
+    except MeshError as exc:
+        print("make_meshes: self-check FAILED: %s" % exc, file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
