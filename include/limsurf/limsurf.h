@@ -7,5 +7,6 @@
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/mesh/polygon_soup.h"
 #include "limsurf/mesh/sharpness.h"
+#include "limsurf/mesh/statistics.h"
 #include "limsurf/mesh/topology.h"
 #include "limsurf/mesh/validate.h"

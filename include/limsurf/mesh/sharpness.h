@@ -76,4 +76,20 @@ struct SchemeHints {
     }
 };
 
+/// Stable lower-case names ("edge-and-corner", "chaikin", "smooth"), as the CLI spells them.
+[[nodiscard]] constexpr const char* to_string(BoundaryInterpolation value) noexcept {
+    switch (value) {
+    case BoundaryInterpolation::None: return "none";
+    case BoundaryInterpolation::EdgeOnly: return "edge-only";
+    case BoundaryInterpolation::EdgeAndCorner: return "edge-and-corner";
+    }
+    return "?";
+}
+[[nodiscard]] constexpr const char* to_string(CreasingMethod value) noexcept {
+    return value == CreasingMethod::Uniform ? "uniform" : "chaikin";
+}
+[[nodiscard]] constexpr const char* to_string(TriangleSubdivision value) noexcept {
+    return value == TriangleSubdivision::CatmullClark ? "catmull-clark" : "smooth";
+}
+
 }  // namespace limsurf

@@ -1,0 +1,16 @@
+// One function per subcommand: registers its options and its callback.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace limsurf::cli {
+
+/// Where a subcommand's callback leaves its exit code.
+struct CommandStatus {
+    int exit_code = 0;
+};
+
+void add_info_command(CLI::App& app, CommandStatus& status);
+void add_convert_command(CLI::App& app, CommandStatus& status);
+
+}  // namespace limsurf::cli

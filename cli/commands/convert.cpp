@@ -1,0 +1,50 @@
+// limsurf convert IN OUT: read, validate and write a mesh in another format.
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands/commands.h"
+#include "limsurf/io/mesh_io.h"
+#include "output.h"
+
+namespace limsurf::cli {
+namespace {
+
+struct ConvertOptions {
+    std::string input;
+    std::string output;
+    PlyEncoding ply_encoding = PlyEncoding::Ascii;
+    bool strict_isolated = false;
+};
+
+int run_convert(const ConvertOptions& options) {
+    // Refuse before reading: an unknown output format is a usage mistake.
+    (void)mesh_format_from_path(options.output);
+    const BuildResult built = read_mesh(
+        options.input,
+        {.isolated_vertices = options.strict_isolated ? IsolatedVertices::Error : IsolatedVertices::Drop});
+    for (const Issue& issue : built.report.issues) {
+        std::cerr << "warning: " << issue.to_string() << '\n';
+    }
+    print_warnings(write_mesh(options.output, built.mesh, {.ply_encoding = options.ply_encoding}));
+    return exit_ok;
+}
+
+}  // namespace
+
+void add_convert_command(CLI::App& app, CommandStatus& status) {
+    auto options = std::make_shared<ConvertOptions>();
+    CLI::App* convert = app.add_subcommand("convert", "Convert a mesh between OBJ, OFF and PLY (by extension)");
+    convert->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
+    convert->add_option("output", options->output, "Output mesh (.obj, .off, .ply); written atomically")->required();
+    const std::map<std::string, PlyEncoding> encodings{{"ascii", PlyEncoding::Ascii},
+                                                       {"binary-le", PlyEncoding::BinaryLittleEndian},
+                                                       {"binary-be", PlyEncoding::BinaryBigEndian}};
+    convert->add_option("--ply-encoding", options->ply_encoding, "PLY encoding: ascii, binary-le or binary-be")
+        ->transform(CLI::CheckedTransformer(encodings, CLI::ignore_case));
+    convert->add_flag("--strict-isolated", options->strict_isolated,
+                      "Treat vertices in no face as errors (default: dropped with a warning)");
+    convert->callback([options, &status] { status.exit_code = run_guarded([&] { return run_convert(*options); }); });
+}
+
+}  // namespace limsurf::cli

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Installs every Debian package limsurf needs to build, test and run its demo.
+# Idempotent: installs only what is missing, and runs `apt-get update` only
+# when the package lists are missing or an install from them fails.
+# Works as root or through sudo.
+set -euo pipefail
+
+packages=(
+    # toolchain
+    cmake g++ make pkg-config
+    # library
+    libeigen3-dev
+    # command-line tool
+    libcli11-dev nlohmann-json3-dev
+    # tests and benchmarks
+    libgtest-dev libgmock-dev libbenchmark-dev
+    # test-only peer: an independent OBJ reader
+    libtinyobjloader-dev
+    # bundled-mesh reproducibility test (tools/make_meshes.py --check)
+    python3
+)
+
+missing=()
+for package in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$package")
+    fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+    exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+    as_root=()
+elif command -v sudo >/dev/null 2>&1; then
+    as_root=(sudo)
+else
+    echo "error: missing packages (${missing[*]}) and neither root nor sudo to install them" >&2
+    exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+echo "setup: installing ${missing[*]}" >&2
+lists_present() { compgen -G "/var/lib/apt/lists/*_Packages*" >/dev/null; }
+if ! lists_present; then
+    "${as_root[@]}" apt-get update -qq
+fi
+if ! "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null; then
+    # The lists may be stale (a package version no longer served): refresh once and retry.
+    "${as_root[@]}" apt-get update -qq
+    "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
