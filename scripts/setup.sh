@@ -14,6 +14,8 @@ packages=(
     libcli11-dev nlohmann-json3-dev
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
+    # peers measured in the same benchmark run
+    libosd-dev
     # test-only peer: an independent OBJ reader
     libtinyobjloader-dev
     # bundled-mesh reproducibility test (tools/make_meshes.py --check)

@@ -28,6 +28,9 @@
 #include "limsurf/mesh/sharpness.h"
 
 namespace limsurf {
+namespace detail {
+struct HalfEdge;
+}  // namespace detail
 
 class Topology {
 public:
@@ -154,7 +157,7 @@ private:
         const auto end = at(face_offsets_[at(f) + 1]);
         return std::span<const T>(table).subspan(begin, end - begin);
     }
-    void build_edges();
+    void build_edges(const std::vector<detail::HalfEdge>& half_edges);
     void build_one_rings();
     void build_boundary_loops();
     void build_components();

@@ -54,9 +54,11 @@ Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std:
       face_offsets_(face_offsets.begin(), face_offsets.end()),
       face_vertices_(face_vertices.begin(), face_vertices.end()) {
     ValidationReport report;
-    detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report);
+    std::vector<detail::HalfEdge> half_edges;
+    detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report,
+                               &half_edges);
     throw_if_unusable(report);
-    build_edges();
+    build_edges(half_edges);
     build_one_rings();
     build_boundary_loops();
     build_components();
@@ -74,57 +76,54 @@ Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vect
     return Topology(num_vertices, offsets, corners, sharpness);
 }
 
-void Topology::build_edges() {
-    // Each corner k of face f starts the half-edge corner k -> corner k+1.
-    struct HalfEdge {
-        std::uint64_t key;
-        Index corner;
-    };
-    std::vector<Index> corner_face(face_vertices_.size());
-    std::vector<HalfEdge> half_edges(face_vertices_.size());
-    for (Index f = 0; f < num_faces(); ++f) {
-        const Index begin = face_offsets_[at(f)];
-        const Index n = face_degree(f);
-        for (Index k = 0; k < n; ++k) {
-            const Index a = face_vertices_[at(begin + k)];
-            const Index b = face_vertices_[at(begin + (k + 1) % n)];
-            const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-            const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-            half_edges[at(begin + k)] = {(lo << 32U) | hi, begin + k};
-            corner_face[at(begin + k)] = f;
-        }
-    }
-    std::sort(half_edges.begin(), half_edges.end(),
-              [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
-
-    // Number edges in order of first appearance in the face list (locality, like Vtr).
-    std::vector<std::pair<Index, size_t>> groups;  // (first corner, first half-edge of the group)
+void Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
+    // half_edges is sorted by (edge key, face): each run of equal keys is one edge.
+    std::vector<Index> group_begin;
+    std::vector<Index> group_of_corner(face_vertices_.size(), invalid_index);
     for (size_t i = 0; i < half_edges.size(); ++i) {
         if (i == 0 || half_edges[i].key != half_edges[i - 1].key) {
-            groups.emplace_back(half_edges[i].corner, i);
+            group_begin.push_back(static_cast<Index>(i));
+        }
+        group_of_corner[at(half_edges[i].corner)] = static_cast<Index>(group_begin.size()) - 1;
+    }
+    const auto num_groups = static_cast<Index>(group_begin.size());
+    group_begin.push_back(static_cast<Index>(half_edges.size()));
+
+    // Number edges in order of first appearance in the face list (locality, like Vtr).
+    std::vector<Index> group_of_edge;
+    group_of_edge.reserve(at(num_groups));
+    std::vector<Index> edge_of_group(at(num_groups), invalid_index);
+    for (const Index g : group_of_corner) {
+        if (edge_of_group[at(g)] == invalid_index) {
+            edge_of_group[at(g)] = static_cast<Index>(group_of_edge.size());
+            group_of_edge.push_back(g);
         }
     }
-    std::sort(groups.begin(), groups.end());
 
     face_edges_.assign(face_vertices_.size(), invalid_index);
     face_edge_signs_.assign(face_vertices_.size(), 0);
-    edge_vertices_.reserve(2 * groups.size());
+    edge_vertices_.resize(2 * at(num_groups));
+    edge_face_offsets_.reserve(at(num_groups) + 1);
     edge_face_offsets_.assign(1, 0);
-    for (size_t e = 0; e < groups.size(); ++e) {
-        const std::uint64_t key = half_edges[groups[e].second].key;
-        const auto lo = static_cast<Index>(key >> 32U);
-        edge_vertices_.push_back(lo);
-        edge_vertices_.push_back(static_cast<Index>(key & 0xffffffffU));
-        // Faces of this edge, the one traversing lower -> higher first.
-        std::vector<Index> faces;
-        for (size_t i = groups[e].second; i < half_edges.size() && half_edges[i].key == key; ++i) {
-            const Index corner = half_edges[i].corner;
-            const bool forward = face_vertices_[at(corner)] == lo;
-            face_edges_[at(corner)] = static_cast<Index>(e);
-            face_edge_signs_[at(corner)] = forward ? 1 : -1;
-            faces.insert(forward ? faces.begin() : faces.end(), corner_face[at(corner)]);
+    edge_faces_.reserve(half_edges.size());
+    for (Index e = 0; e < num_groups; ++e) {
+        const Index g = group_of_edge[at(e)];
+        const detail::HalfEdge& first = half_edges[at(group_begin[at(g)])];
+        const auto lo = static_cast<Index>(first.key >> 32U);
+        edge_vertices_[2 * at(e)] = lo;
+        edge_vertices_[2 * at(e) + 1] = static_cast<Index>(first.key & 0xffffffffU);
+        // The face traversing lower -> higher first, then the other (at most two: validated).
+        for (const bool forward_pass : {true, false}) {
+            for (Index i = group_begin[at(g)]; i < group_begin[at(g) + 1]; ++i) {
+                const detail::HalfEdge& h = half_edges[at(i)];
+                const bool forward = face_vertices_[at(h.corner)] == lo;
+                if (forward == forward_pass) {
+                    face_edges_[at(h.corner)] = e;
+                    face_edge_signs_[at(h.corner)] = forward ? 1 : -1;
+                    edge_faces_.push_back(h.face);
+                }
+            }
         }
-        edge_faces_.insert(edge_faces_.end(), faces.begin(), faces.end());
         edge_face_offsets_.push_back(static_cast<Index>(edge_faces_.size()));
     }
 }
@@ -169,8 +168,13 @@ void Topology::build_one_rings() {
         return face_edges_[at(face_offsets_[at(f)] + (k + n - 1) % n)];
     };
 
+    vertex_face_offsets_.reserve(at(num_vertices_) + 1);
+    vertex_edge_offsets_.reserve(at(num_vertices_) + 1);
     vertex_face_offsets_.assign(1, 0);
     vertex_edge_offsets_.assign(1, 0);
+    vertex_faces_.reserve(face_vertices_.size());
+    vertex_face_corners_.reserve(face_vertices_.size());
+    vertex_edges_.reserve(face_vertices_.size() + at(num_vertices_));  // + one per boundary vertex at most
     vertex_is_boundary_.assign(at(num_vertices_), 0);
     for (Index v = 0; v < num_vertices_; ++v) {
         const auto mine = std::span<const Index>(corners).subspan(at(offsets[at(v)]),

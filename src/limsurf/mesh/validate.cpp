@@ -108,14 +108,6 @@ std::uint64_t edge_key(Index a, Index b) {
     return (lo << 32U) | hi;
 }
 
-/// One directed traversal of an edge by a face.
-struct HalfEdge {
-    std::uint64_t key;
-    Index face;
-    Index from;
-    Index to;
-};
-
 /// Union-find that also tracks the parity "face needs flipping relative to
 /// its root", for the orientability check.
 class ParityUnionFind {
@@ -189,6 +181,12 @@ public:
         check_tags();
     }
 
+    [[nodiscard]] std::vector<HalfEdge> take_half_edges() { return std::move(half_edges_); }
+
+    /// The vertex a half-edge leaves, and the one it enters.
+    [[nodiscard]] Index from(const HalfEdge& h) const { return faces_.vertices[at(h.corner)]; }
+    [[nodiscard]] Index to(const HalfEdge& h) const { return from(h) == h.lower() ? h.higher() : h.lower(); }
+
 private:
     [[nodiscard]] Index num_faces() const { return static_cast<Index>(faces_.offsets.size()) - 1; }
     [[nodiscard]] std::span<const Index> face(Index f) const {
@@ -243,6 +241,18 @@ private:
     }
 
     bool report_repeated_vertex(Index f, std::span<const Index> corners) {
+        if (corners.size() <= 32) {  // the usual small face: a quadratic scan, no allocation
+            for (std::size_t i = 1; i < corners.size(); ++i) {
+                for (std::size_t j = 0; j < i; ++j) {
+                    if (corners[i] == corners[j]) {
+                        add(Problem::RepeatedVertex, source_.face_location(f),
+                            concat("face ", f, " repeats vertex ", corners[i]));
+                        return true;
+                    }
+                }
+            }
+            return false;
+        }
         std::vector<Index> sorted(corners.begin(), corners.end());
         std::sort(sorted.begin(), sorted.end());
         const auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
@@ -253,21 +263,44 @@ private:
         return true;
     }
 
+    /// Half-edges of the good faces sorted by (key, face): a counting sort on
+    /// the lower vertex, then a tiny insertion sort within each bucket, so the
+    /// cost stays linear in the number of corners.
     void collect_half_edges() {
+        std::vector<Index> bucket(at(faces_.num_vertices) + 1, 0);
+        for_each_good_corner([&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 1]; });
+        std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
+        half_edges_.resize(at(bucket.back()));
+        std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
+        for_each_good_corner([&](Index f, Index a, Index b, Index corner) {
+            half_edges_[at(fill[at(std::min(a, b))]++)] = {edge_key(a, b), f, corner};
+        });
+        auto before = [](const HalfEdge& x, const HalfEdge& y) {
+            return x.key != y.key ? x.key < y.key : x.face < y.face;
+        };
+        for (Index v = 0; v < faces_.num_vertices; ++v) {
+            const auto first = half_edges_.begin() + bucket[at(v)];
+            const auto last = half_edges_.begin() + bucket[at(v) + 1];
+            for (auto i = first; i != last; ++i) {  // insertion sort: buckets hold ~valence entries
+                for (auto j = i; j != first && before(*j, *(j - 1)); --j) {
+                    std::iter_swap(j, j - 1);
+                }
+            }
+        }
+    }
+
+    template <class Visit>
+    void for_each_good_corner(Visit&& visit) const {
         for (Index f = 0; f < num_faces(); ++f) {
             if (good_face_[at(f)] == 0) {
                 continue;
             }
-            const auto corners = face(f);
-            for (size_t k = 0; k < corners.size(); ++k) {
-                const Index a = corners[k];
-                const Index b = corners[(k + 1) % corners.size()];
-                half_edges_.push_back({edge_key(a, b), f, a, b});
+            const Index begin = faces_.offsets[at(f)];
+            const Index n = faces_.offsets[at(f) + 1] - begin;
+            for (Index k = 0; k < n; ++k) {
+                visit(f, faces_.vertices[at(begin + k)], faces_.vertices[at(begin + (k + 1) % n)], begin + k);
             }
         }
-        std::sort(half_edges_.begin(), half_edges_.end(), [](const HalfEdge& x, const HalfEdge& y) {
-            return x.key != y.key ? x.key < y.key : x.face < y.face;
-        });
     }
 
     /// Groups of half-edges sharing one undirected edge, as [begin, end) ranges.
@@ -294,13 +327,13 @@ private:
             const HalfEdge& first = half_edges_[begin];
             if (end - begin > 2) {
                 report_non_manifold_edge(begin, end);
-                touches_non_manifold_edge_[at(first.from)] = 1;
-                touches_non_manifold_edge_[at(first.to)] = 1;
+                touches_non_manifold_edge_[at(first.lower())] = 1;
+                touches_non_manifold_edge_[at(first.higher())] = 1;
                 return;
             }
             if (end - begin == 2) {
                 const HalfEdge& second = half_edges_[begin + 1];
-                const int relation = first.from == second.from ? 1 : 0;
+                const int relation = from(first) == from(second) ? 1 : 0;
                 if (relation == 1) {
                     same_direction.emplace_back(begin, begin + 1);
                 }
@@ -321,7 +354,7 @@ private:
         }
         // The location is the face that made the edge non-manifold (the third one, in file order).
         add(Problem::NonManifoldEdge, source_.face_location(half_edges_[begin + 2].face),
-            concat("edge (", std::min(first.from, first.to), ", ", std::max(first.from, first.to),
+            concat("edge (", first.lower(), ", ", first.higher(),
                    ") is shared by ", end - begin, " faces (non-manifold): faces ", list));
     }
 
@@ -348,7 +381,7 @@ private:
                 continue;
             }
             add(Problem::InconsistentOrientation, source_.face_location(y.face),
-                concat("faces ", x.face, " and ", y.face, " both traverse edge (", x.from, ", ", x.to,
+                concat("faces ", x.face, " and ", y.face, " both traverse edge (", from(x), ", ", to(x),
                        ") in the same direction (inconsistent orientation", flip_hint(orientation, x.face), ")"));
         }
     }
@@ -386,7 +419,7 @@ private:
         // Corners grouped by vertex.
         std::vector<Index> offsets(at(faces_.num_vertices) + 1, 0);
         for (const HalfEdge& h : half_edges_) {
-            ++offsets[at(h.from) + 1];
+            ++offsets[at(from(h)) + 1];
         }
         std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
         std::vector<std::pair<Index, Index>> corners(half_edges_.size());  // (next, prev) around each vertex
@@ -418,14 +451,16 @@ private:
     }
 
     /// Number of edge-connected fans among the corners (next, prev) at one vertex.
-    static Index count_fans(std::span<const std::pair<Index, Index>> corners) {
-        std::vector<std::pair<Index, Index>> by_neighbour;  // (neighbour, corner)
+    Index count_fans(std::span<const std::pair<Index, Index>> corners) {
+        auto& by_neighbour = scratch_pairs_;  // (neighbour, corner)
+        by_neighbour.clear();
         for (size_t i = 0; i < corners.size(); ++i) {
             by_neighbour.emplace_back(corners[i].first, static_cast<Index>(i));
             by_neighbour.emplace_back(corners[i].second, static_cast<Index>(i));
         }
         std::sort(by_neighbour.begin(), by_neighbour.end());
-        std::vector<Index> parent(corners.size());
+        auto& parent = scratch_parents_;
+        parent.resize(corners.size());
         std::iota(parent.begin(), parent.end(), Index{0});
         auto fans = static_cast<Index>(corners.size());
         for (size_t i = 1; i < by_neighbour.size(); ++i) {
@@ -442,23 +477,44 @@ private:
         return fans;
     }
 
+    /// Two faces with the same vertex set share every edge, in particular the
+    /// smallest edge of each: compare only faces meeting at their smallest edge.
     void check_duplicate_faces() {
-        std::vector<std::pair<std::vector<Index>, Index>> keys;
-        for (Index f = 0; f < num_faces(); ++f) {
-            if (good_face_[at(f)] != 0) {
-                std::vector<Index> sorted(face(f).begin(), face(f).end());
-                std::sort(sorted.begin(), sorted.end());
-                keys.emplace_back(std::move(sorted), f);
-            }
+        std::vector<std::uint64_t> smallest_edge(at(num_faces()), ~std::uint64_t{0});
+        for (const HalfEdge& h : half_edges_) {
+            smallest_edge[at(h.face)] = std::min(smallest_edge[at(h.face)], h.key);
         }
-        std::sort(keys.begin(), keys.end());
-        for (size_t i = 1; i < keys.size(); ++i) {
-            if (keys[i].first == keys[i - 1].first) {
-                add(Problem::DuplicateFace, source_.face_location(keys[i].second),
-                    concat("face ", keys[i].second, " has the same vertices as face ", keys[i - 1].second,
-                           " (duplicate face)"));
+        for_each_edge([&](size_t begin, size_t end) {
+            if (end - begin > 16) {  // a non-manifold fan, already an error; avoid quadratic work
+                return;
             }
+            for (size_t j = begin + 1; j < end; ++j) {
+                for (size_t i = begin; i < j; ++i) {
+                    const Index f = half_edges_[i].face;
+                    const Index g = half_edges_[j].face;
+                    if (smallest_edge[at(f)] == half_edges_[i].key && smallest_edge[at(g)] == half_edges_[i].key &&
+                        same_vertex_set(face(f), face(g))) {
+                        add(Problem::DuplicateFace, source_.face_location(g),
+                            concat("face ", g, " has the same vertices as face ", f, " (duplicate face)"));
+                    }
+                }
+            }
+        });
+    }
+
+    /// True when the two faces (each without repeated vertices) use the same vertices.
+    static bool same_vertex_set(std::span<const Index> a, std::span<const Index> b) {
+        if (a.size() != b.size()) {
+            return false;
         }
+        if (a.size() <= 32) {
+            return std::all_of(a.begin(), a.end(), [&](Index v) { return std::find(b.begin(), b.end(), v) != b.end(); });
+        }
+        std::vector<Index> x(a.begin(), a.end());
+        std::vector<Index> y(b.begin(), b.end());
+        std::sort(x.begin(), x.end());
+        std::sort(y.begin(), y.end());
+        return x == y;
     }
 
     [[nodiscard]] bool has_edge(Index a, Index b) const {
@@ -513,13 +569,19 @@ private:
     std::vector<std::uint8_t> touches_non_manifold_edge_;
     std::vector<HalfEdge> half_edges_;
     std::unordered_map<Index, std::string> flip_hints_;  // per orientation component
+    std::vector<std::pair<Index, Index>> scratch_pairs_;  // reused by count_fans
+    std::vector<Index> scratch_parents_;
 };
 
 }  // namespace
 
 void check_connectivity(const FaceListView& faces, const SharpnessTags& sharpness, const SourceMap& source,
-                        ValidationReport& report) {
-    ConnectivityChecker(faces, sharpness, source, report).run();
+                        ValidationReport& report, std::vector<HalfEdge>* sorted_half_edges) {
+    ConnectivityChecker checker(faces, sharpness, source, report);
+    checker.run();
+    if (sorted_half_edges != nullptr) {
+        *sorted_half_edges = checker.take_half_edges();
+    }
 }
 
 }  // namespace detail
