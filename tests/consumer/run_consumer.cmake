@@ -11,8 +11,11 @@ function(run)
 endfunction()
 
 run(${CMAKE_COMMAND} --install ${LIMSURF_BINARY_DIR} --prefix ${prefix})
+# The same compiler and flags as the build under test (a sanitizer build's
+# library needs the sanitizer runtime in the consumer too).
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${SCRATCH_DIR}/build -DCMAKE_PREFIX_PATH=${prefix}
-    -DCMAKE_BUILD_TYPE=Release)
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CONSUMER_CXX_COMPILER}
+    "-DCMAKE_CXX_FLAGS=${CONSUMER_CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_LINKER_FLAGS}")
 run(${CMAKE_COMMAND} --build ${SCRATCH_DIR}/build)
 run(${SCRATCH_DIR}/build/consumer ${MESH})
 if(NOT last_output MATCHES "vertices=8 edges=12 faces=6 genus=0")
