@@ -5,7 +5,7 @@
 
 JOBS ?= 2
 PREFIX ?= /usr/local
-DEMO_MESH ?= data/meshes/cube_ngons.obj
+DEMO_MESH ?= data/meshes/cube_creases.obj
 DEMO_OUT ?= out/demo
 
 .PHONY: demo test asan fuzz install setup clean

@@ -103,6 +103,8 @@ class Mesh:
         self.orientation = orientation
         # Valences the construction guarantees to be present (e.g. the poles).
         self.required_valences = tuple(required_valences)
+        # OpenSubdiv subdivision tags ("t crease 2/1/0 0 1 10.0"), 0-based, written after the faces.
+        self.tags = []
 
 
 class Builder:
@@ -210,6 +212,23 @@ def make_cube():
     vs = cube_verts()
     return Mesh("cube", "axis-aligned unit cube (edge 1) centred at the origin; 6 quads",
                 vs, hull_faces(vs, AXES), 0, 0, 1, "volume", (3,))
+
+
+def make_cube_creases():
+    """The cube with OpenSubdiv tags: the 4 edges of the top face infinitely
+    sharp, one vertical edge semi-sharp (2.5), one bottom vertex a corner."""
+    vs = cube_verts()
+    mesh = Mesh("cube_creases", "unit cube with OpenSubdiv tags: 4 infinitely sharp top edges; "
+                "1 semi-sharp (2.5) vertical edge; 1 corner vertex", vs, hull_faces(vs, AXES), 0, 0, 1, "volume", (3,))
+    top = [i for i, v in enumerate(mesh.verts) if v[2] > 0]
+    bottom = [i for i, v in enumerate(mesh.verts) if v[2] < 0]
+    top_face = next(f for f in mesh.faces if all(i in top for i in f))
+    for k in range(4):
+        mesh.tags.append("t crease 2/1/0 %d %d 10.0" % (top_face[k], top_face[(k + 1) % 4]))
+    below = next(i for i in bottom if mesh.verts[i][:2] == mesh.verts[top_face[0]][:2])
+    mesh.tags.append("t crease 2/1/0 %d %d 2.5" % (top_face[0], below))
+    mesh.tags.append("t corner 1/1/0 %d 10.0" % bottom[-1])
+    return mesh
 
 
 def make_tetrahedron():
@@ -633,7 +652,7 @@ def make_tri_valence(k, rings=3):
 
 def all_meshes():
     meshes = [
-        make_cube(), make_tetrahedron(), make_octahedron(), make_icosahedron(), make_dodecahedron(),
+        make_cube(), make_cube_creases(), make_tetrahedron(), make_octahedron(), make_icosahedron(), make_dodecahedron(),
         make_quad_torus(), make_tri_torus(), make_genus2(), make_sphere_quads(), make_sphere_tris(),
         make_cube_ngons(), make_prism_hex(), make_tetra_and_cube(),
         make_quad_grid(), make_tri_grid(), make_disk_ev5_quads(), make_disk_ev7_tris(),
@@ -851,6 +870,7 @@ def obj_text(mesh):
         lines.append("v %r %r %r" % p)
     for f in mesh.faces:
         lines.append("f " + " ".join(str(v + 1) for v in f))
+    lines.extend(mesh.tags)
     return "\n".join(lines) + "\n"
 
 

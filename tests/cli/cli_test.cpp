@@ -104,6 +104,16 @@ TEST(Cli, InfoAgreesWithTheKnownValuesOfEveryBundledMesh) {
     }
 }
 
+TEST(Cli, InfoReportsTheSharpnessOfOpenSubdivTags) {
+    const CliRun run = limsurf({"info", "--json", test::find_bundled("cube_creases").path.string()});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto sharpness = nlohmann::json::parse(run.out)["sharpness"];
+    EXPECT_EQ(sharpness["num_sharp_edges"], 5);
+    EXPECT_EQ(sharpness["num_infinitely_sharp_edges"], 4);
+    EXPECT_EQ(sharpness["max_semi_sharp_edge"], 2.5);
+    EXPECT_EQ(sharpness["num_infinitely_sharp_vertices"], 1);
+}
+
 TEST(Cli, InfoTextNamesTheGenus) {
     const CliRun run = limsurf({"info", test::find_bundled("genus2").path.string()});
     ASSERT_EQ(run.exit_code, 0) << run.err;

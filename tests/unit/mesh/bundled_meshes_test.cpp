@@ -96,6 +96,27 @@ TEST(MeshStatistics, HistogramsOfTheCubeWithACutCorner) {
     EXPECT_TRUE(stats.boundary_loop_lengths.empty());
 }
 
+TEST(MeshStatistics, SharpnessOfTheCreasedCube) {
+    // tools/make_meshes.py tags 4 top edges at 10 (infinitely sharp), one
+    // vertical edge at 2.5 and one bottom vertex as a corner.
+    const BuildResult result = read_mesh(test::find_bundled("cube_creases").path);
+    const Topology& t = result.mesh.topology();
+    const SharpnessSummary s = statistics(result.mesh).sharpness;
+    EXPECT_EQ(s.num_sharp_edges, 5);
+    EXPECT_EQ(s.num_infinitely_sharp_edges, 4);
+    EXPECT_DOUBLE_EQ(s.max_semi_sharp_edge, 2.5);
+    EXPECT_EQ(s.num_sharp_vertices, 1);
+    EXPECT_EQ(s.num_infinitely_sharp_vertices, 1);
+    EXPECT_EQ(s.num_holes, 0);
+    // The infinitely sharp edges are those of the face whose vertices all have z = +0.5.
+    const Points& x = result.mesh.positions();
+    for (Index e = 0; e < t.num_edges(); ++e) {
+        const auto ends = t.edge_vertices(e);
+        const bool top = x(ends[0], 2) > 0 && x(ends[1], 2) > 0;
+        EXPECT_EQ(t.edge_sharpness(e) >= infinite_sharpness, top) << "edge " << e;
+    }
+}
+
 TEST(MeshStatistics, BoundaryOfTheAnnulus) {
     const ControlMesh mesh = read_mesh(test::find_bundled("annulus").path).mesh;
     const MeshStatistics stats = statistics(mesh);
