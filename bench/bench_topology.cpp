@@ -47,8 +47,8 @@ void BM_limsurf_Topology(benchmark::State& state) {
         benchmark::DoNotOptimize(topology.num_edges());
     }
     state.counters["faces"] = static_cast<double>(torus.offsets.size() - 1);
-    state.counters["faces/s"] =
-        benchmark::Counter(static_cast<double>(torus.offsets.size() - 1), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["faces/s"] = benchmark::Counter(static_cast<double>(torus.offsets.size() - 1),
+                                                   benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_limsurf_validate(benchmark::State& state) {
@@ -78,13 +78,14 @@ void BM_OpenSubdiv_TopologyRefiner(benchmark::State& state) {
     sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
     const Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Options options(Sdc::SCHEME_CATMARK, sdc);
     for (auto _ : state) {
-        Far::TopologyRefiner* refiner = Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Create(descriptor, options);
+        Far::TopologyRefiner* refiner =
+            Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Create(descriptor, options);
         benchmark::DoNotOptimize(refiner->GetLevel(0).GetNumEdges());
         delete refiner;  // OpenSubdiv's API hands out an owning raw pointer
     }
     state.counters["faces"] = static_cast<double>(vertices_per_face.size());
-    state.counters["faces/s"] =
-        benchmark::Counter(static_cast<double>(vertices_per_face.size()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["faces/s"] = benchmark::Counter(static_cast<double>(vertices_per_face.size()),
+                                                   benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_OpenSubdiv_TopologyRefiner)->Arg(128)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond);
 #endif

@@ -14,6 +14,7 @@ if(LIMSURF_BUILD_TESTS)
     find_package(GTest REQUIRED)
     set_package_properties(GTest PROPERTIES TYPE REQUIRED PURPOSE "unit tests (libgtest-dev)")
     # tinyobjloader is a test-only peer: an independent OBJ reader to check ours against.
-    find_package(tinyobjloader QUIET)
-    set_package_properties(tinyobjloader PROPERTIES TYPE OPTIONAL PURPOSE "peer OBJ reader in tests (libtinyobjloader-dev)")
+    # Required, so that the witness cannot silently vanish (scripts/setup.sh installs it).
+    find_package(tinyobjloader REQUIRED)
+    set_package_properties(tinyobjloader PROPERTIES TYPE REQUIRED PURPOSE "peer OBJ reader in tests (libtinyobjloader-dev)")
 endif()

@@ -2,7 +2,7 @@
 # Installs every Debian package limsurf needs to build, test and run its demo.
 # Idempotent: installs only what is missing, and runs `apt-get update` only
 # when the package lists are missing or an install from them fails.
-# Works as root or through sudo.
+# Works as root or through sudo. Usage: scripts/setup.sh [--fuzz]
 set -euo pipefail
 
 packages=(
@@ -21,6 +21,11 @@ packages=(
     # bundled-mesh reproducibility test (tools/make_meshes.py --check)
     python3
 )
+
+# `setup.sh --fuzz` adds what the libFuzzer targets need (make fuzz).
+if [ "${1:-}" = "--fuzz" ]; then
+    packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

@@ -20,9 +20,9 @@ struct ConvertOptions {
 int run_convert(const ConvertOptions& options) {
     // Refuse before reading: an unknown output format is a usage mistake.
     (void)mesh_format_from_path(options.output);
-    const BuildResult built = read_mesh(
-        options.input,
-        {.isolated_vertices = options.strict_isolated ? IsolatedVertices::Error : IsolatedVertices::Drop});
+    const BuildResult built =
+        read_mesh(options.input,
+                  {.isolated_vertices = options.strict_isolated ? IsolatedVertices::Error : IsolatedVertices::Drop});
     for (const Issue& issue : built.report.issues) {
         std::cerr << "warning: " << issue.to_string() << '\n';
     }

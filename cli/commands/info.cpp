@@ -103,14 +103,15 @@ void print_info_text(const std::string& file, const ControlMesh& mesh, const Val
     if (t.is_closed()) {
         row("boundary") << "none (closed)\n";
     } else {
-        row("boundary") << t.num_boundary_loops() << " loop" << (t.num_boundary_loops() == 1 ? "" : "s")
-                        << " of " << histogram_text([&] {
+        row("boundary") << t.num_boundary_loops() << " loop" << (t.num_boundary_loops() == 1 ? "" : "s") << " of "
+                        << histogram_text([&] {
                                std::map<Index, Index> h;
                                for (const Index n : stats.boundary_loop_lengths) {
                                    ++h[n];
                                }
                                return h;
-                           }()) << " vertices\n";
+                           }())
+                        << " vertices\n";
     }
     row("valence (interior)") << histogram_text(stats.interior_valences) << '\n';
     if (!t.is_closed()) {
@@ -184,7 +185,8 @@ int run_info(const InfoOptions& options) {
 
 void add_info_command(CLI::App& app, CommandStatus& status) {
     auto options = std::make_shared<InfoOptions>();
-    CLI::App* info = app.add_subcommand("info", "Counts, histograms, genus, boundary, sharpness and validation of a mesh");
+    CLI::App* info =
+        app.add_subcommand("info", "Counts, histograms, genus, boundary, sharpness and validation of a mesh");
     info->add_option("mesh", options->mesh, "Mesh file (.obj, .off, .ply)")->required();
     info->add_flag("--json", options->json, "Print one JSON object instead of text");
     info->add_flag("--strict-isolated", options->strict_isolated,

@@ -1,12 +1,11 @@
 // The limsurf binary: exit codes, the single "error:" line, JSON keys, and
 // that a failed run leaves no output file. One malformed file per defect class.
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -147,8 +146,7 @@ TEST_P(CliDefect, InfoAndConvertRefuseWithOneErrorLineAndNoOutput) {
 INSTANTIATE_TEST_SUITE_P(
     EveryDefectClass, CliDefect,
     ::testing::Values(
-        Defect{"empty.obj", ": empty file"},
-        Defect{"no_faces.obj", ": no faces (3 vertices and no face)"},
+        Defect{"empty.obj", ": empty file"}, Defect{"no_faces.obj", ": no faces (3 vertices and no face)"},
         Defect{"face_two_vertices.obj", ":6: face 1 has 2 vertices (a face needs at least 3)"},
         Defect{"repeated_vertex.obj", ":7: face 1 repeats vertex 1"},
         Defect{"index_out_of_range.obj", ":5: vertex index 9 out of range [1, 3]"},
@@ -214,7 +212,8 @@ TEST(Cli, ConvertRoundTripsThroughEveryFormat) {
     }
     const auto before = nlohmann::json::parse(limsurf({"info", "--json", source.path.string()}).out);
     const auto after = nlohmann::json::parse(limsurf({"info", "--json", previous}).out);
-    for (const char* key : {"num_vertices", "num_edges", "num_faces", "genus", "face_degree_histogram", "bounding_box"}) {
+    for (const char* key :
+         {"num_vertices", "num_edges", "num_faces", "genus", "face_degree_histogram", "bounding_box"}) {
         EXPECT_EQ(before[key], after[key]) << key;
     }
 }
@@ -245,7 +244,8 @@ TEST(Cli, BadFilesExitWithOne) {
 }
 
 TEST(Cli, HelpIsEverywhere) {
-    for (const auto& args : std::vector<std::vector<std::string>>{{"--help"}, {"info", "--help"}, {"convert", "--help"}}) {
+    for (const auto& args :
+         std::vector<std::vector<std::string>>{{"--help"}, {"info", "--help"}, {"convert", "--help"}}) {
         const CliRun run = limsurf(args);
         EXPECT_EQ(run.exit_code, 0);
         EXPECT_NE(run.out.find("Usage"), std::string::npos) << run.out;

@@ -17,10 +17,9 @@ namespace limsurf::test {
 
 namespace {
 
-constexpr std::string_view kExpectedHeader =
-    "name,file,num_vertices,num_edges,num_faces,euler_characteristic,genus,"
-    "num_boundary_loops,num_components,closed,triangles_only,quads_only,"
-    "extraordinary_valences,description";
+constexpr std::string_view kExpectedHeader = "name,file,num_vertices,num_edges,num_faces,euler_characteristic,genus,"
+                                             "num_boundary_loops,num_components,closed,triangles_only,quads_only,"
+                                             "extraordinary_valences,description";
 constexpr std::size_t kNumFields = 14;
 
 [[noreturn]] void fail(const std::filesystem::path& csv, int line, const std::string& what) {
@@ -168,8 +167,8 @@ std::vector<BundledMesh> quad_meshes() {
 
 const BundledMesh& find_bundled(std::string_view name) {
     const auto& meshes = bundled_meshes();
-    const auto it = std::find_if(meshes.begin(), meshes.end(),
-                                 [name](const BundledMesh& mesh) { return mesh.name == name; });
+    const auto it =
+        std::find_if(meshes.begin(), meshes.end(), [name](const BundledMesh& mesh) { return mesh.name == name; });
     if (it == meshes.end()) {
         throw std::runtime_error("no bundled mesh named '" + std::string(name) + "'");
     }

@@ -15,8 +15,8 @@ std::filesystem::path mesh_dir() {
 
 std::filesystem::path make_temp_dir(const char* tag) {
     std::random_device device;
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("limsurf-" + std::string(tag) + "-" + std::to_string(device()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("limsurf-" + std::string(tag) + "-" + std::to_string(device()));
     std::filesystem::create_directories(dir);
     return dir;
 }

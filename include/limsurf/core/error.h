@@ -15,31 +15,31 @@ namespace limsurf {
 
 /// Root of every exception limsurf throws.
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 /// Bad file, bad argument, out-of-range option.
 class InputError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// Non-manifold, inconsistently oriented or otherwise unusable connectivity.
 class TopologyError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// Factorisation failure, no convergence, non-finite result.
 class NumericalError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// A valid request that this scheme or case does not implement.
 class UnsupportedError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
@@ -59,26 +59,25 @@ template <class... Args>
 
 /// Always-on precondition check at public entry points: throws ErrorType with
 /// the concatenated message when @p cond is false.
-#define LIMSURF_CHECK(cond, ErrorType, ...)                                    \
-    do {                                                                       \
-        if (!(cond)) {                                                         \
-            throw ErrorType(::limsurf::detail::concat(__VA_ARGS__));           \
-        }                                                                      \
+#define LIMSURF_CHECK(cond, ErrorType, ...)                                                                            \
+    do {                                                                                                               \
+        if (!(cond)) {                                                                                                 \
+            throw ErrorType(::limsurf::detail::concat(__VA_ARGS__));                                                   \
+        }                                                                                                              \
     } while (0)
 
 /// Internal invariant: active in Debug and sanitizer builds, compiled out in
 /// Release (NDEBUG). A failure is a limsurf bug, reported as std::logic_error.
 #ifdef NDEBUG
-#define LIMSURF_ASSERT(cond, ...)                                              \
-    do {                                                                       \
+#define LIMSURF_ASSERT(cond, ...)                                                                                      \
+    do {                                                                                                               \
     } while (0)
 #else
-#define LIMSURF_ASSERT(cond, ...)                                              \
-    do {                                                                       \
-        if (!(cond)) {                                                         \
-            throw std::logic_error(::limsurf::detail::concat(                  \
-                __FILE__, ":", __LINE__, ": internal invariant failed: ", #cond, \
-                " ", __VA_ARGS__));                                            \
-        }                                                                      \
+#define LIMSURF_ASSERT(cond, ...)                                                                                      \
+    do {                                                                                                               \
+        if (!(cond)) {                                                                                                 \
+            throw std::logic_error(::limsurf::detail::concat(                                                          \
+                __FILE__, ":", __LINE__, ": internal invariant failed: ", #cond, " ", __VA_ARGS__));                   \
+        }                                                                                                              \
     } while (0)
 #endif

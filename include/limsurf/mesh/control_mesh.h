@@ -12,7 +12,7 @@
 namespace limsurf {
 
 class ControlMesh {
-public:
+  public:
     ControlMesh() = default;
 
     /// @param[in] topology  validated connectivity
@@ -33,7 +33,7 @@ public:
     /// @throws InputError as the constructor
     [[nodiscard]] ControlMesh with_positions(Points positions) const;
 
-private:
+  private:
     Topology topology_;
     Points positions_;
     SchemeHints hints_;
@@ -54,8 +54,8 @@ struct BuildOptions {
 /// A ControlMesh together with what validation had to say about its source.
 struct BuildResult {
     ControlMesh mesh;
-    ValidationReport report;          ///< warnings only (errors throw)
-    std::vector<Index> source_vertex; ///< #V: index in the soup of each mesh vertex
+    ValidationReport report;           ///< warnings only (errors throw)
+    std::vector<Index> source_vertex;  ///< #V: index in the soup of each mesh vertex
 };
 
 /// @brief Validates @p soup and builds a ControlMesh from it.

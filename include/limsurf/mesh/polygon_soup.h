@@ -29,17 +29,15 @@ struct SourceMap {
 
 /// Unvalidated polygons. Indices are 0-based into positions' rows.
 struct PolygonSoup {
-    Points positions;                       ///< #V×3
-    std::vector<Index> face_offsets{0};     ///< #F+1; face f is face_vertices[offsets[f], offsets[f+1])
-    std::vector<Index> face_vertices;       ///< concatenated face corners, counter-clockwise
-    SharpnessTags sharpness;                ///< creases, corners, holes
-    SchemeHints hints;                      ///< scheme options the file asked for
-    SourceMap source;                       ///< provenance for messages
+    Points positions;                    ///< #V×3
+    std::vector<Index> face_offsets{0};  ///< #F+1; face f is face_vertices[offsets[f], offsets[f+1])
+    std::vector<Index> face_vertices;    ///< concatenated face corners, counter-clockwise
+    SharpnessTags sharpness;             ///< creases, corners, holes
+    SchemeHints hints;                   ///< scheme options the file asked for
+    SourceMap source;                    ///< provenance for messages
 
     [[nodiscard]] Index num_vertices() const noexcept { return static_cast<Index>(positions.rows()); }
-    [[nodiscard]] Index num_faces() const noexcept {
-        return static_cast<Index>(face_offsets.size()) - 1;
-    }
+    [[nodiscard]] Index num_faces() const noexcept { return static_cast<Index>(face_offsets.size()) - 1; }
     /// Corners of face @p f. @pre 0 <= f < num_faces()
     [[nodiscard]] std::span<const Index> face(Index f) const {
         const auto begin = static_cast<std::size_t>(face_offsets[static_cast<std::size_t>(f)]);

@@ -60,9 +60,7 @@ struct SharpnessTags {
     std::vector<CornerTag> corners;
     std::vector<HoleTag> holes;
 
-    [[nodiscard]] bool empty() const noexcept {
-        return creases.empty() && corners.empty() && holes.empty();
-    }
+    [[nodiscard]] bool empty() const noexcept { return creases.empty() && corners.empty() && holes.empty(); }
 };
 
 /// Scheme options a file asked for; a command-line option overrides them.
@@ -71,17 +69,18 @@ struct SchemeHints {
     std::optional<CreasingMethod> creasing;
     std::optional<TriangleSubdivision> triangles;
 
-    [[nodiscard]] bool empty() const noexcept {
-        return !boundary && !creasing && !triangles;
-    }
+    [[nodiscard]] bool empty() const noexcept { return !boundary && !creasing && !triangles; }
 };
 
 /// Stable lower-case names ("edge-and-corner", "chaikin", "smooth"), as the CLI spells them.
 [[nodiscard]] constexpr const char* to_string(BoundaryInterpolation value) noexcept {
     switch (value) {
-    case BoundaryInterpolation::None: return "none";
-    case BoundaryInterpolation::EdgeOnly: return "edge-only";
-    case BoundaryInterpolation::EdgeAndCorner: return "edge-and-corner";
+    case BoundaryInterpolation::None:
+        return "none";
+    case BoundaryInterpolation::EdgeOnly:
+        return "edge-only";
+    case BoundaryInterpolation::EdgeAndCorner:
+        return "edge-and-corner";
     }
     return "?";
 }

@@ -33,7 +33,7 @@ struct HalfEdge;
 }  // namespace detail
 
 class Topology {
-public:
+  public:
     /// An empty topology (no vertices, no faces).
     Topology() = default;
 
@@ -45,13 +45,12 @@ public:
     /// @throws InputError on malformed offsets, indices out of range, bad tags
     /// @throws TopologyError on non-manifold or inconsistently oriented input,
     ///   or isolated vertices; the message lists the first problems.
-    Topology(Index num_vertices, std::span<const Index> face_offsets,
-             std::span<const Index> face_vertices, const SharpnessTags& sharpness = {});
+    Topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
+             const SharpnessTags& sharpness = {});
 
     /// Convenience for small meshes: one vector of corners per face.
     /// @throws as the main constructor
-    [[nodiscard]] static Topology from_polygons(Index num_vertices,
-                                                const std::vector<std::vector<Index>>& faces,
+    [[nodiscard]] static Topology from_polygons(Index num_vertices, const std::vector<std::vector<Index>>& faces,
                                                 const SharpnessTags& sharpness = {});
 
     // --- counts -------------------------------------------------------------
@@ -62,17 +61,13 @@ public:
     [[nodiscard]] Index num_corners() const noexcept { return static_cast<Index>(face_vertices_.size()); }
 
     // --- faces --------------------------------------------------------------
-    [[nodiscard]] Index face_degree(Index f) const {
-        return face_offsets_[at(f) + 1] - face_offsets_[at(f)];
-    }
+    [[nodiscard]] Index face_degree(Index f) const { return face_offsets_[at(f) + 1] - face_offsets_[at(f)]; }
     /// Corners of face f, counter-clockwise.
     [[nodiscard]] std::span<const Index> face_vertices(Index f) const { return face_span(face_vertices_, f); }
     /// face_edges(f)[k] joins corners k and k+1 (mod degree).
     [[nodiscard]] std::span<const Index> face_edges(Index f) const { return face_span(face_edges_, f); }
     /// +1 when corner k -> k+1 runs lower -> higher vertex index, else -1.
-    [[nodiscard]] std::span<const std::int8_t> face_edge_signs(Index f) const {
-        return face_span(face_edge_signs_, f);
-    }
+    [[nodiscard]] std::span<const std::int8_t> face_edge_signs(Index f) const { return face_span(face_edge_signs_, f); }
     /// Offset of face f's first corner in the concatenated corner arrays.
     [[nodiscard]] Index face_offset(Index f) const { return face_offsets_[at(f)]; }
     /// #F+1 offsets (CSR row pointer of the face->vertex table).
@@ -122,9 +117,7 @@ public:
     /// (the interior lies to the left of each edge).
     [[nodiscard]] std::span<const Index> boundary_loop(Index i) const;
     /// V - E + F.
-    [[nodiscard]] Index euler_characteristic() const noexcept {
-        return num_vertices() - num_edges() + num_faces();
-    }
+    [[nodiscard]] Index euler_characteristic() const noexcept { return num_vertices() - num_edges() + num_faces(); }
     [[nodiscard]] Index num_components() const noexcept { return num_components_; }
     /// Component of face f, in 0..num_components()-1, numbered by first face.
     [[nodiscard]] Index face_component(Index f) const { return face_component_[at(f)]; }
@@ -149,7 +142,7 @@ public:
     /// The tags that rebuild this topology's sharpness (for writers).
     [[nodiscard]] SharpnessTags sharpness_tags() const;
 
-private:
+  private:
     static std::size_t at(Index i) { return static_cast<std::size_t>(i); }
     template <class T>
     std::span<const T> face_span(const std::vector<T>& table, Index f) const {

@@ -41,8 +41,7 @@ struct HalfEdge {
 /// @param[out] sorted_half_edges when not null, receives the half-edges of the
 ///   faces that passed the per-face checks, sorted by (key, face) — what the
 ///   Topology constructor numbers its edges from.
-void check_connectivity(const FaceListView& faces, const SharpnessTags& sharpness,
-                        const SourceMap& source, ValidationReport& report,
-                        std::vector<HalfEdge>* sorted_half_edges = nullptr);
+void check_connectivity(const FaceListView& faces, const SharpnessTags& sharpness, const SourceMap& source,
+                        ValidationReport& report, std::vector<HalfEdge>* sorted_half_edges = nullptr);
 
 }  // namespace limsurf::detail

@@ -75,7 +75,8 @@ BuildResult build_control_mesh(const PolygonSoup& soup, const BuildOptions& opti
         crease.v0 = renumber[at(crease.v0)];
         crease.v1 = renumber[at(crease.v1)];
     }
-    std::erase_if(sharpness.corners, [&](const CornerTag& corner) { return renumber[at(corner.vertex)] == invalid_index; });
+    std::erase_if(sharpness.corners,
+                  [&](const CornerTag& corner) { return renumber[at(corner.vertex)] == invalid_index; });
     for (CornerTag& corner : sharpness.corners) {
         corner.vertex = renumber[at(corner.vertex)];
     }

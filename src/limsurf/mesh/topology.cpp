@@ -50,8 +50,7 @@ Index find_root(std::vector<Index>& parent, Index x) {
 
 Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
                    const SharpnessTags& sharpness)
-    : num_vertices_(num_vertices),
-      face_offsets_(face_offsets.begin(), face_offsets.end()),
+    : num_vertices_(num_vertices), face_offsets_(face_offsets.begin(), face_offsets.end()),
       face_vertices_(face_vertices.begin(), face_vertices.end()) {
     ValidationReport report;
     std::vector<detail::HalfEdge> half_edges;
@@ -177,8 +176,8 @@ void Topology::build_one_rings() {
     vertex_edges_.reserve(face_vertices_.size() + at(num_vertices_));  // + one per boundary vertex at most
     vertex_is_boundary_.assign(at(num_vertices_), 0);
     for (Index v = 0; v < num_vertices_; ++v) {
-        const auto mine = std::span<const Index>(corners).subspan(at(offsets[at(v)]),
-                                                                  at(offsets[at(v) + 1] - offsets[at(v)]));
+        const auto mine =
+            std::span<const Index>(corners).subspan(at(offsets[at(v)]), at(offsets[at(v) + 1] - offsets[at(v)]));
         // A boundary vertex starts at the corner whose outgoing edge is a boundary edge.
         Index start = mine.front();
         for (const Index c : mine) {
@@ -253,8 +252,8 @@ void Topology::build_boundary_loops() {
 
 std::span<const Index> Topology::boundary_loop(Index i) const {
     const auto begin = at(boundary_loop_offsets_[at(i)]);
-    return std::span<const Index>(boundary_loop_vertices_).subspan(begin,
-                                                                  at(boundary_loop_offsets_[at(i) + 1]) - begin);
+    return std::span<const Index>(boundary_loop_vertices_)
+        .subspan(begin, at(boundary_loop_offsets_[at(i) + 1]) - begin);
 }
 
 void Topology::build_components() {

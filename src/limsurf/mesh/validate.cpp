@@ -29,19 +29,32 @@ Severity severity_of(Problem problem) noexcept {
 
 const char* problem_name(Problem problem) noexcept {
     switch (problem) {
-    case Problem::NoFaces: return "no-faces";
-    case Problem::FaceTooSmall: return "face-too-small";
-    case Problem::RepeatedVertex: return "repeated-vertex";
-    case Problem::IndexOutOfRange: return "index-out-of-range";
-    case Problem::NonFiniteCoordinate: return "non-finite-coordinate";
-    case Problem::NonManifoldEdge: return "non-manifold-edge";
-    case Problem::NonManifoldVertex: return "non-manifold-vertex";
-    case Problem::InconsistentOrientation: return "inconsistent-orientation";
-    case Problem::NonOrientable: return "non-orientable";
-    case Problem::BadTag: return "bad-tag";
-    case Problem::IsolatedVertex: return "isolated-vertex";
-    case Problem::DegenerateFace: return "degenerate-face";
-    case Problem::DuplicateFace: return "duplicate-face";
+    case Problem::NoFaces:
+        return "no-faces";
+    case Problem::FaceTooSmall:
+        return "face-too-small";
+    case Problem::RepeatedVertex:
+        return "repeated-vertex";
+    case Problem::IndexOutOfRange:
+        return "index-out-of-range";
+    case Problem::NonFiniteCoordinate:
+        return "non-finite-coordinate";
+    case Problem::NonManifoldEdge:
+        return "non-manifold-edge";
+    case Problem::NonManifoldVertex:
+        return "non-manifold-vertex";
+    case Problem::InconsistentOrientation:
+        return "inconsistent-orientation";
+    case Problem::NonOrientable:
+        return "non-orientable";
+    case Problem::BadTag:
+        return "bad-tag";
+    case Problem::IsolatedVertex:
+        return "isolated-vertex";
+    case Problem::DegenerateFace:
+        return "degenerate-face";
+    case Problem::DuplicateFace:
+        return "duplicate-face";
     }
     return "unknown";
 }
@@ -51,9 +64,8 @@ std::string Issue::to_string() const {
 }
 
 std::size_t ValidationReport::num_errors() const noexcept {
-    return static_cast<std::size_t>(std::count_if(issues.begin(), issues.end(), [](const Issue& issue) {
-        return issue.severity == Severity::Error;
-    }));
+    return static_cast<std::size_t>(std::count_if(
+        issues.begin(), issues.end(), [](const Issue& issue) { return issue.severity == Severity::Error; }));
 }
 
 std::size_t ValidationReport::num_warnings() const noexcept {
@@ -61,9 +73,8 @@ std::size_t ValidationReport::num_warnings() const noexcept {
 }
 
 std::string ValidationReport::summary() const {
-    const auto first = std::find_if(issues.begin(), issues.end(), [](const Issue& issue) {
-        return issue.severity == Severity::Error;
-    });
+    const auto first = std::find_if(issues.begin(), issues.end(),
+                                    [](const Issue& issue) { return issue.severity == Severity::Error; });
     if (first == issues.end()) {
         return issues.empty() ? "no problems" : detail::concat(issues.size(), " warnings, no errors");
     }
@@ -76,9 +87,8 @@ std::string ValidationReport::summary() const {
 }
 
 void ValidationReport::throw_if_errors() const {
-    const auto first = std::find_if(issues.begin(), issues.end(), [](const Issue& issue) {
-        return issue.severity == Severity::Error;
-    });
+    const auto first = std::find_if(issues.begin(), issues.end(),
+                                    [](const Issue& issue) { return issue.severity == Severity::Error; });
     if (first == issues.end()) {
         return;
     }
@@ -111,7 +121,7 @@ std::uint64_t edge_key(Index a, Index b) {
 /// Union-find that also tracks the parity "face needs flipping relative to
 /// its root", for the orientability check.
 class ParityUnionFind {
-public:
+  public:
     explicit ParityUnionFind(size_t n) : parent_(n), parity_(n, 0) {
         std::iota(parent_.begin(), parent_.end(), Index{0});
     }
@@ -147,7 +157,7 @@ public:
         return true;
     }
 
-private:
+  private:
     std::vector<Index> parent_;
     std::vector<int> parity_;
 };
@@ -162,7 +172,7 @@ Index find_root(std::vector<Index>& parent, Index x) {
 }
 
 class ConnectivityChecker {
-public:
+  public:
     ConnectivityChecker(const FaceListView& faces, const SharpnessTags& sharpness, const SourceMap& source,
                         ValidationReport& report)
         : faces_(faces), sharpness_(sharpness), source_(source), report_(report) {}
@@ -171,8 +181,7 @@ public:
         check_offsets();
         check_faces();
         if (num_faces() == 0) {
-            add(Problem::NoFaces, source_.file,
-                concat("no faces (", faces_.num_vertices, " vertices and no face)"));
+            add(Problem::NoFaces, source_.file, concat("no faces (", faces_.num_vertices, " vertices and no face)"));
         }
         collect_half_edges();
         check_edges_and_orientation();
@@ -187,7 +196,7 @@ public:
     [[nodiscard]] Index from(const HalfEdge& h) const { return faces_.vertices[at(h.corner)]; }
     [[nodiscard]] Index to(const HalfEdge& h) const { return from(h) == h.lower() ? h.higher() : h.lower(); }
 
-private:
+  private:
     [[nodiscard]] Index num_faces() const { return static_cast<Index>(faces_.offsets.size()) - 1; }
     [[nodiscard]] std::span<const Index> face(Index f) const {
         const auto begin = at(faces_.offsets[at(f)]);
@@ -205,9 +214,8 @@ private:
         for (size_t i = 1; i < offsets.size(); ++i) {
             LIMSURF_CHECK(offsets[i] >= offsets[i - 1], InputError, "face offsets decrease at face ", i - 1);
         }
-        LIMSURF_CHECK(at(offsets.back()) == faces_.vertices.size(), InputError,
-                      "face offsets end at ", offsets.back(), " but there are ", faces_.vertices.size(),
-                      " corners");
+        LIMSURF_CHECK(at(offsets.back()) == faces_.vertices.size(), InputError, "face offsets end at ", offsets.back(),
+                      " but there are ", faces_.vertices.size(), " corners");
         LIMSURF_CHECK(faces_.num_vertices >= 0, InputError, "negative vertex count");
     }
 
@@ -268,7 +276,8 @@ private:
     /// cost stays linear in the number of corners.
     void collect_half_edges() {
         std::vector<Index> bucket(at(faces_.num_vertices) + 1, 0);
-        for_each_good_corner([&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 1]; });
+        for_each_good_corner(
+            [&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 1]; });
         std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
         half_edges_.resize(at(bucket.back()));
         std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
@@ -354,8 +363,8 @@ private:
         }
         // The location is the face that made the edge non-manifold (the third one, in file order).
         add(Problem::NonManifoldEdge, source_.face_location(half_edges_[begin + 2].face),
-            concat("edge (", first.lower(), ", ", first.higher(),
-                   ") is shared by ", end - begin, " faces (non-manifold): faces ", list));
+            concat("edge (", first.lower(), ", ", first.higher(), ") is shared by ", end - begin,
+                   " faces (non-manifold): faces ", list));
     }
 
     void report_orientation(ParityUnionFind& orientation, const std::vector<std::pair<size_t, size_t>>& same_direction,
@@ -435,13 +444,15 @@ private:
         }
         for (Index v = 0; v < faces_.num_vertices; ++v) {
             if (vertex_use_[at(v)] == 0) {
-                add(Problem::IsolatedVertex, source_.vertex_location(v), concat("vertex ", v, " is in no face (isolated)"));
+                add(Problem::IsolatedVertex, source_.vertex_location(v),
+                    concat("vertex ", v, " is in no face (isolated)"));
                 continue;
             }
             if (touches_non_manifold_edge_[at(v)] != 0) {
                 continue;
             }
-            const auto fans = count_fans(std::span(corners).subspan(at(offsets[at(v)]), at(offsets[at(v) + 1] - offsets[at(v)])));
+            const auto fans =
+                count_fans(std::span(corners).subspan(at(offsets[at(v)]), at(offsets[at(v) + 1] - offsets[at(v)])));
             if (fans > 1) {
                 add(Problem::NonManifoldVertex, source_.vertex_location(v),
                     concat("vertex ", v, " is non-manifold: its faces form ", fans,
@@ -508,7 +519,8 @@ private:
             return false;
         }
         if (a.size() <= 32) {
-            return std::all_of(a.begin(), a.end(), [&](Index v) { return std::find(b.begin(), b.end(), v) != b.end(); });
+            return std::all_of(a.begin(), a.end(),
+                               [&](Index v) { return std::find(b.begin(), b.end(), v) != b.end(); });
         }
         std::vector<Index> x(a.begin(), a.end());
         std::vector<Index> y(b.begin(), b.end());
@@ -568,7 +580,7 @@ private:
     std::vector<Index> vertex_use_;
     std::vector<std::uint8_t> touches_non_manifold_edge_;
     std::vector<HalfEdge> half_edges_;
-    std::unordered_map<Index, std::string> flip_hints_;  // per orientation component
+    std::unordered_map<Index, std::string> flip_hints_;   // per orientation component
     std::vector<std::pair<Index, Index>> scratch_pairs_;  // reused by count_fans
     std::vector<Index> scratch_parents_;
 };
@@ -605,8 +617,8 @@ void check_coordinates(const PolygonSoup& soup, const ValidateOptions& options, 
     const double diagonal2 = (x.colwise().maxCoeff() - x.colwise().minCoeff()).squaredNorm();
     for (Index f = 0; f < soup.num_faces(); ++f) {
         const auto corners = soup.face(f);
-        const bool in_range = std::all_of(corners.begin(), corners.end(),
-                                          [&](Index v) { return v >= 0 && v < soup.num_vertices(); });
+        const bool in_range =
+            std::all_of(corners.begin(), corners.end(), [&](Index v) { return v >= 0 && v < soup.num_vertices(); });
         if (corners.size() < 3 || !in_range) {
             continue;
         }

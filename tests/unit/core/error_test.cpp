@@ -1,6 +1,6 @@
-#include "limsurf/core/error.h"
-
 #include <gtest/gtest.h>
+
+#include "limsurf/core/error.h"
 
 namespace limsurf {
 namespace {

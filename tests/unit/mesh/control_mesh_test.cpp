@@ -1,9 +1,8 @@
-#include "limsurf/mesh/control_mesh.h"
-
 #include <limits>
 
 #include <gtest/gtest.h>
 
+#include "limsurf/mesh/control_mesh.h"
 #include "support/shapes.h"
 
 namespace limsurf {

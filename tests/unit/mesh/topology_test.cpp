@@ -1,7 +1,5 @@
 // Topology queries on small generated meshes; the bundled meshes are checked
 // against their analytic counts in bundled_meshes_test.cpp.
-#include "limsurf/mesh/topology.h"
-
 #include <algorithm>
 #include <set>
 
@@ -9,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "limsurf/core/error.h"
+#include "limsurf/mesh/topology.h"
 #include "support/shapes.h"
 
 namespace limsurf {
@@ -203,8 +202,7 @@ TEST(Topology, RefusesBadConnectivityWithTheElementNamed) {
               "vertex 0 is non-manifold: its faces form 2 fans that meet only at this vertex (bow-tie)");
     EXPECT_EQ(message(4, {{0, 1, 2}}), "vertex 3 is in no face (isolated); a Topology cannot hold isolated vertices");
     EXPECT_EQ(message(2, {{0, 1}}), "face 0 has 2 vertices (a face needs at least 3)");
-    EXPECT_EQ(message(3, {{0, 1, 3}}),
-              "face 0 refers to vertex 3, out of range [0, 2] (and 1 more error)");
+    EXPECT_EQ(message(3, {{0, 1, 3}}), "face 0 refers to vertex 3, out of range [0, 2] (and 1 more error)");
     EXPECT_EQ(message(0, {}), "no faces (0 vertices and no face)");
     EXPECT_THROW((void)Topology::from_polygons(5, {{0, 1, 2}, {0, 3, 4}}), TopologyError);
     EXPECT_THROW((void)Topology::from_polygons(3, {{0, 1, 1}}), InputError);

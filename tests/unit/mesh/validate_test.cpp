@@ -1,11 +1,10 @@
 // validate(): one test per defect class, on the exact message and location.
-#include "limsurf/mesh/validate.h"
-
 #include <cmath>
 #include <limits>
 
 #include <gtest/gtest.h>
 
+#include "limsurf/mesh/validate.h"
 #include "support/shapes.h"
 
 namespace limsurf {
@@ -91,8 +90,7 @@ TEST(Validate, InconsistentOrientationSuggestsTheFacesToFlip) {
     ASSERT_EQ(report.issues.size(), 4U);  // face 3 disagrees with its 4 neighbours
     for (const Issue& issue : report.issues) {
         EXPECT_EQ(issue.problem, Problem::InconsistentOrientation);
-        EXPECT_NE(issue.message.find("; reversing face 3 makes it consistent)"), std::string::npos)
-            << issue.message;
+        EXPECT_NE(issue.message.find("; reversing face 3 makes it consistent)"), std::string::npos) << issue.message;
     }
     EXPECT_EQ(report.issues[0].to_string(),
               "m.obj:103: faces 0 and 3 both traverse edge (2, 3) in the same direction (inconsistent orientation; "
@@ -122,7 +120,8 @@ TEST(Validate, NonFiniteCoordinatesAndDegenerateFaces) {
     Points x = test::cube_positions();
     x(5, 1) = std::numeric_limits<double>::quiet_NaN();
     const auto report = validate(soup_of(x, test::cube_faces()));
-    EXPECT_EQ(messages(report), (std::vector<std::string>{"m.obj:6: vertex 5 has a non-finite coordinate (1, nan, 1)"}));
+    EXPECT_EQ(messages(report),
+              (std::vector<std::string>{"m.obj:6: vertex 5 has a non-finite coordinate (1, nan, 1)"}));
 
     Points flat = test::cube_positions();
     flat.row(3) = flat.row(0);  // face {0, 2, 3, 1} keeps area; collapse a triangle instead

@@ -1,0 +1,37 @@
+// Wavefront OBJ with OpenSubdiv's subdivision tags (docs/io.md).
+#pragma once
+
+#include <filesystem>
+#include <istream>
+#include <ostream>
+#include <string>
+
+#include "limsurf/mesh/polygon_soup.h"
+
+namespace limsurf {
+
+/// @brief Reads an OBJ polygon mesh and its OpenSubdiv "t" tags.
+/// @details Accepts `v x y z [w]` (divided by w; `v x y z r g b` colours ignored),
+///   `f` with the corner forms v, v/vt, v//vn and v/vt/vn (1-based or negative,
+///   relative indices), `vt`, `vn`, `vp`, `g`, `o`, `s`, `usemtl`, `mtllib`, `l`, `p`
+///   (ignored), `#` comments, CRLF and `\` continuation lines, and the tags crease, corner,
+///   hole, interpolateboundary, creasemethod and smoothtriangles. Faces with fewer than
+///   three corners are kept (validation reports them). Tag indices are stored as given.
+/// @param[in] in          the OBJ text
+/// @param[in] source_name the name used in messages and stored in SourceMap::file
+/// @return the soup with SourceMap::vertex_lines and face_lines filled (1-based)
+/// @throws InputError "FILE:LINE: what is wrong" for any syntax error, out-of-range face
+///   index, unknown keyword, malformed or unsupported tag, or "FILE: empty file"
+[[nodiscard]] PolygonSoup read_obj(std::istream& in, const std::string& source_name);
+
+/// @brief read_obj() on a file; the path is the source name.
+/// @throws InputError as above, or "path: cannot open: <reason>"
+[[nodiscard]] PolygonSoup read_obj(const std::filesystem::path& path);
+
+/// @brief Writes @p soup as OBJ: `v` lines (shortest round-trip doubles), 1-based `f`
+///   lines, then `t` lines for creases, corners, holes and scheme hints, so that
+///   read_obj() gives back the same positions (bitwise), faces, tags and hints.
+/// @throws InputError if the soup is malformed (see docs/io.md) or the stream fails
+void write_obj(std::ostream& out, const PolygonSoup& soup);
+
+}  // namespace limsurf

@@ -1,0 +1,121 @@
+#include "limsurf/io/atomic_file.h"
+
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <string>
+#include <system_error>
+
+#include "limsurf/core/error.h"
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <unistd.h>
+#define LIMSURF_IO_POSIX 1
+#endif
+
+namespace limsurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string error_text(int error) {
+    return error != 0 ? std::strerror(error) : "unknown error";
+}
+
+/// Creates a new, empty file next to @p path with a name nobody else uses.
+fs::path create_temp_file(const fs::path& path) {
+    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    std::random_device device;
+    std::mt19937_64 random((static_cast<std::uint64_t>(device()) << 32U) ^ static_cast<std::uint64_t>(device()));
+    constexpr int attempts = 64;
+    int last_error = 0;
+    for (int attempt = 0; attempt < attempts; ++attempt) {
+        static constexpr char digits[] = "0123456789abcdef";
+        std::string suffix;
+        std::uint64_t bits = random();
+        for (int i = 0; i < 16; ++i) {
+            suffix += digits[bits & 0xfU];
+            bits >>= 4U;
+        }
+        fs::path temp = dir / ("." + path.filename().string() + "." + suffix + ".tmp");
+#ifdef LIMSURF_IO_POSIX
+        const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            ::close(fd);
+            return temp;
+        }
+        last_error = errno;
+        if (last_error != EEXIST) {
+            break;
+        }
+#else
+        std::error_code ec;
+        if (!fs::exists(temp, ec)) {
+            std::ofstream create(temp, std::ios::binary);
+            if (create.is_open()) {
+                return temp;
+            }
+            last_error = errno;
+            break;
+        }
+#endif
+    }
+    throw InputError(path.string() + ": cannot create a temporary file in '" + dir.string() +
+                     "': " + error_text(last_error));
+}
+
+void sync_file(const fs::path& path) {
+#ifdef LIMSURF_IO_POSIX
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+        (void)::fsync(fd);
+        ::close(fd);
+    }
+#else
+    (void)path;
+#endif
+}
+
+}  // namespace
+
+void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+        throw InputError(path.string() + ": cannot write: is a directory");
+    }
+    const fs::path temp = create_temp_file(path);
+    try {
+        errno = 0;
+        std::ofstream out(temp, std::ios::out | std::ios::binary | std::ios::trunc);
+        if (!out.is_open()) {
+            throw InputError(path.string() + ": cannot open for writing: " + error_text(errno));
+        }
+        write(out);
+        out.flush();
+        if (!out.good()) {
+            throw InputError(path.string() + ": write failed: " + error_text(errno));
+        }
+        out.close();
+        if (out.fail()) {
+            throw InputError(path.string() + ": write failed on close: " + error_text(errno));
+        }
+        sync_file(temp);
+        const fs::file_status existing = fs::status(path, ec);
+        if (!ec && fs::is_regular_file(existing)) {
+            fs::permissions(temp, existing.permissions(), ec);  // best effort
+        }
+        fs::rename(temp, path, ec);
+        if (ec) {
+            throw InputError(path.string() + ": cannot replace the file: " + ec.message());
+        }
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw;
+    }
+}
+
+}  // namespace limsurf

@@ -1,0 +1,82 @@
+#include "limsurf/io/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+
+#include "limsurf/core/error.h"
+#include "limsurf/detail/io_text.h"
+#include "limsurf/io/atomic_file.h"
+#include "limsurf/io/obj.h"
+#include "limsurf/io/off.h"
+#include "limsurf/io/ply.h"
+
+namespace limsurf {
+
+MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
+    const std::string extension = path.extension().string();
+    std::string lower = extension;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower == ".obj") {
+        return MeshFormat::Obj;
+    }
+    if (lower == ".off") {
+        return MeshFormat::Off;
+    }
+    if (lower == ".ply") {
+        return MeshFormat::Ply;
+    }
+    throw InputError(path.string() + ": unknown mesh format '" + extension + "' (expected .obj, .off or .ply)");
+}
+
+PolygonSoup read_polygon_soup(const std::filesystem::path& path) {
+    const MeshFormat format = mesh_format_from_path(path);
+    std::ifstream in = detail::io_open_input(path);
+    const std::string name = path.string();
+    switch (format) {
+    case MeshFormat::Obj:
+        return read_obj(in, name);
+    case MeshFormat::Off:
+        return read_off(in, name);
+    case MeshFormat::Ply:
+        return read_ply(in, name);
+    }
+    throw InputError(name + ": unknown mesh format");
+}
+
+BuildResult read_mesh(const std::filesystem::path& path, const BuildOptions& options) {
+    return build_control_mesh(read_polygon_soup(path), options);
+}
+
+std::vector<std::string> write_mesh(const std::filesystem::path& path, const PolygonSoup& soup,
+                                    const WriteOptions& options) {
+    const MeshFormat format = mesh_format_from_path(path);
+    detail::io_check_soup(soup);
+    std::vector<std::string> warnings;
+    switch (format) {
+    case MeshFormat::Obj:
+        write_file_atomically(path, [&](std::ostream& out) { write_obj(out, soup); });
+        break;
+    case MeshFormat::Off:
+        write_file_atomically(path, [&](std::ostream& out) { write_off(out, soup); });
+        if (auto warning = detail::io_dropped_tags_warning("OFF", soup); !warning.empty()) {
+            warnings.push_back(std::move(warning));
+        }
+        break;
+    case MeshFormat::Ply:
+        write_file_atomically(path, [&](std::ostream& out) { write_ply(out, soup, options.ply_encoding); });
+        if (auto warning = detail::io_dropped_tags_warning("PLY", soup); !warning.empty()) {
+            warnings.push_back(std::move(warning));
+        }
+        break;
+    }
+    return warnings;
+}
+
+std::vector<std::string> write_mesh(const std::filesystem::path& path, const ControlMesh& mesh,
+                                    const WriteOptions& options) {
+    return write_mesh(path, to_polygon_soup(mesh), options);
+}
+
+}  // namespace limsurf
