@@ -80,6 +80,9 @@ class IoLineReader {
 /// Writes io_format_double(value) to @p out.
 void io_write_double(std::ostream& out, double value);
 
+/// Writes each face as "n i0 i1 ..." (0-based) on its own line: the face list of OFF and ASCII PLY.
+void io_write_counted_faces(std::ostream& out, const PolygonSoup& soup);
+
 /// Checks that @p soup is structurally writable: offsets start at 0, increase and end at
 /// face_vertices.size(), every corner names an existing vertex.
 /// @throws InputError naming the first bad face

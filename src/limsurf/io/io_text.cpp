@@ -180,6 +180,17 @@ void io_write_double(std::ostream& out, double value) {
     out.write(buffer.data(), result.ptr - buffer.data());
 }
 
+void io_write_counted_faces(std::ostream& out, const PolygonSoup& soup) {
+    for (Index f = 0; f < soup.num_faces(); ++f) {
+        const auto corners = soup.face(f);
+        out << corners.size();
+        for (const Index v : corners) {
+            out << ' ' << v;
+        }
+        out << '\n';
+    }
+}
+
 void io_check_soup(const PolygonSoup& soup) {
     const auto& offsets = soup.face_offsets;
     LIMSURF_CHECK(!offsets.empty() && offsets.front() == 0, InputError,

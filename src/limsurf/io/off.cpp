@@ -226,14 +226,7 @@ void write_off(std::ostream& out, const PolygonSoup& soup) {
         }
         out << '\n';
     }
-    for (Index f = 0; f < soup.num_faces(); ++f) {
-        const auto corners = soup.face(f);
-        out << corners.size();
-        for (const Index v : corners) {
-            out << ' ' << v;
-        }
-        out << '\n';
-    }
+    detail::io_write_counted_faces(out, soup);
     detail::io_check_written(out, "OFF");
 }
 

@@ -150,28 +150,6 @@ T load(const unsigned char* bytes, bool swap) {
     return value;
 }
 
-double decode_double(PlyType type, const unsigned char* bytes, bool swap) {
-    switch (type) {
-    case PlyType::Int8:
-        return load<std::int8_t>(bytes, swap);
-    case PlyType::UInt8:
-        return load<std::uint8_t>(bytes, swap);
-    case PlyType::Int16:
-        return load<std::int16_t>(bytes, swap);
-    case PlyType::UInt16:
-        return load<std::uint16_t>(bytes, swap);
-    case PlyType::Int32:
-        return load<std::int32_t>(bytes, swap);
-    case PlyType::UInt32:
-        return load<std::uint32_t>(bytes, swap);
-    case PlyType::Float32:
-        return static_cast<double>(load<float>(bytes, swap));
-    case PlyType::Float64:
-        return load<double>(bytes, swap);
-    }
-    return 0.0;
-}
-
 /// @pre is_integral(type)
 long long decode_int(PlyType type, const unsigned char* bytes, bool swap) {
     switch (type) {
@@ -192,6 +170,17 @@ long long decode_int(PlyType type, const unsigned char* bytes, bool swap) {
         break;
     }
     return 0;
+}
+
+double decode_double(PlyType type, const unsigned char* bytes, bool swap) {
+    switch (type) {
+    case PlyType::Float32:
+        return static_cast<double>(load<float>(bytes, swap));
+    case PlyType::Float64:
+        return load<double>(bytes, swap);
+    default:
+        return static_cast<double>(decode_int(type, bytes, swap));
+    }
 }
 
 constexpr std::size_t no_property = static_cast<std::size_t>(-1);
@@ -743,14 +732,7 @@ void write_ply(std::ostream& out, const PolygonSoup& soup, PlyEncoding encoding,
             }
             out << '\n';
         }
-        for (Index f = 0; f < soup.num_faces(); ++f) {
-            const auto corners = soup.face(f);
-            out << corners.size();
-            for (const Index v : corners) {
-                out << ' ' << v;
-            }
-            out << '\n';
-        }
+        detail::io_write_counted_faces(out, soup);
     } else {
         const bool swap = (encoding == PlyEncoding::BinaryLittleEndian) != (std::endian::native == std::endian::little);
         for (Index v = 0; v < soup.num_vertices(); ++v) {
