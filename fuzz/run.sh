@@ -12,9 +12,15 @@ cmake --build --preset fuzz -j 2 --target fuzz_obj fuzz_off fuzz_ply
 for format in obj off ply; do
     mkdir -p "build/fuzz-corpus/$format"
     echo "== fuzz_$format for ${seconds}s"
+    log="build/fuzz-corpus/fuzz_$format.log"
+    status=0
     "build/fuzz/fuzz/fuzz_$format" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
-        -print_final_stats=1 "build/fuzz-corpus/$format" "fuzz/corpus/$format" 2>&1 |
-        grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb|==|SUMMARY|Done)" || true
-    test "${PIPESTATUS[0]}" -eq 0
+        -print_final_stats=1 "build/fuzz-corpus/$format" "fuzz/corpus/$format" >"$log" 2>&1 || status=$?
+    grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb|Done)" "$log" || true
+    if [ "$status" -ne 0 ]; then
+        tail -n 40 "$log"
+        echo "fuzz: fuzz_$format found a problem (exit $status); the input is in $(pwd)" >&2
+        exit 1
+    fi
 done
 echo "fuzz: no findings"
