@@ -2,7 +2,7 @@
 # A short, bounded libFuzzer session on each parser (what `make fuzz` runs).
 # Usage: fuzz/run.sh [SECONDS_PER_TARGET]   (default 60)
 # New inputs go to build/fuzz-corpus/; the committed seeds in fuzz/corpus/ are only read.
-# A finding stops the run with libFuzzer's report and leaves crash-*/oom-*/leak-*/timeout-* here.
+# A finding stops the run with libFuzzer's report and leaves crash-*/oom-*/leak-*/timeout-* in build/fuzz-corpus/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -15,11 +15,11 @@ for format in obj off ply; do
     log="build/fuzz-corpus/fuzz_$format.log"
     status=0
     "build/fuzz/fuzz/fuzz_$format" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
-        -print_final_stats=1 "build/fuzz-corpus/$format" "fuzz/corpus/$format" >"$log" 2>&1 || status=$?
+        -print_final_stats=1 -artifact_prefix="build/fuzz-corpus/" "build/fuzz-corpus/$format" "fuzz/corpus/$format" >"$log" 2>&1 || status=$?
     grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb|Done)" "$log" || true
     if [ "$status" -ne 0 ]; then
         tail -n 40 "$log"
-        echo "fuzz: fuzz_$format found a problem (exit $status); the input is in $(pwd)" >&2
+        echo "fuzz: fuzz_$format found a problem (exit $status); the input is in build/fuzz-corpus/ (crash-*, oom-*, leak-*, timeout-*)" >&2
         exit 1
     fi
 done
