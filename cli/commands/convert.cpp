@@ -13,7 +13,7 @@ namespace {
 struct ConvertOptions {
     std::string input;
     std::string output;
-    PlyEncoding ply_encoding = PlyEncoding::Ascii;
+    std::string ply_encoding = "ascii";
     bool strict_isolated = false;
 };
 
@@ -26,7 +26,10 @@ int run_convert(const ConvertOptions& options) {
     for (const Issue& issue : built.report.issues) {
         std::cerr << "warning: " << issue.to_string() << '\n';
     }
-    print_warnings(write_mesh(options.output, built.mesh, {.ply_encoding = options.ply_encoding}));
+    const PlyEncoding encoding = options.ply_encoding == "binary-le"   ? PlyEncoding::BinaryLittleEndian
+                                 : options.ply_encoding == "binary-be" ? PlyEncoding::BinaryBigEndian
+                                                                       : PlyEncoding::Ascii;
+    print_warnings(write_mesh(options.output, built.mesh, {.ply_encoding = encoding}));
     return exit_ok;
 }
 
@@ -37,11 +40,8 @@ void add_convert_command(CLI::App& app, CommandStatus& status) {
     CLI::App* convert = app.add_subcommand("convert", "Convert a mesh between OBJ, OFF and PLY (by extension)");
     convert->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
     convert->add_option("output", options->output, "Output mesh (.obj, .off, .ply); written atomically")->required();
-    const std::map<std::string, PlyEncoding> encodings{{"ascii", PlyEncoding::Ascii},
-                                                       {"binary-le", PlyEncoding::BinaryLittleEndian},
-                                                       {"binary-be", PlyEncoding::BinaryBigEndian}};
-    convert->add_option("--ply-encoding", options->ply_encoding, "PLY encoding: ascii, binary-le or binary-be")
-        ->transform(CLI::CheckedTransformer(encodings, CLI::ignore_case));
+    convert->add_option("--ply-encoding", options->ply_encoding, "PLY encoding (default ascii)")
+        ->check(CLI::IsMember({"ascii", "binary-le", "binary-be"}));
     convert->add_flag("--strict-isolated", options->strict_isolated,
                       "Treat vertices in no face as errors (default: dropped with a warning)");
     convert->callback([options, &status] { status.exit_code = run_guarded([&] { return run_convert(*options); }); });

@@ -219,8 +219,13 @@ TEST(Cli, ConvertRoundTripsThroughEveryFormat) {
 }
 
 TEST(Cli, UsageErrorsExitWithTwoAndOneLine) {
-    for (const auto& args : std::vector<std::vector<std::string>>{
-             {}, {"frobnicate"}, {"info"}, {"info", "a.obj", "--no-such-flag"}, {"convert", "a.obj"}}) {
+    for (const auto& args :
+         std::vector<std::vector<std::string>>{{},
+                                               {"frobnicate"},
+                                               {"info"},
+                                               {"info", "a.obj", "--no-such-flag"},
+                                               {"convert", "a.obj"},
+                                               {"convert", "a.obj", "b.ply", "--ply-encoding", "1"}}) {
         const CliRun run = limsurf(args);
         EXPECT_EQ(run.exit_code, 2) << run.err;
         EXPECT_EQ(run.err.rfind("error: ", 0), 0U) << run.err;
