@@ -18,3 +18,18 @@ if(LIMSURF_BUILD_TESTS)
     find_package(tinyobjloader REQUIRED)
     set_package_properties(tinyobjloader PROPERTIES TYPE REQUIRED PURPOSE "peer OBJ reader in tests (libtinyobjloader-dev)")
 endif()
+
+# Peers for tests and benchmarks. Debian's OpenSubdivConfig.cmake references
+# static libraries the package does not ship, so locate the headers and the
+# CPU library directly and wrap them in an imported target.
+if(LIMSURF_BUILD_TESTS OR LIMSURF_BUILD_BENCH)
+    find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/far/topologyRefiner.h)
+    find_library(OPENSUBDIV_CPU_LIBRARY osdCPU)
+    if(OPENSUBDIV_INCLUDE_DIR AND OPENSUBDIV_CPU_LIBRARY)
+        add_library(limsurf_peer_opensubdiv INTERFACE IMPORTED)
+        target_include_directories(limsurf_peer_opensubdiv SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
+        target_link_libraries(limsurf_peer_opensubdiv INTERFACE ${OPENSUBDIV_CPU_LIBRARY})
+        add_library(limsurf::peer_opensubdiv ALIAS limsurf_peer_opensubdiv)
+    endif()
+    add_feature_info(opensubdiv_peer OPENSUBDIV_CPU_LIBRARY "OpenSubdiv Far as a peer (libosd-dev)")
+endif()

@@ -14,8 +14,8 @@ packages=(
     libcli11-dev nlohmann-json3-dev
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
-    # peers measured in the same benchmark run
-    libosd-dev
+    # peers: tests and benchmarks (OpenSubdiv, CGAL with Boost headers, OpenMesh)
+    libosd-dev libcgal-dev libboost-dev libopenmesh-dev
     # test-only peer: an independent OBJ reader
     libtinyobjloader-dev
     # bundled-mesh reproducibility test (tools/make_meshes.py --check)

@@ -1,0 +1,44 @@
+// One uniform refinement step for each scheme: child topology + S0 +
+// provenance (level.h). The per-scheme rules follow OpenSubdiv's Sdc for
+// Catmull–Clark, Loop and bilinear (docs/conventions.md "Refinement").
+#pragma once
+
+#include "limsurf/mesh/topology.h"
+#include "limsurf/refine/level.h"
+#include "limsurf/scheme/scheme.h"
+#include "limsurf/scheme/tuned_weights.h"
+
+namespace limsurf {
+
+/// @brief Catmull–Clark: every face of degree n becomes n quads; triangles by
+///   `options.triangles`; boundaries by `options.boundary`; creases, corners and
+///   semi-sharp features by the Topology's sharpness and `options.creasing`
+///   (OpenSubdiv's rules, including fractional-sharpness blending).
+/// @param[in] weights tuned vertex-rule weights at smooth interior vertices
+///   (tuned_weights.h); the default reproduces Catmull–Clark exactly.
+/// @see iga-with-catmull-clark §3, iga-tuned-catmull-clark-weights Fig. 1
+[[nodiscard]] Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options = {},
+                                         const TunedWeights& weights = {});
+
+/// @brief Loop: every triangle becomes 4; the same boundary and crease features.
+/// @throws UnsupportedError naming the first face that is not a triangle
+[[nodiscard]] Level refine_loop(const Topology& parent, const SchemeOptions& options = {});
+
+/// @brief Bilinear: the Catmull–Clark split with linear rules (face point =
+///   centroid, edge point = midpoint, vertex point = vertex). Sharpness is carried.
+[[nodiscard]] Level refine_bilinear(const Topology& parent);
+
+/// @brief Linear: the Loop split (triangles only) with midpoints.
+/// @throws UnsupportedError naming the first face that is not a triangle
+[[nodiscard]] Level refine_linear(const Topology& parent);
+
+/// @brief Doo–Sabin with the classic weights (n+5)/(4n) and (3 + 2cos(2πk/n))/(4n);
+///   one child vertex per parent face corner. Boundary rule: see the
+///   implementation's documentation in docs/schemes.md.
+[[nodiscard]] Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options = {});
+
+/// @brief Dispatches on @p kind (tuned weights apply to Catmull–Clark only).
+[[nodiscard]] Level refine(const Topology& parent, SchemeKind kind, const SchemeOptions& options = {},
+                           const TunedWeights& weights = {});
+
+}  // namespace limsurf
