@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     CommandStatus status;
     add_info_command(app, status);
     add_convert_command(app, status);
+    add_subdivide_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -12,5 +12,6 @@ struct CommandStatus {
 
 void add_info_command(CLI::App& app, CommandStatus& status);
 void add_convert_command(CLI::App& app, CommandStatus& status);
+void add_subdivide_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

@@ -30,7 +30,7 @@ struct VertexRuleWeights {
 
 /// Weights per valence, optionally overridden per control vertex.
 class TunedWeights {
-public:
+  public:
     /// No overrides: every vertex uses catmull_clark_weights().
     TunedWeights() = default;
 
@@ -59,7 +59,7 @@ public:
     /// True when no valence or vertex has been given weights.
     [[nodiscard]] bool is_catmull_clark() const noexcept { return by_valence_.empty() && by_vertex_.empty(); }
 
-private:
+  private:
     std::map<int, VertexRuleWeights> by_valence_;
     std::map<Index, VertexRuleWeights> by_vertex_;
 };

@@ -1,10 +1,9 @@
-#include "limsurf/scheme/tuned_weights.h"
-
 #include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "limsurf/core/error.h"
+#include "limsurf/scheme/tuned_weights.h"
 #include "support/paths.h"
 
 namespace limsurf {

@@ -1,0 +1,95 @@
+// Hierarchy: uniform refinement to level L, keeping every level (DESIGN.md §2).
+//
+// Level 0 is the control mesh's topology; level l (1 <= l <= L) is
+// step(l).topology, reached from level l−1 by step(l).S0. The accumulated
+// operator A^l = S0^{l−1} ··· S0^0 (#V_l × #V_0) maps control-vertex data
+// straight to level l; it is built on first request and cached.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "limsurf/core/types.h"
+#include "limsurf/mesh/topology.h"
+#include "limsurf/refine/level.h"
+#include "limsurf/refine/refine.h"
+#include "limsurf/scheme/scheme.h"
+#include "limsurf/scheme/tuned_weights.h"
+
+namespace limsurf {
+
+/// Options for uniform refinement.
+struct RefineOptions {
+    SchemeKind scheme = SchemeKind::CatmullClark;
+    int levels = 1;                                  ///< number of refinement steps, 0 <= levels <= 16
+    SchemeOptions scheme_options;                    ///< boundary, creasing, triangle rule
+    TunedWeights weights;                            ///< Catmull–Clark only; default = Catmull–Clark's own
+    std::int64_t max_faces = std::int64_t{1} << 27;  ///< refuse when the finest level would exceed this
+};
+
+/// Element counts of one level, predicted before refining.
+struct LevelSize {
+    std::int64_t vertices = 0;
+    std::int64_t edges = 0;
+    std::int64_t faces = 0;
+    std::int64_t corners = 0;  ///< sum of face degrees
+};
+
+/// @brief Counts of levels 0..levels for @p scheme, without refining: exact for
+///   Catmull–Clark, Loop, bilinear and linear and for Doo–Sabin on closed meshes;
+///   an upper bound for Doo–Sabin with boundary.
+[[nodiscard]] std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, int levels);
+
+/// Rough memory (bytes) a level of this size takes: topology tables and S0.
+[[nodiscard]] std::int64_t estimated_bytes(const LevelSize& size);
+
+class Hierarchy {
+  public:
+    /// @brief Refines @p base options.levels times.
+    /// @throws InputError when levels is out of range or the finest level would
+    ///   exceed options.max_faces or 32-bit indices (checked before any work)
+    /// @throws UnsupportedError when the scheme cannot refine a face (e.g. Loop on a quad)
+    Hierarchy(Topology base, const RefineOptions& options);
+
+    Hierarchy(Hierarchy&&) noexcept = default;
+    Hierarchy& operator=(Hierarchy&&) noexcept = default;
+
+    /// Number of refinement steps L (levels 0..L exist).
+    [[nodiscard]] int num_steps() const noexcept { return static_cast<int>(steps_.size()); }
+    [[nodiscard]] const RefineOptions& options() const noexcept { return options_; }
+
+    /// Topology of level @p level (0 = the base). @throws InputError when out of range
+    [[nodiscard]] const Topology& topology(int level) const;
+
+    /// The step that produced level @p level (1 <= level <= L). @throws InputError when out of range
+    [[nodiscard]] const Level& step(int level) const;
+
+    /// A^level = S0^{level−1} ··· S0^0, #V_level × #V_0 (identity for level 0); built once, cached.
+    /// Thread-safe. @throws InputError when out of range
+    [[nodiscard]] const SparseMatrix& accumulated(int level) const;
+
+    /// Per-vertex data (#V_0 × k, any k) carried to level @p level by successive
+    /// S0 products (cheaper than forming A). @throws InputError on a row-count mismatch
+    [[nodiscard]] Eigen::MatrixXd apply(int level, const Eigen::MatrixXd& data) const;
+
+    /// Positions (#V_0 × 3) at level @p level.
+    [[nodiscard]] Points positions(int level, const Points& control_points) const;
+
+  private:
+    void check_level(int level, int lowest) const;
+
+    RefineOptions options_;
+    Topology base_;
+    std::vector<Level> steps_;
+    // Lazily built accumulated operators; the mutex lives on the heap so that
+    // the hierarchy stays movable.
+    mutable std::vector<std::optional<SparseMatrix>> accumulated_;
+    mutable std::unique_ptr<std::mutex> accumulated_mutex_ = std::make_unique<std::mutex>();
+};
+
+}  // namespace limsurf
