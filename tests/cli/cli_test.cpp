@@ -248,9 +248,67 @@ TEST(Cli, BadFilesExitWithOne) {
     EXPECT_TRUE(fs::is_empty(dir));
 }
 
+TEST(CliSubdivide, CatmullClarkTwoLevelsOfTheCube) {
+    const fs::path out = test::make_temp_dir("subdivide") / "cube2.obj";
+    const CliRun run = limsurf({"subdivide", test::find_bundled("cube").path.string(), "--scheme", "catmull-clark",
+                                "--levels", "2", "-o", out.string(), "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_EQ(json["output"]["num_faces"], 96);     // 6 · 4²
+    EXPECT_EQ(json["output"]["num_vertices"], 98);  // V − E + F = 2 with E = 2F
+    EXPECT_EQ(json["per_level"][1]["num_faces"], 24);
+    const auto info = nlohmann::json::parse(limsurf({"info", "--json", out.string()}).out);
+    EXPECT_EQ(info["num_faces"], 96);
+    EXPECT_EQ(info["genus"], 0);
+}
+
+TEST(CliSubdivide, CreasesAreCarriedToTheOutput) {
+    // cube_creases: 4 edges at sharpness 10, one at 2.5, a corner. One uniform
+    // Catmull-Clark step: each sharp edge splits in two, 2.5 decays to 1.5.
+    const fs::path out = test::make_temp_dir("creases") / "creased.obj";
+    const CliRun run = limsurf({"subdivide", test::find_bundled("cube_creases").path.string(), "--scheme",
+                                "catmull-clark", "--levels", "1", "-o", out.string()});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto sharpness = nlohmann::json::parse(limsurf({"info", "--json", out.string()}).out)["sharpness"];
+    EXPECT_EQ(sharpness["num_sharp_edges"], 10);
+    EXPECT_EQ(sharpness["num_infinitely_sharp_edges"], 8);
+    EXPECT_EQ(sharpness["max_semi_sharp_edge"], 1.5);
+    EXPECT_EQ(sharpness["num_infinitely_sharp_vertices"], 1);
+}
+
+TEST(CliSubdivide, LoopRefusesQuadsNamingAFace) {
+    const fs::path dir = test::make_temp_dir("loopquads");
+    const CliRun run = limsurf({"subdivide", test::find_bundled("cube").path.string(), "--scheme", "loop", "--levels",
+                                "1", "-o", (dir / "x.obj").string()});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_EQ(run.err.rfind("error: face 0 has 4 vertices", 0), 0U) << run.err;
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(CliSubdivide, RefusesHugeOutputsBeforeWorking) {
+    const fs::path dir = test::make_temp_dir("huge");
+    const CliRun run = limsurf({"subdivide", test::find_bundled("quad_torus").path.string(), "--scheme",
+                                "catmull-clark", "--levels", "14", "-o", (dir / "x.obj").string()});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("would make"), std::string::npos) << run.err;
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(CliSubdivide, TunedWeightsOnlyForCatmullClark) {
+    const fs::path dir = test::make_temp_dir("weights");
+    const CliRun run = limsurf({"subdivide", test::find_bundled("tri_valence_5").path.string(), "--scheme", "loop",
+                                "--weights", "cup", "-o", (dir / "x.obj").string()});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_EQ(run.err, "error: --weights applies to --scheme catmull-clark only\n");
+    const CliRun cup = limsurf({"subdivide", test::find_bundled("quad_valence_5").path.string(), "--scheme",
+                                "catmull-clark", "--weights", "cup", "-o", (dir / "y.obj").string(), "--json"});
+    EXPECT_EQ(cup.exit_code, 0) << cup.err;
+    EXPECT_EQ(nlohmann::json::parse(cup.out)["tuned_weights"], true);
+}
+
 TEST(Cli, HelpIsEverywhere) {
-    for (const auto& args :
-         std::vector<std::vector<std::string>>{{"--help"}, {"info", "--help"}, {"convert", "--help"}}) {
+    for (const auto& args : std::vector<std::vector<std::string>>{
+             {"--help"}, {"info", "--help"}, {"convert", "--help"}, {"subdivide", "--help"}}) {
         const CliRun run = limsurf(args);
         EXPECT_EQ(run.exit_code, 0);
         EXPECT_NE(run.out.find("Usage"), std::string::npos) << run.out;

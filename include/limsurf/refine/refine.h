@@ -33,8 +33,12 @@ namespace limsurf {
 [[nodiscard]] Level refine_linear(const Topology& parent);
 
 /// @brief Doo–Sabin with the classic weights (n+5)/(4n) and (3 + 2cos(2πk/n))/(4n);
-///   one child vertex per parent face corner. Boundary rule: see the
-///   implementation's documentation in docs/schemes.md.
+///   one child vertex per parent face corner (child vertex c = parent corner c).
+///   Boundary: child boundary loops are Chaikin's corner cutting of the parent's
+///   (quadratic B-spline), one-face corners interpolated; BoundaryInterpolation::None
+///   reproduces CGAL (no boundary faces). See docs/doo_sabin.md.
+/// @throws UnsupportedError when the topology has creases, corners or holes (no
+///   Doo–Sabin crease rules yet), naming the first tagged element
 [[nodiscard]] Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options = {});
 
 /// @brief Dispatches on @p kind (tuned weights apply to Catmull–Clark only).

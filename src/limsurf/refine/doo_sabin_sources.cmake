@@ -1,3 +1,3 @@
-# Doo–Sabin refinement.
+# Doo–Sabin refinement (docs/doo_sabin.md).
 target_sources(limsurf_subdiv PRIVATE
-    ${CMAKE_CURRENT_LIST_DIR}/doo_sabin_stub.cpp)
+    ${CMAKE_CURRENT_LIST_DIR}/doo_sabin.cpp)

@@ -1,3 +1,7 @@
 # Catmull–Clark, Loop, bilinear, linear refinement (face-split schemes).
 target_sources(limsurf_subdiv PRIVATE
-    ${CMAKE_CURRENT_LIST_DIR}/face_split_stub.cpp)
+    ${CMAKE_CURRENT_LIST_DIR}/catmull_clark.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/loop.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/bilinear.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/linear.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/../detail/refine_face_split.cpp)

@@ -1,0 +1,252 @@
+#include "limsurf/detail/refine_face_split.h"
+
+#include <cstddef>
+#include <utility>
+
+namespace limsurf::detail {
+namespace {
+
+std::size_t at(Index i) {
+    return static_cast<std::size_t>(i);
+}
+
+}  // namespace
+
+EffectiveSharpness effective_sharpness(const Topology& parent, BoundaryInterpolation boundary) {
+    EffectiveSharpness result;
+    const Index num_edges = parent.num_edges();
+    const Index num_vertices = parent.num_vertices();
+    result.edge.resize(at(num_edges));
+    for (Index e = 0; e < num_edges; ++e) {
+        result.edge[at(e)] = parent.is_boundary_edge(e) ? infinite_sharpness : parent.edge_sharpness(e);
+    }
+    result.vertex.resize(at(num_vertices));
+    const bool sharpen_corners = boundary == BoundaryInterpolation::EdgeAndCorner;
+    for (Index v = 0; v < num_vertices; ++v) {
+        const bool corner = sharpen_corners && parent.is_boundary_vertex(v) && parent.vertex_faces(v).size() == 1;
+        result.vertex[at(v)] = corner ? infinite_sharpness : parent.vertex_sharpness(v);
+    }
+    return result;
+}
+
+ChildFaces quad_split_faces(const Topology& parent) {
+    const Index V = parent.num_vertices();
+    const Index F = parent.num_faces();
+    ChildFaces child;
+    const auto num_children = at(parent.num_corners());
+    child.offsets.resize(num_children + 1);
+    for (std::size_t i = 0; i <= num_children; ++i) {
+        child.offsets[i] = static_cast<Index>(4 * i);
+    }
+    child.vertices.resize(4 * num_children);
+    Index* out = child.vertices.data();
+    for (Index f = 0; f < F; ++f) {
+        const auto verts = parent.face_vertices(f);
+        const auto edges = parent.face_edges(f);
+        const std::size_t n = verts.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            *out++ = verts[k];
+            *out++ = V + F + edges[k];
+            *out++ = V + f;
+            *out++ = V + F + edges[(k + n - 1) % n];
+        }
+    }
+    return child;
+}
+
+ChildFaces tri_split_faces(const Topology& parent) {
+    const Index V = parent.num_vertices();
+    const Index F = parent.num_faces();
+    ChildFaces child;
+    child.offsets.resize(4 * at(F) + 1);
+    for (std::size_t i = 0; i < child.offsets.size(); ++i) {
+        child.offsets[i] = static_cast<Index>(3 * i);
+    }
+    child.vertices.resize(12 * at(F));
+    Index* out = child.vertices.data();
+    for (Index f = 0; f < F; ++f) {
+        const auto verts = parent.face_vertices(f);
+        const auto edges = parent.face_edges(f);
+        for (std::size_t k = 0; k < 3; ++k) {
+            *out++ = verts[k];
+            *out++ = V + edges[k];
+            *out++ = V + edges[(k + 2) % 3];
+        }
+        *out++ = V + edges[0];
+        *out++ = V + edges[1];
+        *out++ = V + edges[2];
+    }
+    return child;
+}
+
+Provenance quad_split_provenance(const Topology& parent) {
+    const Index V = parent.num_vertices();
+    const Index F = parent.num_faces();
+    const Index E = parent.num_edges();
+    Provenance p;
+    const auto num_child_vertices = at(V + F + E);
+    p.vertex_parent_kind.reserve(num_child_vertices);
+    p.vertex_parent.reserve(num_child_vertices);
+    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(V), ParentKind::Vertex);
+    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(F), ParentKind::Face);
+    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(E), ParentKind::Edge);
+    for (const Index count : {V, F, E}) {
+        for (Index i = 0; i < count; ++i) {
+            p.vertex_parent.push_back(i);
+        }
+    }
+    const auto num_child_faces = at(parent.num_corners());
+    p.face_parent_kind.assign(num_child_faces, ParentKind::Face);
+    p.face_parent.reserve(num_child_faces);
+    p.face_parent_corner.reserve(num_child_faces);
+    for (Index f = 0; f < F; ++f) {
+        const Index n = parent.face_degree(f);
+        for (Index k = 0; k < n; ++k) {
+            p.face_parent.push_back(f);
+            p.face_parent_corner.push_back(k);
+        }
+    }
+    return p;
+}
+
+Provenance tri_split_provenance(const Topology& parent) {
+    const Index V = parent.num_vertices();
+    const Index F = parent.num_faces();
+    const Index E = parent.num_edges();
+    Provenance p;
+    p.vertex_parent_kind.reserve(at(V + E));
+    p.vertex_parent.reserve(at(V + E));
+    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(V), ParentKind::Vertex);
+    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(E), ParentKind::Edge);
+    for (const Index count : {V, E}) {
+        for (Index i = 0; i < count; ++i) {
+            p.vertex_parent.push_back(i);
+        }
+    }
+    p.face_parent_kind.assign(4 * at(F), ParentKind::Face);
+    p.face_parent.reserve(4 * at(F));
+    p.face_parent_corner.reserve(4 * at(F));
+    for (Index f = 0; f < F; ++f) {
+        for (Index k = 0; k < 4; ++k) {
+            p.face_parent.push_back(f);
+            p.face_parent_corner.push_back(k < 3 ? k : invalid_index);
+        }
+    }
+    return p;
+}
+
+SharpnessTags child_sharpness(const Topology& parent, const EffectiveSharpness& effective, CreasingMethod method,
+                              Index first_edge_vertex, bool triangle_split) {
+    SharpnessTags tags;
+    if (!parent.has_sharpness()) {
+        return tags;
+    }
+    std::vector<double> around;
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        const double own = parent.edge_sharpness(e);
+        if (!is_sharp(own)) {
+            continue;
+        }
+        const auto ends = parent.edge_vertices(e);
+        const Index mid = first_edge_vertex + e;
+        for (const Index end : ends) {
+            double child = 0.0;
+            if (parent.is_boundary_edge(e)) {
+                child = decrement_sharpness(own);
+            } else {
+                const auto edges = parent.vertex_edges(end);
+                around.resize(edges.size());
+                for (std::size_t i = 0; i < edges.size(); ++i) {
+                    around[i] = effective.edge[at(edges[i])];
+                }
+                child = subdivide_edge_sharpness_at_vertex(own, around, method);
+            }
+            if (is_sharp(child)) {
+                tags.creases.push_back({end, mid, child, 0});
+            }
+        }
+    }
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        const double child = decrement_sharpness(parent.vertex_sharpness(v));
+        if (is_sharp(child)) {
+            tags.corners.push_back({v, child, 0});
+        }
+    }
+    Index first_child_face = 0;
+    for (Index f = 0; f < parent.num_faces(); ++f) {
+        const Index count = triangle_split ? 4 : parent.face_degree(f);
+        if (parent.is_hole(f)) {
+            for (Index k = 0; k < count; ++k) {
+                tags.holes.push_back({first_child_face + k, 0});
+            }
+        }
+        first_child_face += count;
+    }
+    return tags;
+}
+
+void require_triangles(const Topology& parent, const char* scheme) {
+    for (Index f = 0; f < parent.num_faces(); ++f) {
+        const Index degree = parent.face_degree(f);
+        LIMSURF_CHECK(degree == 3, UnsupportedError, "face ", f, " has ", degree, " vertices: ", scheme,
+                      " needs triangles");
+    }
+}
+
+SparseRowBuilder::SparseRowBuilder(Index rows, Index cols, Index nnz_hint) : matrix_(rows, cols) {
+    matrix_.reserve(nnz_hint);
+    row_.reserve(64);
+}
+
+void SparseRowBuilder::end_row() {
+    // Insertion sort: rows hold a handful of entries.
+    for (std::size_t i = 1; i < row_.size(); ++i) {
+        const Entry entry = row_[i];
+        std::size_t j = i;
+        while (j > 0 && row_[j - 1].col > entry.col) {
+            row_[j] = row_[j - 1];
+            --j;
+        }
+        row_[j] = entry;
+    }
+    matrix_.startVec(current_);
+    for (const auto& entry : row_) {
+        matrix_.insertBack(current_, entry.col) = entry.weight;
+    }
+    row_.clear();
+    ++current_;
+}
+
+SparseMatrix SparseRowBuilder::finish() {
+    LIMSURF_ASSERT(current_ == matrix_.rows(), "rows ended: ", current_, " of ", matrix_.rows());
+    matrix_.finalize();
+    return std::move(matrix_);
+}
+
+bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effective, CreasingMethod method, Index e,
+                          std::vector<double>& scratch) {
+    const double s = effective.edge[at(e)];
+    if (method == CreasingMethod::Uniform || is_infinitely_sharp(s)) {
+        return is_sharp(decrement_sharpness(s));
+    }
+    for (const Index end : parent.edge_vertices(e)) {
+        const auto edges = parent.vertex_edges(end);
+        scratch.resize(edges.size());
+        for (std::size_t i = 0; i < edges.size(); ++i) {
+            scratch[i] = effective.edge[at(edges[i])];
+        }
+        if (!is_sharp(subdivide_edge_sharpness_at_vertex(s, scratch, method))) {
+            return false;
+        }
+    }
+    return true;
+}
+
+Level make_level(Index num_child_vertices, ChildFaces faces, SharpnessTags tags, SparseMatrix S0,
+                 Provenance provenance) {
+    Level level{Topology(num_child_vertices, faces.offsets, faces.vertices, tags), std::move(S0),
+                std::move(provenance)};
+    return level;
+}
+
+}  // namespace limsurf::detail

@@ -1,0 +1,188 @@
+// Private machinery shared by the face-split schemes (Catmull–Clark, Loop,
+// bilinear, linear): the child topology of the quad and triangle splits, the
+// provenance, sharpness propagation, the sequential sparse-row builder and the
+// crease-aware vertex mask (docs/schemes.md).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "limsurf/core/error.h"
+#include "limsurf/core/types.h"
+#include "limsurf/mesh/sharpness.h"
+#include "limsurf/mesh/topology.h"
+#include "limsurf/refine/level.h"
+#include "limsurf/scheme/crease.h"
+
+namespace limsurf::detail {
+
+/// Sharpness as the subdivision rules see it (OpenSubdiv's boundary sharpening):
+/// the Topology's own values, with every boundary edge infinitely sharp and, for
+/// EdgeAndCorner, every boundary vertex in a single face infinitely sharp.
+/// BoundaryInterpolation::None sharpens boundary edges too (OpenSubdiv refines
+/// vertex data that way; it only excludes boundary faces from the limit surface).
+struct EffectiveSharpness {
+    std::vector<double> edge;    ///< #E
+    std::vector<double> vertex;  ///< #V
+};
+
+/// @brief Effective sharpness of @p parent under @p boundary.
+[[nodiscard]] EffectiveSharpness effective_sharpness(const Topology& parent, BoundaryInterpolation boundary);
+
+/// Child faces as CSR arrays (offsets #F'+1, corners).
+struct ChildFaces {
+    std::vector<Index> offsets;
+    std::vector<Index> vertices;
+};
+
+/// @brief Quad split (Catmull–Clark, bilinear): child vertex of face f is V + f,
+///   of edge e is V + F + e; child k of face f is [v_k, e_k, f, e_(k−1)].
+[[nodiscard]] ChildFaces quad_split_faces(const Topology& parent);
+
+/// @brief Triangle split (Loop, linear): child vertex of edge e is V + e; children
+///   [v_k, e_k, e_(k−1)] for k = 0, 1, 2, then [e_0, e_1, e_2]. @pre all faces are triangles
+[[nodiscard]] ChildFaces tri_split_faces(const Topology& parent);
+
+/// @brief Provenance of the quad split (vertices, faces, edges; n quads per face).
+[[nodiscard]] Provenance quad_split_provenance(const Topology& parent);
+/// @brief Provenance of the triangle split (vertices, edges; 4 triangles per face).
+[[nodiscard]] Provenance tri_split_provenance(const Topology& parent);
+
+/// @brief The sharpness tags of the child: the two halves of a parent edge get the
+///   subdivided sharpness at their parent end vertex (Uniform or Chaikin, computed
+///   from @p effective), the child of a parent vertex its decremented sharpness,
+///   children of hole faces are holes. Boundary edges keep their own (decremented)
+///   tag: the child's boundary is sharpened again at the next level.
+/// @param[in] first_edge_vertex child index of the point of parent edge 0
+/// @param[in] triangle_split    4 children per face (triangle split) instead of n (quad split)
+[[nodiscard]] SharpnessTags child_sharpness(const Topology& parent, const EffectiveSharpness& effective,
+                                            CreasingMethod method, Index first_edge_vertex, bool triangle_split);
+
+/// @brief Refuses a mesh with a non-triangular face.
+/// @throws UnsupportedError "face 3 has 4 vertices: <scheme> needs triangles"
+void require_triangles(const Topology& parent, const char* scheme);
+
+/// Builds a row-major sparse matrix row by row, in order, without triplets:
+/// duplicates within a row are merged and the row is sorted before it is appended.
+class SparseRowBuilder {
+  public:
+    SparseRowBuilder(Index rows, Index cols, Index nnz_hint);
+    /// Adds @p weight to column @p col of the current row (exact zeros are skipped).
+    void add(Index col, double weight) {
+        if (weight == 0.0) {
+            return;
+        }
+        for (auto& entry : row_) {
+            if (entry.col == col) {
+                entry.weight += weight;
+                return;
+            }
+        }
+        row_.push_back({col, weight});
+    }
+    /// Closes the current row and starts the next.
+    void end_row();
+    /// The matrix; @pre every row has been ended
+    [[nodiscard]] SparseMatrix finish();
+
+  private:
+    struct Entry {
+        Index col;
+        double weight;
+    };
+    SparseMatrix matrix_;
+    std::vector<Entry> row_;
+    Index current_ = 0;
+};
+
+/// Weights of a vertex-vertex mask: the vertex itself, the far end of each
+/// incident edge (vertex_edges order) and each incident face's point
+/// (vertex_faces order; the face centroid for Catmull–Clark, unused for Loop).
+struct VertexMask {
+    double vertex = 0.0;
+    std::vector<double> edges;
+    std::vector<double> faces;
+
+    void reset(std::size_t num_edges, std::size_t num_faces) {
+        vertex = 0.0;
+        edges.assign(num_edges, 0.0);
+        faces.assign(num_faces, 0.0);
+    }
+};
+
+/// Scratch space for vertex_mask(), reused across vertices (no allocation per vertex).
+struct VertexMaskWorkspace {
+    std::vector<double> parent_edges;
+    std::vector<double> child_edges;
+    VertexMask child_mask;
+};
+
+/// @brief The vertex-vertex mask of parent vertex @p v (Sdc::Scheme::ComputeVertexVertexMask):
+///   Smooth/Dart parents use @p smooth; Crease (3/4, 1/8, 1/8) and Corner (1) otherwise,
+///   blended with the child's rule by the fractional weight when the rule changes.
+/// @param[in] smooth callable (Index v, VertexMask&) filling the smooth mask of an interior vertex
+template <class SmoothMask>
+void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, CreasingMethod method, Index v,
+                 const SmoothMask& smooth, VertexMask& mask, VertexMaskWorkspace& work) {
+    const auto edges = parent.vertex_edges(v);
+    const auto num_faces = parent.vertex_faces(v).size();
+    work.parent_edges.resize(edges.size());
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        work.parent_edges[i] = effective.edge[static_cast<std::size_t>(edges[i])];
+    }
+    const double parent_sharpness = effective.vertex[static_cast<std::size_t>(v)];
+    const CreaseRule parent_rule = vertex_rule(parent_sharpness, work.parent_edges);
+    mask.reset(edges.size(), num_faces);
+    if (parent_rule == CreaseRule::Smooth || parent_rule == CreaseRule::Dart) {
+        smooth(v, mask);
+        return;
+    }
+    const auto assign_sharp = [](CreaseRule rule, std::span<const double> sharpness, VertexMask& out) {
+        if (rule == CreaseRule::Crease) {
+            const auto ends = crease_ends(sharpness);
+            out.vertex = 0.75;
+            out.edges[static_cast<std::size_t>(ends[0])] = 0.125;
+            out.edges[static_cast<std::size_t>(ends[1])] = 0.125;
+        } else {
+            out.vertex = 1.0;
+        }
+    };
+    assign_sharp(parent_rule, work.parent_edges, mask);
+
+    work.child_edges.resize(edges.size());
+    subdivide_edge_sharpness_around_vertex(work.parent_edges, work.child_edges, method);
+    const double child_sharpness = decrement_sharpness(parent_sharpness);
+    const CreaseRule child_rule = vertex_rule(child_sharpness, work.child_edges);
+    if (child_rule == parent_rule) {
+        return;
+    }
+    VertexMask& child = work.child_mask;
+    child.reset(edges.size(), num_faces);
+    if (child_rule == CreaseRule::Smooth || child_rule == CreaseRule::Dart) {
+        smooth(v, child);
+    } else {
+        assign_sharp(child_rule, work.child_edges, child);
+    }
+    const double p =
+        fractional_weight_at_vertex(parent_sharpness, child_sharpness, work.parent_edges, work.child_edges, method);
+    const double c = 1.0 - p;
+    mask.vertex = p * mask.vertex + c * child.vertex;
+    for (std::size_t i = 0; i < mask.edges.size(); ++i) {
+        mask.edges[i] = p * mask.edges[i] + c * child.edges[i];
+    }
+    for (std::size_t i = 0; i < mask.faces.size(); ++i) {
+        mask.faces[i] = p * mask.faces[i] + c * child.faces[i];
+    }
+}
+
+/// @brief Whether the point of a sharp edge (effective sharpness @p s > 0) uses the
+///   crease rule outright (its child edges stay sharp); otherwise the smooth rule is
+///   blended with the crease rule by weight s (Sdc::Scheme::ComputeEdgeVertexMask).
+[[nodiscard]] bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effective,
+                                        CreasingMethod method, Index e, std::vector<double>& scratch);
+
+/// @brief Assembles the Level (validates the child topology).
+[[nodiscard]] Level make_level(Index num_child_vertices, ChildFaces faces, SharpnessTags tags, SparseMatrix S0,
+                               Provenance provenance);
+
+}  // namespace limsurf::detail

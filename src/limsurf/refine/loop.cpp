@@ -1,0 +1,99 @@
+// Loop refinement with OpenSubdiv's boundary and crease rules (docs/schemes.md).
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <vector>
+
+#include "limsurf/detail/refine_face_split.h"
+#include "limsurf/refine/refine.h"
+
+namespace limsurf {
+namespace {
+
+std::size_t at(Index i) {
+    return static_cast<std::size_t>(i);
+}
+
+/// The corner of triangle f that is not an end of edge e.
+Index opposite_vertex(const Topology& parent, Index f, Index e) {
+    const auto edges = parent.face_edges(f);
+    const auto verts = parent.face_vertices(f);
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (edges[k] == e) {
+            return verts[(k + 2) % 3];
+        }
+    }
+    return invalid_index;
+}
+
+}  // namespace
+
+Level refine_loop(const Topology& parent, const SchemeOptions& options) {
+    detail::require_triangles(parent, "Loop");
+    const Index V = parent.num_vertices();
+    const Index E = parent.num_edges();
+    const auto effective = detail::effective_sharpness(parent, options.boundary);
+
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E);
+
+    // Vertex points: Loop's weights, β = (5/8 − (3/8 + cos(2π/n)/4)²)/n per neighbour.
+    const auto smooth = [](Index, detail::VertexMask& mask) {
+        const auto n = mask.edges.size();
+        double edge_weight = 0.0625;
+        double vertex_weight = 0.625;
+        if (n != 6) {
+            const double nd = static_cast<double>(n);
+            const double cos_theta = std::cos(2.0 * std::numbers::pi / nd);
+            const double beta = 0.25 * cos_theta + 0.375;
+            edge_weight = (0.625 - beta * beta) / nd;
+            vertex_weight = 1.0 - edge_weight * nd;
+        }
+        mask.vertex = vertex_weight;
+        for (auto& x : mask.edges) {
+            x = edge_weight;
+        }
+    };
+    detail::VertexMask mask;
+    detail::VertexMaskWorkspace work;
+    for (Index v = 0; v < V; ++v) {
+        detail::vertex_mask(parent, effective, options.creasing, v, smooth, mask, work);
+        rows.add(v, mask.vertex);
+        const auto edges = parent.vertex_edges(v);
+        for (std::size_t i = 0; i < edges.size(); ++i) {
+            rows.add(parent.other_vertex(edges[i], v), mask.edges[i]);
+        }
+        rows.end_row();
+    }
+
+    // Edge points: 3/8 ends + 1/8 opposite corners, or the crease midpoint.
+    std::vector<double> scratch;
+    for (Index e = 0; e < E; ++e) {
+        const auto ends = parent.edge_vertices(e);
+        const double s = effective.edge[at(e)];
+        if (is_sharp(s) && detail::edge_child_is_crease(parent, effective, options.creasing, e, scratch)) {
+            rows.add(ends[0], 0.5);
+            rows.add(ends[1], 0.5);
+            rows.end_row();
+            continue;
+        }
+        double vertex_weight = 0.375;
+        double face_weight = 0.125;
+        if (is_sharp(s)) {
+            const double c = 1.0 - s;
+            vertex_weight = s * 0.5 + c * vertex_weight;
+            face_weight *= c;
+        }
+        rows.add(ends[0], vertex_weight);
+        rows.add(ends[1], vertex_weight);
+        for (const Index f : parent.edge_faces(e)) {
+            rows.add(opposite_vertex(parent, f, e), face_weight);
+        }
+        rows.end_row();
+    }
+
+    return detail::make_level(V + E, detail::tri_split_faces(parent),
+                              detail::child_sharpness(parent, effective, options.creasing, V, true), rows.finish(),
+                              detail::tri_split_provenance(parent));
+}
+
+}  // namespace limsurf

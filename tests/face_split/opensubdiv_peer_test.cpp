@@ -1,0 +1,304 @@
+// Peer test: OpenSubdiv Far (TopologyRefiner + PrimvarRefinerReal<double>) refines
+// the same meshes with the same options; positions agree vertex by vertex to 1e-12
+// of the bounding-box diagonal over 3 levels, child faces agree exactly (after
+// mapping vertex orders through provenance) and so does the child edge sharpness.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "face_split/face_split_helpers.h"
+#include "limsurf/refine/refine.h"
+
+namespace limsurf::test {
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+struct OsdPoint {
+    double p[3];
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0; }
+    void AddWithWeight(const OsdPoint& src, double w) {
+        p[0] += w * src.p[0];
+        p[1] += w * src.p[1];
+        p[2] += w * src.p[2];
+    }
+};
+
+std::unique_ptr<Far::TopologyRefiner> make_refiner(const Topology& t, SchemeKind kind, const SchemeOptions& o) {
+    Sdc::Options options;
+    options.SetVtxBoundaryInterpolation(o.boundary == BoundaryInterpolation::None ? Sdc::Options::VTX_BOUNDARY_NONE
+                                        : o.boundary == BoundaryInterpolation::EdgeOnly
+                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                            : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    options.SetCreasingMethod(o.creasing == CreasingMethod::Uniform ? Sdc::Options::CREASE_UNIFORM
+                                                                    : Sdc::Options::CREASE_CHAIKIN);
+    options.SetTriangleSubdivision(o.triangles == TriangleSubdivision::Smooth ? Sdc::Options::TRI_SUB_SMOOTH
+                                                                              : Sdc::Options::TRI_SUB_CATMARK);
+    static thread_local std::vector<int> degrees;
+    static thread_local std::vector<Far::Index> crease_pairs, corners, holes;
+    static thread_local std::vector<float> crease_weights, corner_weights;
+    degrees.clear();
+    crease_pairs.clear();
+    corners.clear();
+    holes.clear();
+    crease_weights.clear();
+    corner_weights.clear();
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        degrees.push_back(t.face_degree(f));
+        if (t.is_hole(f)) {
+            holes.push_back(f);
+        }
+    }
+    for (Index e = 0; e < t.num_edges(); ++e) {
+        if (t.edge_sharpness(e) > 0.0) {
+            crease_pairs.push_back(t.edge_vertices(e)[0]);
+            crease_pairs.push_back(t.edge_vertices(e)[1]);
+            crease_weights.push_back(static_cast<float>(t.edge_sharpness(e)));
+        }
+    }
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        if (t.vertex_sharpness(v) > 0.0) {
+            corners.push_back(v);
+            corner_weights.push_back(static_cast<float>(t.vertex_sharpness(v)));
+        }
+    }
+    Far::TopologyDescriptor desc;
+    desc.numVertices = t.num_vertices();
+    desc.numFaces = t.num_faces();
+    desc.numVertsPerFace = degrees.data();
+    desc.vertIndicesPerFace = t.all_face_vertices().data();
+    desc.numCreases = static_cast<int>(crease_weights.size());
+    desc.creaseVertexIndexPairs = crease_pairs.data();
+    desc.creaseWeights = crease_weights.data();
+    desc.numCorners = static_cast<int>(corner_weights.size());
+    desc.cornerVertexIndices = corners.data();
+    desc.cornerWeights = corner_weights.data();
+    desc.numHoles = static_cast<int>(holes.size());
+    desc.holeIndices = holes.data();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    const auto type = kind == SchemeKind::Loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK;
+    return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(type, options)));
+}
+
+void compare_with_opensubdiv(const Topology& t0, const Points& p0, SchemeKind kind, const SchemeOptions& options,
+                             const std::string& what) {
+    SCOPED_TRACE(what);
+    constexpr int num_levels = 3;
+    auto refiner = make_refiner(t0, kind, options);
+    ASSERT_TRUE(refiner);
+    Far::TopologyRefiner::UniformOptions uniform(num_levels);
+    uniform.fullTopologyInLastLevel = true;  // edges of the last level, to compare sharpness
+    refiner->RefineUniform(uniform);
+
+    std::vector<std::vector<OsdPoint>> far(num_levels + 1);
+    far[0].resize(static_cast<std::size_t>(t0.num_vertices()));
+    for (Index v = 0; v < t0.num_vertices(); ++v) {
+        far[0][static_cast<std::size_t>(v)] = {{p0(v, 0), p0(v, 1), p0(v, 2)}};
+    }
+    Far::PrimvarRefinerReal<double> primvar(*refiner);
+    for (int l = 1; l <= num_levels; ++l) {
+        far[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices()));
+        OsdPoint* dst = far[static_cast<std::size_t>(l)].data();
+        primvar.Interpolate(l, far[static_cast<std::size_t>(l - 1)].data(), dst);
+    }
+
+    const double scale = (p0.colwise().maxCoeff() - p0.colwise().minCoeff()).norm();
+    Topology parent = t0;
+    Points positions = p0;
+    std::vector<Index> to_far(static_cast<std::size_t>(t0.num_vertices()));
+    for (Index v = 0; v < t0.num_vertices(); ++v) {
+        to_far[static_cast<std::size_t>(v)] = v;
+    }
+    // Faces: Far puts a quad's child j at corner j with the parent vertex in position j, so
+    // from level 2 on face numbers differ; map them through provenance too.
+    std::vector<Index> face_to_far(static_cast<std::size_t>(t0.num_faces()));
+    for (Index f = 0; f < t0.num_faces(); ++f) {
+        face_to_far[static_cast<std::size_t>(f)] = f;
+    }
+    for (int l = 1; l <= num_levels; ++l) {
+        const Far::TopologyLevel& far_parent = refiner->GetLevel(l - 1);
+        const Far::TopologyLevel& far_child = refiner->GetLevel(l);
+        Level level = kind == SchemeKind::Loop ? refine_loop(parent, options) : refine_catmull_clark(parent, options);
+        positions = level.S0 * positions;
+        const Topology& child = level.topology;
+        ASSERT_EQ(child.num_vertices(), far_child.GetNumVertices());
+        ASSERT_EQ(child.num_faces(), far_child.GetNumFaces());
+        std::vector<Index> child_to_far(static_cast<std::size_t>(child.num_vertices()));
+        for (Index i = 0; i < child.num_vertices(); ++i) {
+            const auto kind_i = level.provenance.vertex_parent_kind[static_cast<std::size_t>(i)];
+            const Index p = level.provenance.vertex_parent[static_cast<std::size_t>(i)];
+            Index mapped = invalid_index;
+            if (kind_i == ParentKind::Vertex) {
+                mapped = far_parent.GetVertexChildVertex(to_far[static_cast<std::size_t>(p)]);
+            } else if (kind_i == ParentKind::Face) {
+                mapped = far_parent.GetFaceChildVertex(face_to_far[static_cast<std::size_t>(p)]);
+            } else {
+                const auto ends = parent.edge_vertices(p);
+                const Index far_edge = far_parent.FindEdge(to_far[static_cast<std::size_t>(ends[0])],
+                                                           to_far[static_cast<std::size_t>(ends[1])]);
+                ASSERT_GE(far_edge, 0);
+                mapped = far_parent.GetEdgeChildVertex(far_edge);
+            }
+            child_to_far[static_cast<std::size_t>(i)] = mapped;
+            const OsdPoint& q = far[static_cast<std::size_t>(l)][static_cast<std::size_t>(mapped)];
+            const double d = (positions.row(i) - Eigen::RowVector3d(q.p[0], q.p[1], q.p[2])).norm();
+            EXPECT_LE(d, 1e-12 * scale) << "level " << l << " child vertex " << i;
+        }
+        std::vector<Index> child_face_to_far(static_cast<std::size_t>(child.num_faces()));
+        for (Index f = 0; f < child.num_faces(); ++f) {
+            const Index g = level.provenance.face_parent[static_cast<std::size_t>(f)];
+            const Index corner_k = level.provenance.face_parent_corner[static_cast<std::size_t>(f)];
+            const Index far_g = face_to_far[static_cast<std::size_t>(g)];
+            int child_j = 3;  // the middle triangle of a triangle split
+            if (corner_k != invalid_index) {
+                const Index corner =
+                    to_far[static_cast<std::size_t>(parent.face_vertices(g)[static_cast<std::size_t>(corner_k)])];
+                const auto far_corners = far_parent.GetFaceVertices(far_g);
+                child_j = 0;
+                while (child_j < far_corners.size() && far_corners[child_j] != corner) {
+                    ++child_j;
+                }
+                ASSERT_LT(child_j, far_corners.size());
+            }
+            const Index far_f = far_parent.GetFaceChildFaces(far_g)[child_j];
+            child_face_to_far[static_cast<std::size_t>(f)] = far_f;
+            const auto ours = child.face_vertices(f);
+            const auto theirs = far_child.GetFaceVertices(far_f);
+            ASSERT_EQ(static_cast<int>(ours.size()), theirs.size());
+            // Same cycle of vertices (Far's Loop children start at another corner: [e0, v1, e1], ...).
+            int shift = 0;
+            while (shift < theirs.size() && theirs[shift] != child_to_far[static_cast<std::size_t>(ours[0])]) {
+                ++shift;
+            }
+            for (std::size_t k = 0; k < ours.size(); ++k) {
+                const int j = (shift + static_cast<int>(k)) % theirs.size();
+                EXPECT_EQ(child_to_far[static_cast<std::size_t>(ours[k])], theirs[j]) << "level " << l << " face " << f;
+            }
+        }
+        for (Index e = 0; e < child.num_edges(); ++e) {
+            if (child.is_boundary_edge(e)) {
+                continue;  // OpenSubdiv stores the boundary's implicit infinite sharpness
+            }
+            const auto ends = child.edge_vertices(e);
+            const Index far_edge = far_child.FindEdge(child_to_far[static_cast<std::size_t>(ends[0])],
+                                                      child_to_far[static_cast<std::size_t>(ends[1])]);
+            EXPECT_EQ(static_cast<float>(child.edge_sharpness(e)), far_child.GetEdgeSharpness(far_edge))
+                << "level " << l << " edge " << e;
+        }
+        to_far = std::move(child_to_far);
+        face_to_far = std::move(child_face_to_far);
+        parent = std::move(level.topology);
+    }
+}
+
+std::vector<SchemeOptions> boundary_options() {
+    return {{BoundaryInterpolation::EdgeAndCorner, CreasingMethod::Uniform, TriangleSubdivision::CatmullClark},
+            {BoundaryInterpolation::EdgeOnly, CreasingMethod::Uniform, TriangleSubdivision::CatmullClark},
+            {BoundaryInterpolation::None, CreasingMethod::Uniform, TriangleSubdivision::CatmullClark}};
+}
+
+TEST(OpenSubdivPeer, CatmullClarkBundledMeshes) {
+    for (const char* name : {"cube_ngons", "dodecahedron", "prism_hex", "pentagon", "tetrahedron", "icosahedron",
+                             "tri_grid", "quad_grid", "disk_ev5_quads", "annulus", "cylinder_open", "single_quad",
+                             "cube_creases", "genus2", "quad_valence_7", "hexagon_fan", "single_triangle"}) {
+        const auto mesh = load_bundled(name);
+        for (const auto& options : boundary_options()) {
+            compare_with_opensubdiv(mesh.topology, mesh.positions, SchemeKind::CatmullClark, options,
+                                    std::string(name) + " " + to_string(options.boundary));
+        }
+    }
+}
+
+TEST(OpenSubdivPeer, CatmullClarkSmoothTriangles) {
+    for (const char* name : {"cube_ngons", "tetrahedron", "icosahedron", "tri_grid", "disk_ev7_tris"}) {
+        const auto mesh = load_bundled(name);
+        const SchemeOptions options{BoundaryInterpolation::EdgeAndCorner, CreasingMethod::Uniform,
+                                    TriangleSubdivision::Smooth};
+        compare_with_opensubdiv(mesh.topology, mesh.positions, SchemeKind::CatmullClark, options, name);
+    }
+}
+
+/// Semi-sharp and infinitely sharp creases along paths, a semi-sharp corner, float-exact values.
+SharpnessTags test_creases(const Topology& t, bool triangles) {
+    SharpnessTags tags;
+    const double values[] = {0.5, 1.25, 2.5, 3.0, 10.0, 1.25, 0.5, 2.5};
+    // A path through the mesh: follow the first edge out of vertex 0, several times.
+    Index v = 0;
+    Index previous_edge = invalid_index;
+    for (const double s : values) {
+        const auto edges = t.vertex_edges(v);
+        Index e = edges[0] == previous_edge ? edges[edges.size() / 2] : edges[0];
+        if (!triangles && edges.size() == 4 && previous_edge != invalid_index) {
+            // continue straight on a regular vertex
+            for (std::size_t i = 0; i < 4; ++i) {
+                if (edges[i] == previous_edge) {
+                    e = edges[(i + 2) % 4];
+                }
+            }
+        }
+        const Index w = t.other_vertex(e, v);
+        bool seen = false;
+        for (const auto& c : tags.creases) {
+            seen = seen || (c.v0 == v && c.v1 == w) || (c.v0 == w && c.v1 == v);
+        }
+        if (!seen) {
+            tags.creases.push_back({v, w, s, 0});
+        }
+        previous_edge = e;
+        v = w;
+    }
+    tags.corners.push_back({v, 1.25, 0});
+    tags.corners.push_back({t.num_vertices() / 2, 0.5, 0});
+    return tags;
+}
+
+TEST(OpenSubdivPeer, CatmullClarkCreasesUniformAndChaikin) {
+    for (const char* name :
+         {"quad_torus", "genus2", "sphere_quads", "cube_ngons", "disk_ev5_quads", "quad_grid", "cube_creases"}) {
+        const auto mesh = load_bundled(name);
+        SharpnessTags tags = test_creases(mesh.topology, false);
+        if (std::string(name) == "cube_creases") {
+            tags = mesh.topology.sharpness_tags();
+        }
+        const Topology t = with_tags(mesh.topology, tags);
+        for (const auto creasing : {CreasingMethod::Uniform, CreasingMethod::Chaikin}) {
+            for (const auto boundary : {BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly}) {
+                const SchemeOptions options{boundary, creasing, TriangleSubdivision::CatmullClark};
+                compare_with_opensubdiv(t, mesh.positions, SchemeKind::CatmullClark, options,
+                                        std::string(name) + " " + to_string(creasing) + " " + to_string(boundary));
+            }
+        }
+    }
+}
+
+TEST(OpenSubdivPeer, LoopBundledMeshes) {
+    for (const auto& bundled : triangle_meshes()) {
+        const auto mesh = load_bundled(bundled.name);
+        for (const auto& options : boundary_options()) {
+            compare_with_opensubdiv(mesh.topology, mesh.positions, SchemeKind::Loop, options,
+                                    bundled.name + " " + to_string(options.boundary));
+        }
+    }
+}
+
+TEST(OpenSubdivPeer, LoopCreasesUniformAndChaikin) {
+    for (const char* name : {"tri_torus", "icosahedron", "sphere_tris", "tri_grid", "disk_ev7_tris"}) {
+        const auto mesh = load_bundled(name);
+        const Topology t = with_tags(mesh.topology, test_creases(mesh.topology, true));
+        for (const auto creasing : {CreasingMethod::Uniform, CreasingMethod::Chaikin}) {
+            const SchemeOptions options{BoundaryInterpolation::EdgeAndCorner, creasing,
+                                        TriangleSubdivision::CatmullClark};
+            compare_with_opensubdiv(t, mesh.positions, SchemeKind::Loop, options,
+                                    std::string(name) + " " + to_string(creasing));
+        }
+    }
+}
+
+}  // namespace
+}  // namespace limsurf::test

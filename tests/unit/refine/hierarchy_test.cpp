@@ -1,0 +1,131 @@
+// Hierarchy: size prediction against the real counts, accumulated operators
+// against successive products, refusal before allocating.
+#include <gtest/gtest.h>
+
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/refine/hierarchy.h"
+#include "support/mesh_zoo.h"
+
+namespace limsurf {
+namespace {
+
+RefineOptions options_for(SchemeKind scheme, int levels) {
+    RefineOptions options;
+    options.scheme = scheme;
+    options.levels = levels;
+    return options;
+}
+
+void expect_predicted_sizes(const test::BundledMesh& mesh, SchemeKind scheme, int levels) {
+    SCOPED_TRACE(std::string(mesh.name) + " " + to_string(scheme));
+    const BuildResult built = read_mesh(mesh.path);
+    const Hierarchy hierarchy(built.mesh.topology(), options_for(scheme, levels));
+    const auto predicted = predict_sizes(built.mesh.topology(), scheme, levels);
+    ASSERT_EQ(predicted.size(), static_cast<std::size_t>(levels) + 1);
+    for (int l = 0; l <= levels; ++l) {
+        const Topology& t = hierarchy.topology(l);
+        const LevelSize& p = predicted[static_cast<std::size_t>(l)];
+        EXPECT_EQ(t.num_vertices(), p.vertices) << "level " << l;
+        EXPECT_EQ(t.num_edges(), p.edges) << "level " << l;
+        EXPECT_EQ(t.num_faces(), p.faces) << "level " << l;
+        EXPECT_EQ(t.num_corners(), p.corners) << "level " << l;
+        EXPECT_EQ(t.euler_characteristic(), built.mesh.topology().euler_characteristic()) << "level " << l;
+        EXPECT_EQ(t.genus(), built.mesh.topology().genus()) << "level " << l;
+    }
+}
+
+TEST(Hierarchy, PredictedSizesAreExactForTheFaceSplitSchemes) {
+    for (const auto& mesh : test::bundled_meshes()) {
+        expect_predicted_sizes(mesh, SchemeKind::CatmullClark, 2);
+        expect_predicted_sizes(mesh, SchemeKind::Bilinear, 2);
+    }
+    for (const auto& mesh : test::triangle_meshes()) {
+        expect_predicted_sizes(mesh, SchemeKind::Loop, 2);
+        expect_predicted_sizes(mesh, SchemeKind::Linear, 2);
+    }
+}
+
+TEST(Hierarchy, PredictedSizesAreExactForDooSabinOnClosedMeshes) {
+    for (const auto& mesh : test::closed_meshes()) {
+        if (read_mesh(mesh.path).mesh.topology().has_sharpness()) {
+            continue;  // Doo–Sabin refuses creases (no crease rules yet)
+        }
+        expect_predicted_sizes(mesh, SchemeKind::DooSabin, 2);
+    }
+}
+
+TEST(Hierarchy, PredictedSizesBoundDooSabinWithBoundary) {
+    for (const auto& mesh : test::meshes_with_boundary()) {
+        SCOPED_TRACE(mesh.name);
+        const BuildResult built = read_mesh(mesh.path);
+        const Hierarchy hierarchy(built.mesh.topology(), options_for(SchemeKind::DooSabin, 2));
+        const auto predicted = predict_sizes(built.mesh.topology(), SchemeKind::DooSabin, 2);
+        for (int l = 0; l <= 2; ++l) {
+            const Topology& t = hierarchy.topology(l);
+            const LevelSize& p = predicted[static_cast<std::size_t>(l)];
+            EXPECT_LE(t.num_vertices(), p.vertices);
+            EXPECT_LE(t.num_edges(), p.edges);
+            EXPECT_LE(t.num_faces(), p.faces);
+            EXPECT_LE(t.num_corners(), p.corners);
+        }
+    }
+}
+
+TEST(Hierarchy, AccumulatedOperatorIsTheProductOfTheSteps) {
+    const BuildResult built = read_mesh(test::find_bundled("cube_ngons").path);
+    const Hierarchy hierarchy(built.mesh.topology(), options_for(SchemeKind::CatmullClark, 3));
+    EXPECT_EQ(hierarchy.num_steps(), 3);
+    const SparseMatrix& a0 = hierarchy.accumulated(0);
+    EXPECT_EQ(a0.rows(), built.mesh.num_vertices());
+    EXPECT_DOUBLE_EQ(Eigen::MatrixXd(a0).trace(), built.mesh.num_vertices());
+    const SparseMatrix expected = hierarchy.step(3).S0 * (hierarchy.step(2).S0 * hierarchy.step(1).S0);
+    const SparseMatrix& a3 = hierarchy.accumulated(3);
+    ASSERT_EQ(a3.rows(), hierarchy.topology(3).num_vertices());
+    ASSERT_EQ(a3.cols(), built.mesh.num_vertices());
+    EXPECT_LT((Eigen::MatrixXd(a3) - Eigen::MatrixXd(expected)).cwiseAbs().maxCoeff(), 1e-15);
+    const Points by_steps = hierarchy.positions(3, built.mesh.positions());
+    const Points by_operator = a3 * built.mesh.positions();
+    EXPECT_LT((by_steps - by_operator).cwiseAbs().maxCoeff(), 1e-14);
+    const Eigen::VectorXd row_sums = Eigen::MatrixXd(a3).rowwise().sum();
+    EXPECT_LT((row_sums.array() - 1.0).abs().maxCoeff(), 1e-14);
+}
+
+TEST(Hierarchy, LevelZeroIsTheBase) {
+    const BuildResult built = read_mesh(test::find_bundled("cube").path);
+    const Hierarchy hierarchy(built.mesh.topology(), options_for(SchemeKind::CatmullClark, 0));
+    EXPECT_EQ(hierarchy.num_steps(), 0);
+    EXPECT_EQ(hierarchy.topology(0).num_faces(), 6);
+    EXPECT_EQ(hierarchy.positions(0, built.mesh.positions()), built.mesh.positions());
+    EXPECT_THROW((void)hierarchy.step(1), InputError);
+    EXPECT_THROW((void)hierarchy.topology(1), InputError);
+}
+
+TEST(Hierarchy, RefusesBeforeAllocatingTooMuch) {
+    const BuildResult built = read_mesh(test::find_bundled("quad_torus").path);
+    RefineOptions options = options_for(SchemeKind::CatmullClark, 12);
+    try {
+        const Hierarchy hierarchy(built.mesh.topology(), options);
+        FAIL() << "expected a refusal";
+    } catch (const InputError& error) {
+        // 48 quads × 4^12 = 805 306 368 faces
+        EXPECT_NE(std::string(error.what()).find("would make 805306368 faces at level 12"), std::string::npos)
+            << error.what();
+    }
+    options.levels = 17;
+    EXPECT_THROW(Hierarchy(built.mesh.topology(), options), InputError);
+    options.levels = 2;
+    options.max_faces = 100;  // 48 × 16 = 768 > 100
+    EXPECT_THROW(Hierarchy(built.mesh.topology(), options), InputError);
+}
+
+TEST(Hierarchy, ApplyChecksTheRowCount) {
+    const BuildResult built = read_mesh(test::find_bundled("cube").path);
+    const Hierarchy hierarchy(built.mesh.topology(), options_for(SchemeKind::Bilinear, 1));
+    EXPECT_THROW((void)hierarchy.apply(1, Eigen::MatrixXd::Zero(7, 1)), InputError);
+    const Eigen::MatrixXd ones = hierarchy.apply(1, Eigen::MatrixXd::Ones(8, 2));
+    EXPECT_EQ(ones.rows(), 26);  // 8 + 12 + 6
+    EXPECT_LT((ones.array() - 1.0).abs().maxCoeff(), 1e-15);
+}
+
+}  // namespace
+}  // namespace limsurf
