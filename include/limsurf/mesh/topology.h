@@ -28,8 +28,13 @@
 #include "limsurf/mesh/sharpness.h"
 
 namespace limsurf {
+class Topology;
 namespace detail {
 struct HalfEdge;
+/// Refinement output only (src/limsurf/refine): a Topology built without validating
+/// faces that a refinement step made; validated anyway in Debug builds.
+Topology refined_topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
+                          const SharpnessTags& sharpness);
 }  // namespace detail
 
 class Topology {
@@ -143,6 +148,14 @@ class Topology {
     [[nodiscard]] SharpnessTags sharpness_tags() const;
 
   private:
+    friend Topology detail::refined_topology(Index, std::span<const Index>, std::span<const Index>,
+                                             const SharpnessTags&);
+    struct Trusted {};
+    /// Builds the tables without validating: the faces come from a refinement step.
+    Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
+             const SharpnessTags& sharpness);
+    void build(const std::vector<detail::HalfEdge>& half_edges, const SharpnessTags& sharpness);
+
     static std::size_t at(Index i) { return static_cast<std::size_t>(i); }
     template <class T>
     std::span<const T> face_span(const std::vector<T>& table, Index f) const {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "limsurf/core/types.h"
@@ -44,6 +45,27 @@ struct Level {
     Topology topology;      ///< the child topology, with sharpness carried to it
     SparseMatrix S0;        ///< #V_child × #V_parent; child values = S0 · parent values
     Provenance provenance;  ///< where each child vertex and face came from
+
+    Level() = default;
+    /// Takes S0 over without copying it.
+    Level(Topology child, SparseMatrix&& s0, Provenance where)
+        : topology(std::move(child)), provenance(std::move(where)) {
+        S0.swap(s0);
+    }
+    // Eigen 3.4's SparseMatrix has no move constructor: moving a Level swaps S0
+    // instead of copying it (a level's S0 holds millions of non-zeros).
+    Level(Level&& other) noexcept : topology(std::move(other.topology)), provenance(std::move(other.provenance)) {
+        S0.swap(other.S0);
+    }
+    Level& operator=(Level&& other) noexcept {
+        topology = std::move(other.topology);
+        S0.swap(other.S0);
+        provenance = std::move(other.provenance);
+        return *this;
+    }
+    Level(const Level&) = default;
+    Level& operator=(const Level&) = default;
+    ~Level() = default;
 };
 
 }  // namespace limsurf

@@ -44,4 +44,8 @@ struct HalfEdge {
 void check_connectivity(const FaceListView& faces, const SharpnessTags& sharpness, const SourceMap& source,
                         ValidationReport& report, std::vector<HalfEdge>* sorted_half_edges = nullptr);
 
+/// @brief The half-edges of @p faces sorted by (key, face), without any check.
+/// @pre the faces are valid (degree >= 3, indices in range): refinement output only.
+[[nodiscard]] std::vector<HalfEdge> sorted_half_edges_unchecked(const FaceListView& faces);
+
 }  // namespace limsurf::detail

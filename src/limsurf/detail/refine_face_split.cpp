@@ -220,7 +220,9 @@ void SparseRowBuilder::end_row() {
 SparseMatrix SparseRowBuilder::finish() {
     LIMSURF_ASSERT(current_ == matrix_.rows(), "rows ended: ", current_, " of ", matrix_.rows());
     matrix_.finalize();
-    return std::move(matrix_);
+    SparseMatrix out;  // swap, not move: Eigen 3.4's SparseMatrix has no move constructor
+    out.swap(matrix_);
+    return out;
 }
 
 bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effective, CreasingMethod method, Index e,
@@ -244,7 +246,7 @@ bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effe
 
 Level make_level(Index num_child_vertices, ChildFaces faces, SharpnessTags tags, SparseMatrix S0,
                  Provenance provenance) {
-    Level level{Topology(num_child_vertices, faces.offsets, faces.vertices, tags), std::move(S0),
+    Level level{detail::refined_topology(num_child_vertices, faces.offsets, faces.vertices, tags), std::move(S0),
                 std::move(provenance)};
     return level;
 }

@@ -57,12 +57,38 @@ Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std:
     detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report,
                                &half_edges);
     throw_if_unusable(report);
+    build(half_edges, sharpness);
+}
+
+Topology::Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets,
+                   std::span<const Index> face_vertices, const SharpnessTags& sharpness)
+    : num_vertices_(num_vertices), face_offsets_(face_offsets.begin(), face_offsets.end()),
+      face_vertices_(face_vertices.begin(), face_vertices.end()) {
+#ifndef NDEBUG
+    // Debug and sanitizer builds still check what refinement produced.
+    ValidationReport report;
+    detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report);
+    LIMSURF_ASSERT(!report.has_errors(), "refinement produced an invalid topology: ", report.summary());
+#endif
+    build(detail::sorted_half_edges_unchecked({num_vertices, face_offsets, face_vertices}), sharpness);
+}
+
+void Topology::build(const std::vector<detail::HalfEdge>& half_edges, const SharpnessTags& sharpness) {
     build_edges(half_edges);
     build_one_rings();
     build_boundary_loops();
     build_components();
     apply_sharpness(sharpness);
 }
+
+namespace detail {
+
+Topology refined_topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
+                          const SharpnessTags& sharpness) {
+    return Topology(Topology::Trusted{}, num_vertices, face_offsets, face_vertices, sharpness);
+}
+
+}  // namespace detail
 
 Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vector<Index>>& faces,
                                  const SharpnessTags& sharpness) {

@@ -192,6 +192,13 @@ class ConnectivityChecker {
 
     [[nodiscard]] std::vector<HalfEdge> take_half_edges() { return std::move(half_edges_); }
 
+    /// Only the sorted half-edges, treating every face as valid (trusted input).
+    [[nodiscard]] std::vector<HalfEdge> collect_unchecked() {
+        good_face_.assign(at(num_faces()), 1);
+        collect_half_edges();
+        return std::move(half_edges_);
+    }
+
     /// The vertex a half-edge leaves, and the one it enters.
     [[nodiscard]] Index from(const HalfEdge& h) const { return faces_.vertices[at(h.corner)]; }
     [[nodiscard]] Index to(const HalfEdge& h) const { return from(h) == h.lower() ? h.higher() : h.lower(); }
@@ -594,6 +601,13 @@ void check_connectivity(const FaceListView& faces, const SharpnessTags& sharpnes
     if (sorted_half_edges != nullptr) {
         *sorted_half_edges = checker.take_half_edges();
     }
+}
+
+std::vector<HalfEdge> sorted_half_edges_unchecked(const FaceListView& faces) {
+    const SharpnessTags no_tags;
+    const SourceMap no_source;
+    ValidationReport unused;
+    return ConnectivityChecker(faces, no_tags, no_source, unused).collect_unchecked();
 }
 
 }  // namespace detail

@@ -242,7 +242,7 @@ Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options) {
             prov.vertex_parent[static_cast<std::size_t>(offset + i)] = f;
         }
     }
-    level.topology = Topology(num_child_vertices, offsets, face_vertices);
+    level.topology = detail::refined_topology(num_child_vertices, offsets, face_vertices, {});
     return level;
 }
 

@@ -90,6 +90,28 @@ TEST(Hierarchy, AccumulatedOperatorIsTheProductOfTheSteps) {
     EXPECT_LT((row_sums.array() - 1.0).abs().maxCoeff(), 1e-14);
 }
 
+TEST(Hierarchy, EveryRefinedLevelPassesFullValidation) {
+    // Refinement builds child topologies without validating them in release
+    // builds (they are valid by construction); check that claim explicitly.
+    struct Case {
+        const char* mesh;
+        SchemeKind scheme;
+    };
+    for (const Case& c : {Case{"cube_ngons", SchemeKind::CatmullClark},
+                          Case{"disk_ev5_quads", SchemeKind::CatmullClark}, Case{"annulus", SchemeKind::Bilinear},
+                          Case{"tri_grid", SchemeKind::Loop}, Case{"disk_ev7_tris", SchemeKind::Linear},
+                          Case{"genus2", SchemeKind::DooSabin}, Case{"cylinder_open", SchemeKind::DooSabin}}) {
+        SCOPED_TRACE(std::string(c.mesh) + " " + to_string(c.scheme));
+        const BuildResult built = read_mesh(test::find_bundled(c.mesh).path);
+        const Hierarchy hierarchy(built.mesh.topology(), options_for(c.scheme, 2));
+        for (int l = 1; l <= 2; ++l) {
+            const ControlMesh level(hierarchy.topology(l), hierarchy.positions(l, built.mesh.positions()));
+            const ValidationReport report = validate(to_polygon_soup(level));
+            EXPECT_FALSE(report.has_errors()) << "level " << l << ": " << report.summary();
+        }
+    }
+}
+
 TEST(Hierarchy, LevelZeroIsTheBase) {
     const BuildResult built = read_mesh(test::find_bundled("cube").path);
     const Hierarchy hierarchy(built.mesh.topology(), options_for(SchemeKind::CatmullClark, 0));
