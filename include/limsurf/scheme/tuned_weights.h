@@ -48,13 +48,20 @@ class TunedWeights {
     void set_valence(int valence, VertexRuleWeights weights);
 
     /// Weights for control vertex @p vertex, whatever its valence (the paper picks
-    /// cup or saddle per vertex). Applies to the vertex and to its descendants.
+    /// cup or saddle per vertex). Applies to the vertex and to its descendants:
+    /// refinement keeps a vertex's index for its child (docs/conventions.md), so
+    /// the index is a level-0 index (Hierarchy refuses one beyond the control mesh).
     /// @throws InputError as set_valence
     void set_vertex(Index vertex, VertexRuleWeights weights);
 
     /// The weights for @p vertex of valence @p valence: the vertex override, else
     /// the valence entry, else Catmull–Clark's.
     [[nodiscard]] VertexRuleWeights at(Index vertex, int valence) const;
+
+    /// The largest vertex index with its own weights, or invalid_index when none.
+    [[nodiscard]] Index largest_vertex() const noexcept {
+        return by_vertex_.empty() ? invalid_index : by_vertex_.rbegin()->first;
+    }
 
     /// True when no valence or vertex has been given weights.
     [[nodiscard]] bool is_catmull_clark() const noexcept { return by_valence_.empty() && by_vertex_.empty(); }

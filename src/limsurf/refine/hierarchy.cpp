@@ -68,6 +68,9 @@ Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(opt
                   to_string(options.scheme), " with ", options.levels, " levels would exceed 32-bit indices at level ",
                   options.levels);
 
+    LIMSURF_CHECK(options.weights.largest_vertex() < base_.num_vertices(), InputError, "tuned weights name vertex ",
+                  options.weights.largest_vertex(), " but the control mesh has ", base_.num_vertices(), " vertices");
+
     steps_.reserve(static_cast<std::size_t>(options.levels));
     for (int l = 0; l < options.levels; ++l) {
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;

@@ -140,6 +140,21 @@ TEST(Hierarchy, RefusesBeforeAllocatingTooMuch) {
     EXPECT_THROW(Hierarchy(built.mesh.topology(), options), InputError);
 }
 
+TEST(Hierarchy, TunedWeightsMustNameControlVertices) {
+    const BuildResult built = read_mesh(test::find_bundled("quad_valence_5").path);
+    RefineOptions options = options_for(SchemeKind::CatmullClark, 2);
+    options.weights.set_vertex(built.mesh.num_vertices(), {13.4575, 0.999938, 0.999938});
+    try {
+        const Hierarchy hierarchy(built.mesh.topology(), options);
+        FAIL() << "expected a refusal";
+    } catch (const InputError& error) {
+        EXPECT_EQ(std::string(error.what()), "tuned weights name vertex 17 but the control mesh has 17 vertices");
+    }
+    options.weights = TunedWeights();
+    options.weights.set_vertex(0, {13.4575, 0.999938, 0.999938});  // a pole of valence 5
+    EXPECT_NO_THROW(Hierarchy(built.mesh.topology(), options));
+}
+
 TEST(Hierarchy, ApplyChecksTheRowCount) {
     const BuildResult built = read_mesh(test::find_bundled("cube").path);
     const Hierarchy hierarchy(built.mesh.topology(), options_for(SchemeKind::Bilinear, 1));
