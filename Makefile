@@ -15,7 +15,7 @@ setup:
 
 demo: setup
 	cmake --preset release >/dev/null
-	cmake --build --preset release -j $(JOBS)
+	cmake --build --preset release -j $(JOBS) --target limsurf_cli
 	bash scripts/demo.sh build/release/cli/limsurf $(DEMO_MESH) $(DEMO_OUT)
 
 test: setup
