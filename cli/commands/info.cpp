@@ -120,10 +120,11 @@ void print_info_text(const std::string& file, const ControlMesh& mesh, const Val
     row("bounding box") << "[" << stats.bounding_box_min.transpose() << "] to [" << stats.bounding_box_max.transpose()
                         << "]\n";
     if (t.has_sharpness()) {
-        row("sharpness") << s.num_sharp_edges << " sharp edges (" << s.num_infinitely_sharp_edges
-                         << " infinitely sharp, largest semi-sharp " << s.max_semi_sharp_edge << "), "
-                         << s.num_sharp_vertices << " sharp vertices (" << s.num_infinitely_sharp_vertices
-                         << " corners), " << s.num_holes << " holes\n";
+        row("sharp edges") << s.num_sharp_edges << " (" << s.num_infinitely_sharp_edges
+                           << " infinitely sharp; largest semi-sharp value " << s.max_semi_sharp_edge << ")\n";
+        row("sharp vertices") << s.num_sharp_vertices << " (" << s.num_infinitely_sharp_vertices
+                              << " infinitely sharp)\n";
+        row("holes") << s.num_holes << '\n';
     } else {
         row("sharpness") << "none\n";
     }
