@@ -33,3 +33,6 @@ if(LIMSURF_BUILD_TESTS OR LIMSURF_BUILD_BENCH)
     endif()
     add_feature_info(opensubdiv_peer OPENSUBDIV_CPU_LIBRARY "OpenSubdiv Far as a peer (libosd-dev)")
 endif()
+# CGAL (a test and benchmark peer) warns about Debug builds at the end of the
+# top-level configuration; our Debug and sanitizer builds are deliberate.
+set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
