@@ -217,6 +217,34 @@ void SparseRowBuilder::end_row() {
     ++current_;
 }
 
+void add_identity_rows(Index num_vertices, SparseRowBuilder& rows) {
+    for (Index v = 0; v < num_vertices; ++v) {
+        rows.add(v, 1.0);
+        rows.end_row();
+    }
+}
+
+void add_edge_midpoint(const Topology& parent, Index e, SparseRowBuilder& rows) {
+    const auto ends = parent.edge_vertices(e);
+    rows.add(ends[0], 0.5);
+    rows.add(ends[1], 0.5);
+}
+
+void add_midpoint_rows(const Topology& parent, SparseRowBuilder& rows) {
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        add_edge_midpoint(parent, e, rows);
+        rows.end_row();
+    }
+}
+
+void add_vertex_and_neighbours(const Topology& parent, Index v, const VertexMask& mask, SparseRowBuilder& rows) {
+    rows.add(v, mask.vertex);
+    const auto edges = parent.vertex_edges(v);
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        rows.add(parent.other_vertex(edges[i], v), mask.edges[i]);
+    }
+}
+
 SparseMatrix SparseRowBuilder::finish() {
     LIMSURF_ASSERT(current_ == matrix_.rows(), "rows ended: ", current_, " of ", matrix_.rows());
     matrix_.finalize();

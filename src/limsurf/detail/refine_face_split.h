@@ -95,6 +95,15 @@ class SparseRowBuilder {
     Index current_ = 0;
 };
 
+/// Rows 0..V−1 of a scheme whose vertex points are the parent vertices (bilinear, linear).
+void add_identity_rows(Index num_vertices, SparseRowBuilder& rows);
+
+/// One row per parent edge, in edge order: the edge midpoint (bilinear, linear).
+void add_midpoint_rows(const Topology& parent, SparseRowBuilder& rows);
+
+/// Adds the midpoint of edge @p e to the current row (the crease rule of an edge point).
+void add_edge_midpoint(const Topology& parent, Index e, SparseRowBuilder& rows);
+
 /// Weights of a vertex-vertex mask: the vertex itself, the far end of each
 /// incident edge (vertex_edges order) and each incident face's point
 /// (vertex_faces order; the face centroid for Catmull–Clark, unused for Loop).
@@ -109,6 +118,10 @@ struct VertexMask {
         faces.assign(num_faces, 0.0);
     }
 };
+
+/// Adds @p mask's weights of vertex @p v itself and of its edge-neighbours to the
+/// current row (the face part, Catmull–Clark only, is added by the caller).
+void add_vertex_and_neighbours(const Topology& parent, Index v, const VertexMask& mask, SparseRowBuilder& rows);
 
 /// Scratch space for vertex_mask(), reused across vertices (no allocation per vertex).
 struct VertexMaskWorkspace {

@@ -56,11 +56,7 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
     detail::VertexMaskWorkspace work;
     for (Index v = 0; v < V; ++v) {
         detail::vertex_mask(parent, effective, options.creasing, v, smooth, mask, work);
-        rows.add(v, mask.vertex);
-        const auto edges = parent.vertex_edges(v);
-        for (std::size_t i = 0; i < edges.size(); ++i) {
-            rows.add(parent.other_vertex(edges[i], v), mask.edges[i]);
-        }
+        detail::add_vertex_and_neighbours(parent, v, mask, rows);
         const auto faces = parent.vertex_faces(v);
         for (std::size_t i = 0; i < faces.size(); ++i) {
             if (mask.faces[i] != 0.0) {
@@ -84,8 +80,7 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
         const auto faces = parent.edge_faces(e);
         const double s = effective.edge[at(e)];
         if (is_sharp(s) && detail::edge_child_is_crease(parent, effective, options.creasing, e, scratch)) {
-            rows.add(ends[0], 0.5);
-            rows.add(ends[1], 0.5);
+            detail::add_edge_midpoint(parent, e, rows);
             rows.end_row();
             continue;
         }

@@ -9,16 +9,8 @@ Level refine_linear(const Topology& parent) {
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
     detail::SparseRowBuilder rows(V + E, V, V + 2 * E);
-    for (Index v = 0; v < V; ++v) {
-        rows.add(v, 1.0);
-        rows.end_row();
-    }
-    for (Index e = 0; e < E; ++e) {
-        const auto ends = parent.edge_vertices(e);
-        rows.add(ends[0], 0.5);
-        rows.add(ends[1], 0.5);
-        rows.end_row();
-    }
+    detail::add_identity_rows(V, rows);
+    detail::add_midpoint_rows(parent, rows);
     const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
     return detail::make_level(V + E, detail::tri_split_faces(parent),
                               detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true),
