@@ -10,18 +10,12 @@
 #include "limsurf/core/error.h"
 #include "limsurf/io/obj.h"
 #include "support/paths.h"
+#include "support/soup_helpers.h"
 
 namespace limsurf {
 namespace {
 
-std::vector<std::vector<Index>> faces_of(const PolygonSoup& soup) {
-    std::vector<std::vector<Index>> faces;
-    for (Index f = 0; f < soup.num_faces(); ++f) {
-        const auto face = soup.face(f);
-        faces.emplace_back(face.begin(), face.end());
-    }
-    return faces;
-}
+using test::faces_of;
 
 PolygonSoup parse(const std::string& text, const std::string& name = "mem.obj") {
     std::istringstream in(text);
@@ -37,17 +31,13 @@ std::string parse_error(const std::string& text, const std::string& name = "mem.
     return "no error";
 }
 
-std::filesystem::path fixture(const char* name) {
-    return test::test_data_dir() / "io" / name;
-}
-
 bool same_bits(double a, double b) {
     return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
 TEST(ObjRead, EveryFaceFormGroupsMaterialsAndComments) {
-    const PolygonSoup soup = read_obj(fixture("cube_forms.obj"));
-    EXPECT_EQ(soup.source.file, fixture("cube_forms.obj").string());
+    const PolygonSoup soup = read_obj(test::io_fixture("cube_forms.obj"));
+    EXPECT_EQ(soup.source.file, test::io_fixture("cube_forms.obj").string());
     ASSERT_EQ(soup.num_vertices(), 8);
     EXPECT_EQ(soup.positions.row(6), Eigen::RowVector3d(1, 1, 1));
     EXPECT_EQ(soup.positions.row(7), Eigen::RowVector3d(0, 1, 1));
@@ -61,13 +51,13 @@ TEST(ObjRead, EveryFaceFormGroupsMaterialsAndComments) {
 }
 
 TEST(ObjRead, NegativeIndicesAreRelativeToTheElementsAbove) {
-    const PolygonSoup soup = read_obj(fixture("negative.obj"));
+    const PolygonSoup soup = read_obj(test::io_fixture("negative.obj"));
     const std::vector<std::vector<Index>> expected{{0, 1, 2}, {0, 1, 3}, {1, 3, 2}};
     EXPECT_EQ(faces_of(soup), expected);
 }
 
 TEST(ObjRead, CrlfLineEndings) {
-    const PolygonSoup soup = read_obj(fixture("crlf.obj"));
+    const PolygonSoup soup = read_obj(test::io_fixture("crlf.obj"));
     ASSERT_EQ(soup.num_vertices(), 4);
     EXPECT_EQ(soup.positions.row(2), Eigen::RowVector3d(1, 1, 0));
     EXPECT_EQ(faces_of(soup), (std::vector<std::vector<Index>>{{0, 1, 2, 3}}));
@@ -75,7 +65,7 @@ TEST(ObjRead, CrlfLineEndings) {
 }
 
 TEST(ObjRead, ContinuationLinesJoinAndKeepTheFirstLineNumber) {
-    const PolygonSoup soup = read_obj(fixture("continuation.obj"));
+    const PolygonSoup soup = read_obj(test::io_fixture("continuation.obj"));
     ASSERT_EQ(soup.num_vertices(), 4);
     EXPECT_EQ(soup.positions.row(1), Eigen::RowVector3d(1, 0, 0));
     EXPECT_EQ(soup.source.vertex_lines, (std::vector<int>{1, 2, 4, 5}));
@@ -84,7 +74,7 @@ TEST(ObjRead, ContinuationLinesJoinAndKeepTheFirstLineNumber) {
 }
 
 TEST(ObjRead, HomogeneousCoordinatesAreDividedAndColoursIgnored) {
-    const PolygonSoup soup = read_obj(fixture("homogeneous.obj"));
+    const PolygonSoup soup = read_obj(test::io_fixture("homogeneous.obj"));
     ASSERT_EQ(soup.num_vertices(), 5);
     EXPECT_EQ(soup.positions.row(0), Eigen::RowVector3d(1, 2, 3));
     EXPECT_EQ(soup.positions.row(2), Eigen::RowVector3d(0, 2, 0));
@@ -118,7 +108,7 @@ TEST(ObjRead, OpenSubdivShapeStringWithTags) {
 }
 
 TEST(ObjRead, EveryTagOfTheShapeFixture) {
-    const PolygonSoup soup = read_obj(fixture("shape_tags.obj"));
+    const PolygonSoup soup = read_obj(test::io_fixture("shape_tags.obj"));
     ASSERT_EQ(soup.num_faces(), 6);
     const auto& creases = soup.sharpness.creases;
     ASSERT_EQ(creases.size(), 3U);

@@ -10,18 +10,12 @@
 #include "limsurf/core/error.h"
 #include "limsurf/io/off.h"
 #include "support/paths.h"
+#include "support/soup_helpers.h"
 
 namespace limsurf {
 namespace {
 
-std::vector<std::vector<Index>> faces_of(const PolygonSoup& soup) {
-    std::vector<std::vector<Index>> faces;
-    for (Index f = 0; f < soup.num_faces(); ++f) {
-        const auto face = soup.face(f);
-        faces.emplace_back(face.begin(), face.end());
-    }
-    return faces;
-}
+using test::faces_of;
 
 PolygonSoup parse(const std::string& text) {
     std::istringstream in(text);

@@ -11,18 +11,12 @@
 #include "limsurf/core/error.h"
 #include "limsurf/io/ply.h"
 #include "support/paths.h"
+#include "support/soup_helpers.h"
 
 namespace limsurf {
 namespace {
 
-std::vector<std::vector<Index>> faces_of(const PolygonSoup& soup) {
-    std::vector<std::vector<Index>> faces;
-    for (Index f = 0; f < soup.num_faces(); ++f) {
-        const auto face = soup.face(f);
-        faces.emplace_back(face.begin(), face.end());
-    }
-    return faces;
-}
+using test::faces_of;
 
 PolygonSoup parse(const std::string& bytes) {
     std::istringstream in(bytes, std::ios::in | std::ios::binary);
@@ -36,10 +30,6 @@ std::string parse_error(const std::string& bytes) {
         return error.what();
     }
     return "no error";
-}
-
-std::filesystem::path fixture(const char* name) {
-    return test::test_data_dir() / "io" / name;
 }
 
 PolygonSoup random_soup(unsigned seed, Index nv) {
@@ -77,7 +67,7 @@ void expect_same_soup(const PolygonSoup& a, const PolygonSoup& b) {
 }
 
 TEST(PlyRead, AsciiWithExtraElementsListsAndTheVertexIndexAlias) {
-    const PolygonSoup soup = read_ply(fixture("extra_element.ply"));
+    const PolygonSoup soup = read_ply(test::io_fixture("extra_element.ply"));
     ASSERT_EQ(soup.num_vertices(), 4);
     EXPECT_EQ(soup.positions.row(0), Eigen::RowVector3d(0, 0, 0));
     EXPECT_EQ(soup.positions.row(1), Eigen::RowVector3d(1, 0, 0));
@@ -89,8 +79,8 @@ TEST(PlyRead, AsciiWithExtraElementsListsAndTheVertexIndexAlias) {
 }
 
 TEST(PlyRead, HandMadeBinaryWithExtraPropertiesAndElements) {
-    const PolygonSoup little = read_ply(fixture("extra_props_le.ply"));
-    const PolygonSoup big = read_ply(fixture("extra_props_be.ply"));
+    const PolygonSoup little = read_ply(test::io_fixture("extra_props_le.ply"));
+    const PolygonSoup big = read_ply(test::io_fixture("extra_props_be.ply"));
     ASSERT_EQ(little.num_vertices(), 5);
     EXPECT_EQ(little.positions.row(4), Eigen::RowVector3d(0.5, 0.5, 0.75));
     EXPECT_EQ(little.positions.row(2), Eigen::RowVector3d(1, 1, 0));
