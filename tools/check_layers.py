@@ -16,6 +16,8 @@ LAYERS = {
     "io": {"core", "mesh"},
     "scheme": {"core", "mesh"},
     "refine": {"core", "mesh", "scheme"},
+    "limit": {"core", "mesh", "scheme", "refine"},
+    "quadrature": {"core", "mesh", "scheme", "refine", "limit"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 

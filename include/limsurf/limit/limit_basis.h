@@ -1,0 +1,137 @@
+// The limit basis: for a point (ptex face, u, v) of the limit surface, the
+// control vertices the surface depends on there and their weights for the
+// value and the derivatives ∂u, ∂v, ∂uu, ∂uv, ∂vv (DESIGN.md §2). Positions,
+// normals, curvatures, quadrature, FE assembly and energy gradients all
+// consume it.
+//
+// Parameterisation (OpenSubdiv's ptex faces, docs/conventions.md "Limit evaluation"):
+//   Catmull–Clark: a quad is one ptex face with (0,0)=v0, (1,0)=v1, (1,1)=v2,
+//     (0,1)=v3; a face of degree n != 4 has n consecutive ptex faces, sub-face k
+//     with (0,0)=v_k, (1,0)=point of edge (v_k, v_k+1), (1,1)=face point,
+//     (0,1)=point of edge (v_k-1, v_k) — the child quad k of the first refinement.
+//   Loop: each triangle is one ptex face, (0,0)=v0, (1,0)=v1, (0,1)=v2, u,v >= 0, u+v <= 1.
+//
+// Exactness (iga-with-catmull-clark §4, c2g0 §3.1): the surface over a face
+// is subdivided locally until the point lies in a regular tile (bicubic
+// B-spline / quartic box spline, with phantom points beyond boundaries and
+// infinitely sharp creases); around an extraordinary vertex (also on a
+// boundary or a crease) the local subdivision matrix becomes stationary and is
+// applied as a matrix power, so the cost does not grow with the depth.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "limsurf/core/types.h"
+#include "limsurf/mesh/topology.h"
+#include "limsurf/scheme/scheme.h"
+#include "limsurf/scheme/tuned_weights.h"
+
+namespace limsurf {
+
+/// A point of the limit surface in ptex coordinates.
+struct SurfacePoint {
+    Index face = 0;  ///< ptex face, 0..num_ptex_faces()-1
+    double u = 0.0;
+    double v = 0.0;
+};
+
+/// Which derivatives an evaluation computes.
+enum class DerivativeOrder { Value = 0, First = 1, Second = 2 };
+
+/// Rows of LimitWeights::w and LimitPoint.
+enum DerivativeRow : int { Value = 0, Du = 1, Dv = 2, Duu = 3, Duv = 4, Dvv = 5 };
+
+/// Sparse weights at one point: column i belongs to control vertex vertices[i];
+/// rows are value, ∂u, ∂v, ∂uu, ∂uv, ∂vv (rows beyond the requested order are 0).
+/// The value row sums to 1, the derivative rows to 0.
+struct LimitWeights {
+    std::vector<Index> vertices;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> w;
+
+    [[nodiscard]] Index size() const noexcept { return static_cast<Index>(vertices.size()); }
+    /// The 6 rows (value and derivatives) applied to per-vertex data X (#V × 3).
+    [[nodiscard]] Eigen::Matrix<double, 6, 3> apply(const Points& X) const;
+};
+
+/// Ptex face p lies in control face `control_face`; `corner` is the sub-face
+/// of a face with a non-regular degree, or -1 when the face is one ptex face.
+struct PtexFace {
+    Index control_face = invalid_index;
+    Index corner = -1;
+};
+
+/// Shape of the (u, v) domain of a ptex face.
+enum class ParameterDomain { Quad, Triangle };
+
+/// How a LimitBasis evaluates near extraordinary features.
+enum class LimitEvaluation {
+    /// Tables of the self-similar local subdivision (O(1) per point at any distance).
+    Stationary,
+    /// Local subdivision level by level until the point lies in a regular patch: no
+    /// tables, cost linear in the depth, refuses points closer than 2^-60 to an
+    /// extraordinary vertex. An independent path, for verification.
+    Subdivision
+};
+
+/// @brief The exact limit basis of a control topology under Catmull–Clark or Loop.
+///
+/// Construction is cheap; the local patches around irregular faces are built
+/// on first use and cached. evaluate() is thread-safe.
+class LimitBasis {
+  public:
+    /// @param topology control topology (copied); sharpness tags are honoured
+    /// @param scheme   CatmullClark or Loop (DooSabin: see doo_sabin_limit.h)
+    /// @param options  boundary rule, creasing method, triangle rule
+    /// @param weights  tuned Catmull–Clark weights (per valence; per-vertex presets are refused)
+    /// @throws UnsupportedError for other schemes, Loop on non-triangles, per-vertex tuned weights
+    LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options = {},
+               const TunedWeights& weights = {}, LimitEvaluation evaluation = LimitEvaluation::Stationary);
+    ~LimitBasis();
+    LimitBasis(LimitBasis&&) noexcept;
+    LimitBasis& operator=(LimitBasis&&) noexcept;
+    LimitBasis(const LimitBasis&) = delete;
+    LimitBasis& operator=(const LimitBasis&) = delete;
+
+    [[nodiscard]] const Topology& topology() const noexcept;
+    [[nodiscard]] SchemeKind scheme() const noexcept;
+    [[nodiscard]] ParameterDomain domain() const noexcept;
+    [[nodiscard]] Index num_ptex_faces() const noexcept;
+    [[nodiscard]] PtexFace ptex_face(Index p) const;
+    /// First ptex face of control face f (its sub-faces follow consecutively).
+    [[nodiscard]] Index first_ptex_face(Index control_face) const;
+    /// False for ptex faces without a limit surface: holes, and faces touching the
+    /// boundary under BoundaryInterpolation::None (as OpenSubdiv).
+    [[nodiscard]] bool has_limit_surface(Index p) const;
+
+    /// @brief Weights of the limit surface at @p point.
+    /// @pre (u, v) in the ptex domain (the unit square, or the triangle u+v <= 1; a
+    ///   tolerance of 1e-12 is clamped)
+    /// @throws InputError for a ptex face out of range, a point outside the domain,
+    ///   or a face without a limit surface
+    void evaluate(const SurfacePoint& point, LimitWeights& out, DerivativeOrder order = DerivativeOrder::Second) const;
+    [[nodiscard]] LimitWeights evaluate(const SurfacePoint& point,
+                                        DerivativeOrder order = DerivativeOrder::Second) const;
+    /// Position and derivatives of the limit surface of control points @p X (#V × 3).
+    [[nodiscard]] Eigen::Matrix<double, 6, 3> evaluate(const Points& X, const SurfacePoint& point,
+                                                       DerivativeOrder order = DerivativeOrder::Second) const;
+
+    /// @brief The snapping matrix P (#V × #V): row v holds the limit position mask of
+    ///   control vertex v (sec §3.4); P · X are the limit positions of the control vertices.
+    /// Vertices without a limit surface around them (holes, None boundaries) get their own position.
+    [[nodiscard]] SparseMatrix vertex_limit_matrix() const;
+    /// @brief Limit position (row 0) and two tangents (rows 1, 2) at control vertex v, as
+    ///   weights over control vertices; the tangents span the tangent plane and
+    ///   tangent(1) × tangent(2) points along the outward normal (they are derivatives of
+    ///   the ptex parameterisation of an incident face where it is regular at v, and
+    ///   eigen-tangents scaled to unit subdominant eigenvalue otherwise).
+    [[nodiscard]] LimitWeights vertex_limit(Index v) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace limsurf

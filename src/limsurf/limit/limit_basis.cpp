@@ -1,0 +1,678 @@
+// The exact limit basis of Catmull–Clark and Loop surfaces (limit_basis.h).
+//
+// Every ptex face owns a small tree of local patches (local_patch.h). A node is
+//   Regular     — a bicubic B-spline / quartic box-spline patch: evaluate it;
+//   Stationary  — its corner child has the same canonical one-ring as itself, so
+//                 the local subdivision matrix A repeats at every level (Stam's
+//                 observation, iga-with-catmull-clark §4.2); a point n levels deep
+//                 towards that corner lands in a regular child q, and its weights
+//                 are B(q) · G_q · M_q · A^n · W — the matrices G_q M_q A^n are
+//                 tabulated once per configuration and shared by all faces;
+//   Refine      — anything else (several extraordinary corners, semi-sharp
+//                 creases, n-gons in the ring): subdivide locally and descend.
+// W maps a node's local vertices to the root's support (control vertices).
+#include "limsurf/limit/limit_basis.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <optional>
+#include <unordered_map>
+
+#include <Eigen/LU>
+
+#include "limsurf/core/error.h"
+#include "limsurf/limit/patch_basis.h"
+#include "limsurf/refine/refine.h"
+#include "local_patch.h"
+
+namespace limsurf {
+namespace {
+
+/// Depth of the stationary tables: points closer than 2^-60 (in parameter) to an
+/// extraordinary corner are evaluated there (position exact, derivatives at 2^-61).
+constexpr int max_stationary_levels = 60;
+/// Any local configuration becomes regular or stationary once its semi-sharp
+/// features have decayed (sharpness < 10 levels); this bounds a broken descent.
+constexpr int max_depth = 40;
+
+using Dense = Eigen::MatrixXd;
+using Rows = Eigen::Matrix<double, 6, Eigen::Dynamic>;
+
+std::size_t at(Index i) {
+    return static_cast<std::size_t>(i);
+}
+
+/// parent = offset + axes · child.
+struct Affine {
+    Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d axes = Eigen::Matrix2d::Identity();
+
+    [[nodiscard]] Eigen::Vector2d to_child(const Eigen::Vector2d& parent) const {
+        return axes.inverse() * (parent - offset);
+    }
+    [[nodiscard]] Affine then(const Affine& inner) const {  // this ∘ inner
+        return {offset + axes * inner.offset, axes * inner.axes};
+    }
+};
+
+Eigen::Vector2d domain_corner(bool quad, int k) {
+    static const Eigen::Vector2d square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    static const Eigen::Vector2d triangle[3] = {{0, 0}, {1, 0}, {0, 1}};
+    return quad ? square[k % 4] : triangle[k % 3];
+}
+
+/// The domain seen from corner k: (0,0) at corner k, (1,0) at corner k+1, (0,1) at corner k-1.
+Affine rotation(bool quad, int k) {
+    const int n = quad ? 4 : 3;
+    const Eigen::Vector2d p = domain_corner(quad, k);
+    Affine a;
+    a.offset = p;
+    a.axes.col(0) = domain_corner(quad, k + 1) - p;
+    a.axes.col(1) = domain_corner(quad, k + n - 1) - p;
+    return a;
+}
+
+/// Child q of the split: corner children are half-size rotations; the middle
+/// triangle (q = 3, Loop) is [e0, e1, e2].
+Affine child_map(bool quad, int q) {
+    if (!quad && q == 3) {
+        Affine a;
+        a.offset = {0.5, 0.0};
+        a.axes.col(0) = Eigen::Vector2d(0.0, 0.5);
+        a.axes.col(1) = Eigen::Vector2d(-0.5, 0.5);
+        return a;
+    }
+    Affine a = rotation(quad, q);
+    a.axes *= 0.5;
+    return a;
+}
+
+bool in_corner_child(bool quad, const Eigen::Vector2d& p) {
+    return quad ? (p.x() < 0.5 && p.y() < 0.5) : (p.x() + p.y() < 0.5);
+}
+
+int child_containing(bool quad, const Eigen::Vector2d& p) {
+    if (quad) {
+        return p.x() < 0.5 ? (p.y() < 0.5 ? 0 : 3) : (p.y() < 0.5 ? 1 : 2);
+    }
+    if (p.x() + p.y() < 0.5) {
+        return 0;
+    }
+    return p.x() >= 0.5 ? 1 : (p.y() >= 0.5 ? 2 : 3);
+}
+
+/// Basis rows in patch coordinates (s, t) turned into ptex derivatives, for
+/// ptex = offset + J · (s, t).
+template <int N>
+Eigen::Matrix<double, 6, N> to_ptex(const Eigen::Matrix<double, 6, N>& b, const Eigen::Matrix2d& J) {
+    const Eigen::Matrix2d Ji = J.inverse();
+    Eigen::Matrix<double, 6, N> r;
+    r.row(0) = b.row(0);
+    r.row(1) = Ji(0, 0) * b.row(1) + Ji(1, 0) * b.row(2);
+    r.row(2) = Ji(0, 1) * b.row(1) + Ji(1, 1) * b.row(2);
+    // H_uv(a, c) = sum_{i,j} Ji(i, a) H_st(i, j) Ji(j, c), with H_st = [[ss, st], [st, tt]].
+    const auto hessian_row = [&](int a, int c) {
+        return (Ji(0, a) * Ji(0, c)) * b.row(3) + (Ji(0, a) * Ji(1, c) + Ji(1, a) * Ji(0, c)) * b.row(4) +
+               (Ji(1, a) * Ji(1, c)) * b.row(5);
+    };
+    r.row(3) = hessian_row(0, 0);
+    r.row(4) = hessian_row(0, 1);
+    r.row(5) = hessian_row(1, 1);
+    return r;
+}
+
+/// The basis of a regular patch at (s, t), as ptex derivative rows.
+Rows patch_rows(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J) {
+    if (quad) {
+        Eigen::Matrix<double, 6, 16> b;
+        cubic_bspline_patch_weights(st.x(), st.y(), b);
+        return to_ptex<16>(b, J);
+    }
+    Eigen::Matrix<double, 6, 12> b;
+    quartic_box_spline_patch_weights(st.x(), st.y(), b);
+    return to_ptex<12>(b, J);
+}
+
+/// Dense patch_size × num_local matrix of a regular patch's points.
+Dense patch_matrix(const detail::RegularPatch& patch, Index num_local) {
+    Dense G = Dense::Zero(patch.size, num_local);
+    for (int i = 0; i < patch.size; ++i) {
+        const auto& p = patch.points[at(i)];
+        for (int k = 0; k < p.size; ++k) {
+            G(i, p.vertex[at(k)]) += p.weight[at(k)];
+        }
+    }
+    return G;
+}
+
+/// Rows @p rows of the sparse matrix S as a dense matrix.
+Dense dense_rows(const SparseMatrix& S, const std::vector<Index>& rows) {
+    Dense M = Dense::Zero(static_cast<Index>(rows.size()), S.cols());
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        for (SparseMatrix::InnerIterator it(S, rows[r]); it; ++it) {
+            M(static_cast<Index>(r), it.col()) = it.value();
+        }
+    }
+    return M;
+}
+
+struct Node;
+
+/// A self-similar local configuration (see the file comment), shared by all nodes
+/// whose canonical one-ring has this topology.
+struct StationaryClass {
+    bool usable = false;
+    /// tables[q][0] = G_q · M_q, tables[q][n] = G_q · M_q · R^n (n >= 1; patch_size × K) when
+    /// child q is regular; q = 0 unused. R = A − 1ℓᵀ is A without its dominant part
+    /// (A^n = 1ℓᵀ + R^n), so derivatives never cancel the constant part (Stam's reason for
+    /// working in the eigenbasis: here the same effect without complex eigenvectors).
+    std::vector<std::vector<Dense>> tables;
+    /// Child q when it is not regular (a Loop middle triangle touching a boundary
+    /// corner, say): a subtree whose W is M_q, so it yields rows over the K local vertices.
+    std::vector<Node*> subtrees;
+    /// node coordinates = child_map(q) ∘ patch frame of child q (regular children).
+    std::vector<Affine> patch_frames;
+    /// R^(2^j), for the subtrees.
+    std::vector<Dense> powers;
+    /// The limit position mask of the corner vertex (dominant left eigenvector of A).
+    Eigen::RowVectorXd limit_row;
+};
+
+struct Node {
+    enum class Kind { Regular, Stationary, Refine };
+    Kind kind = Kind::Refine;
+    detail::PatchMesh mesh;  ///< empty for a regular root read off the control mesh
+    Dense W;                 ///< #local × #support; empty: the identity
+    int depth = 0;
+    Dense G;             ///< Regular: patch points over local vertices
+    Affine patch_frame;  ///< Regular: node coordinates = patch_frame(patch coordinates)
+    std::shared_ptr<const StationaryClass> stationary;
+    std::unique_ptr<Level> refined;  ///< Refine: the one-ring subdivided once
+    std::array<std::atomic<Node*>, 4> children{};
+};
+
+struct Root {
+    bool has_limit = true;
+    std::vector<Index> support;
+    Affine frame;  ///< ptex = frame(node coordinates)
+    Node* node = nullptr;
+};
+
+}  // namespace
+
+struct LimitBasis::Impl {
+    Topology topology;
+    SchemeKind scheme = SchemeKind::CatmullClark;
+    SchemeOptions options;
+    TunedWeights weights;
+    bool quad = true;
+    bool use_tables = true;
+    std::vector<Index> first_ptex;  // #F + 1
+    std::vector<PtexFace> ptex;
+
+    mutable std::mutex mutex;
+    mutable std::vector<std::unique_ptr<Node>> nodes;  // owner of every node
+    mutable std::vector<std::atomic<Root*>> roots;
+    mutable std::vector<std::unique_ptr<Root>> root_storage;
+    mutable std::unordered_map<std::string, std::shared_ptr<const StationaryClass>> classes;
+
+    [[nodiscard]] bool regular_patch(const Topology& t, Index f, detail::RegularPatch& out) const {
+        return quad ? detail::catmull_clark_regular_patch(t, f, options.boundary, out)
+                    : detail::loop_regular_patch(t, f, options.boundary, out);
+    }
+    [[nodiscard]] Level refine_once(const Topology& t) const { return refine(t, scheme, options, weights); }
+    [[nodiscard]] int num_children() const { return 4; }
+
+    const Root& root(Index p) const;
+    std::unique_ptr<Root> build_root(Index p) const;
+    Node* make_node(detail::PatchMesh mesh, Dense W, int depth) const;
+    std::shared_ptr<const StationaryClass> make_class(const Level& refined, const Dense& A) const;
+    Node* child(Node& node, int q) const;
+    void evaluate(const SurfacePoint& point, LimitWeights& out) const;
+    /// Rows over the columns of node->W (the root's support, or a class's local vertices).
+    Rows descend(Node* node, Eigen::Vector2d p, Affine frame) const;
+    Rows stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame) const;
+};
+
+namespace {
+
+/// The corner of face f at which a single irregular vertex sits, else 0.
+int start_corner(const Topology& t, Index f, bool quad) {
+    const auto v = t.face_vertices(f);
+    int found = -1;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        const Index x = v[k];
+        const bool regular = !t.is_boundary_vertex(x) && t.valence(x) == (quad ? 4 : 6) && t.vertex_sharpness(x) == 0.0;
+        if (!regular) {
+            if (found >= 0) {
+                return 0;
+            }
+            found = static_cast<int>(k);
+        }
+    }
+    return std::max(found, 0);
+}
+
+}  // namespace
+
+std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
+    auto root = std::make_unique<Root>();
+    const PtexFace pf = ptex[at(p)];
+    const Index f = pf.control_face;
+    const auto corners = topology.face_vertices(f);
+    root->has_limit = !topology.is_hole(f);
+    if (options.boundary == BoundaryInterpolation::None) {
+        for (Index v : corners) {
+            root->has_limit = root->has_limit && !topology.is_boundary_vertex(v);
+        }
+    }
+    if (!root->has_limit) {
+        return root;
+    }
+    if (pf.corner < 0) {
+        detail::RegularPatch patch;
+        if (regular_patch(topology, f, patch)) {
+            // Fast path: read the patch straight off the control mesh.
+            auto node = std::make_unique<Node>();
+            node->kind = Node::Kind::Regular;
+            for (int i = 0; i < patch.size; ++i) {
+                auto& point = patch.points[at(i)];
+                for (int k = 0; k < point.size; ++k) {
+                    const Index v = point.vertex[at(k)];
+                    auto it = std::find(root->support.begin(), root->support.end(), v);
+                    if (it == root->support.end()) {
+                        root->support.push_back(v);
+                        it = root->support.end() - 1;
+                    }
+                    point.vertex[at(k)] = static_cast<Index>(it - root->support.begin());
+                }
+            }
+            node->G = patch_matrix(patch, static_cast<Index>(root->support.size()));
+            node->patch_frame = rotation(quad, patch.rotation);
+            nodes.push_back(std::move(node));
+            root->node = nodes.back().get();
+            return root;
+        }
+        const int start = start_corner(topology, f, quad);
+        auto mesh = detail::extract_patch_mesh(topology, f, start);
+        root->support = mesh.source;
+        root->frame = rotation(quad, start);
+        root->node = make_node(std::move(mesh), Dense(), 0);
+        return root;
+    }
+    // Sub-face k of an n-gon: child k of the face after one local refinement.
+    auto mesh = detail::extract_patch_mesh(topology, f, 0);
+    root->support = mesh.source;
+    const Level level = refine_once(mesh.topology);
+    auto child_mesh = detail::extract_patch_mesh(level.topology, pf.corner, 0);
+    Dense W = dense_rows(level.S0, child_mesh.source);
+    root->node = make_node(std::move(child_mesh), std::move(W), 1);
+    return root;
+}
+
+Node* LimitBasis::Impl::make_node(detail::PatchMesh mesh, Dense W, int depth) const {
+    const int limit = use_tables ? max_depth : max_stationary_levels;
+    LIMSURF_CHECK(depth <= limit, NumericalError, "limit evaluation: local subdivision did not reach a regular or ",
+                  "self-similar patch after ", limit, " levels (a point too close to an extraordinary vertex for ",
+                  "LimitEvaluation::Subdivision?)");
+    auto node = std::make_unique<Node>();
+    node->W = std::move(W);
+    node->depth = depth;
+    detail::RegularPatch patch;
+    if (regular_patch(mesh.topology, 0, patch)) {
+        node->kind = Node::Kind::Regular;
+        node->G = patch_matrix(patch, mesh.topology.num_vertices());
+        node->patch_frame = rotation(quad, patch.rotation);
+    } else {
+        const std::string signature = detail::topology_signature(mesh.topology);
+        const auto known = use_tables ? classes.find(signature) : classes.end();
+        if (known != classes.end()) {
+            node->kind = Node::Kind::Stationary;
+            node->stationary = known->second;
+        } else {
+            node->refined = std::make_unique<Level>(refine_once(mesh.topology));
+            auto corner = detail::extract_patch_mesh(node->refined->topology, 0, 0);
+            node->mesh = std::move(mesh);
+            if (use_tables && detail::topology_signature(corner.topology) == signature) {
+                const Dense A = dense_rows(node->refined->S0, corner.source);
+                auto cls = make_class(*node->refined, A);
+                if (cls->usable) {
+                    classes.emplace(signature, cls);
+                    node->kind = Node::Kind::Stationary;
+                    node->stationary = std::move(cls);
+                }
+            }
+            nodes.push_back(std::move(node));
+            return nodes.back().get();
+        }
+    }
+    node->mesh = std::move(mesh);
+    nodes.push_back(std::move(node));
+    return nodes.back().get();
+}
+
+std::shared_ptr<const StationaryClass> LimitBasis::Impl::make_class(const Level& refined, const Dense& A) const {
+    auto cls = std::make_shared<StationaryClass>();
+    constexpr int children = 4;
+    cls->tables.resize(children);
+    cls->subtrees.resize(children, nullptr);
+    cls->patch_frames.resize(children);
+    for (int q = 1; q < children; ++q) {
+        auto mesh = detail::extract_patch_mesh(refined.topology, q, 0);
+        Dense M = dense_rows(refined.S0, mesh.source);
+        detail::RegularPatch patch;
+        if (!regular_patch(mesh.topology, 0, patch)) {
+            cls->subtrees[at(q)] = make_node(std::move(mesh), std::move(M), 1);
+            continue;
+        }
+        cls->patch_frames[at(q)] = child_map(quad, q).then(rotation(quad, patch.rotation));
+        cls->tables[at(q)].push_back(patch_matrix(patch, mesh.topology.num_vertices()) * M);
+    }
+    // Dominant left eigenvector ℓ (ℓᵀA = ℓᵀ, ℓ·1 = 1): any row of A^(2^8).
+    Dense power = A;
+    for (int j = 0; j < 8; ++j) {
+        power = power * power;
+    }
+    cls->limit_row = power.row(0) / power.row(0).sum();
+    const Dense R = A - Eigen::VectorXd::Ones(A.rows()) * cls->limit_row;
+    for (auto& table : cls->tables) {
+        if (table.empty()) {
+            continue;
+        }
+        table.reserve(max_stationary_levels + 1);
+        table.push_back(table.front() * R);
+        for (int n = 2; n <= max_stationary_levels; ++n) {
+            table.push_back(table.back() * R);
+        }
+    }
+    cls->powers.push_back(R);
+    for (int j = 1; j < 8; ++j) {
+        cls->powers.push_back(cls->powers.back() * cls->powers.back());
+    }
+    cls->usable = true;
+    return cls;
+}
+
+Node* LimitBasis::Impl::child(Node& node, int q) const {
+    Node* existing = node.children[at(q)].load(std::memory_order_acquire);
+    if (existing != nullptr) {
+        return existing;
+    }
+    const std::lock_guard lock(mutex);
+    existing = node.children[at(q)].load(std::memory_order_relaxed);
+    if (existing != nullptr) {
+        return existing;
+    }
+    auto mesh = detail::extract_patch_mesh(node.refined->topology, q, 0);
+    Dense M = dense_rows(node.refined->S0, mesh.source);
+    Dense W = node.W.size() == 0 ? M : Dense(M * node.W);
+    Node* made = make_node(std::move(mesh), std::move(W), node.depth + 1);
+    node.children[at(q)].store(made, std::memory_order_release);
+    return made;
+}
+
+const Root& LimitBasis::Impl::root(Index p) const {
+    Root* existing = roots[at(p)].load(std::memory_order_acquire);
+    if (existing != nullptr) {
+        return *existing;
+    }
+    const std::lock_guard lock(mutex);
+    existing = roots[at(p)].load(std::memory_order_relaxed);
+    if (existing == nullptr) {
+        root_storage.push_back(build_root(p));
+        existing = root_storage.back().get();
+        roots[at(p)].store(existing, std::memory_order_release);
+    }
+    return *existing;
+}
+
+Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame) const {
+    int n = 0;
+    while (n < max_stationary_levels && in_corner_child(quad, p)) {
+        p *= 2.0;
+        ++n;
+    }
+    const bool at_vertex = in_corner_child(quad, p);
+    if (at_vertex) {
+        // At the extraordinary vertex itself: the exact limit position, and the
+        // derivatives 2^-61 away (they vanish or diverge at the vertex itself).
+        n = max_stationary_levels;
+        p = {0.5, 0.0};
+    }
+    const int q = child_containing(quad, p);
+    Affine scaled = frame;
+    scaled.axes *= std::ldexp(1.0, -n);
+    Rows rows;
+    if (cls.subtrees[at(q)] == nullptr) {
+        const Affine patch = scaled.then(cls.patch_frames[at(q)]);
+        const Rows basis = patch_rows(quad, cls.patch_frames[at(q)].to_child(p), patch.axes);
+        rows = basis * cls.tables[at(q)][at(n)];
+        if (n > 0) {
+            rows.row(0) += basis.row(0).sum() * cls.limit_row;
+        }
+    } else {
+        const Affine map = child_map(quad, q);
+        rows = descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map));
+        if (n > 0) {
+            // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
+            // (adding their rounding-level sums back would undo what R^n removes).
+            const double value_sum = rows.row(0).sum();
+            for (int j = 0; n != 0; ++j, n >>= 1) {
+                if ((n & 1) != 0) {
+                    rows = rows * cls.powers[at(j)];
+                }
+            }
+            rows.row(0) += value_sum * cls.limit_row;
+        }
+    }
+    if (at_vertex) {
+        rows.row(0) = cls.limit_row;
+    }
+    return rows;
+}
+
+Rows LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame) const {
+    Rows rows;
+    while (true) {
+        if (node->kind == Node::Kind::Regular) {
+            const Affine patch = frame.then(node->patch_frame);
+            rows = patch_rows(quad, node->patch_frame.to_child(p), patch.axes) * node->G;
+            break;
+        }
+        if (node->kind == Node::Kind::Stationary) {
+            rows = stationary_rows(*node->stationary, p, frame);
+            break;
+        }
+        const int q = child_containing(quad, p);
+        const Affine map = child_map(quad, q);
+        p = map.to_child(p);
+        frame = frame.then(map);
+        node = child(*node, q);
+    }
+    if (node->W.size() == 0) {
+        return rows;
+    }
+    return rows * node->W;
+}
+
+void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) const {
+    const Root& r = root(point.face);
+    LIMSURF_CHECK(r.has_limit, InputError, "ptex face ", point.face, " (control face ",
+                  ptex[at(point.face)].control_face, ") has no limit surface (a hole, or a boundary face under ",
+                  "boundary interpolation 'none')");
+    out.vertices = r.support;
+    out.w = descend(r.node, r.frame.to_child({point.u, point.v}), r.frame);
+}
+
+// --- public API --------------------------------------------------------------
+
+Eigen::Matrix<double, 6, 3> LimitWeights::apply(const Points& X) const {
+    Eigen::Matrix<double, 6, 3> r = Eigen::Matrix<double, 6, 3>::Zero();
+    for (Index i = 0; i < size(); ++i) {
+        r += w.col(i) * X.row(vertices[at(i)]);
+    }
+    return r;
+}
+
+LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options,
+                       const TunedWeights& weights, LimitEvaluation evaluation)
+    : impl_(std::make_unique<Impl>()) {
+    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop, UnsupportedError,
+                  "limit evaluation: scheme ", to_string(scheme), " is not supported here (catmull-clark, loop)");
+    LIMSURF_CHECK(weights.largest_vertex() == invalid_index, UnsupportedError,
+                  "limit evaluation: tuned weights per vertex are not supported (use per-valence weights)");
+    const VertexRuleWeights plain = TunedWeights().at(0, 4);
+    const VertexRuleWeights four = weights.at(0, 4);
+    LIMSURF_CHECK(four.alpha == plain.alpha && four.beta == plain.beta && four.gamma == plain.gamma, UnsupportedError,
+                  "limit evaluation: tuned weights for valence 4 change the regular patches");
+    Impl& m = *impl_;
+    m.topology = topology;
+    m.scheme = scheme;
+    m.options = options;
+    m.weights = weights;
+    m.quad = scheme == SchemeKind::CatmullClark;
+    m.use_tables = evaluation == LimitEvaluation::Stationary;
+    m.first_ptex.reserve(at(topology.num_faces() + 1));
+    m.first_ptex.push_back(0);
+    for (Index f = 0; f < topology.num_faces(); ++f) {
+        const Index degree = topology.face_degree(f);
+        LIMSURF_CHECK(m.quad || degree == 3, UnsupportedError, "Loop limit evaluation: face ", f, " has ", degree,
+                      " corners (triangles only)");
+        const bool one = (m.quad && degree == 4) || !m.quad;
+        if (one) {
+            m.ptex.push_back({f, -1});
+        } else {
+            for (Index k = 0; k < degree; ++k) {
+                m.ptex.push_back({f, k});
+            }
+        }
+        m.first_ptex.push_back(static_cast<Index>(m.ptex.size()));
+    }
+    m.roots = std::vector<std::atomic<Root*>>(m.ptex.size());
+}
+
+LimitBasis::~LimitBasis() = default;
+LimitBasis::LimitBasis(LimitBasis&&) noexcept = default;
+LimitBasis& LimitBasis::operator=(LimitBasis&&) noexcept = default;
+
+const Topology& LimitBasis::topology() const noexcept {
+    return impl_->topology;
+}
+SchemeKind LimitBasis::scheme() const noexcept {
+    return impl_->scheme;
+}
+ParameterDomain LimitBasis::domain() const noexcept {
+    return impl_->quad ? ParameterDomain::Quad : ParameterDomain::Triangle;
+}
+Index LimitBasis::num_ptex_faces() const noexcept {
+    return static_cast<Index>(impl_->ptex.size());
+}
+PtexFace LimitBasis::ptex_face(Index p) const {
+    LIMSURF_CHECK(p >= 0 && p < num_ptex_faces(), InputError, "ptex face ", p, " out of range (", num_ptex_faces(),
+                  " ptex faces)");
+    return impl_->ptex[at(p)];
+}
+Index LimitBasis::first_ptex_face(Index control_face) const {
+    LIMSURF_CHECK(control_face >= 0 && control_face < impl_->topology.num_faces(), InputError, "face ", control_face,
+                  " out of range (", impl_->topology.num_faces(), " faces)");
+    return impl_->first_ptex[at(control_face)];
+}
+bool LimitBasis::has_limit_surface(Index p) const {
+    (void)ptex_face(p);
+    return impl_->root(p).has_limit;
+}
+
+void LimitBasis::evaluate(const SurfacePoint& point, LimitWeights& out, DerivativeOrder order) const {
+    LIMSURF_CHECK(point.face >= 0 && point.face < num_ptex_faces(), InputError, "ptex face ", point.face,
+                  " out of range (", num_ptex_faces(), " ptex faces)");
+    LIMSURF_CHECK(std::isfinite(point.u) && std::isfinite(point.v), InputError, "parameter (", point.u, ", ", point.v,
+                  ") on ptex face ", point.face, " is not finite");
+    constexpr double tolerance = 1e-12;
+    SurfacePoint p = point;
+    const bool inside = impl_->quad
+                            ? (p.u >= -tolerance && p.v >= -tolerance && p.u <= 1 + tolerance && p.v <= 1 + tolerance)
+                            : (p.u >= -tolerance && p.v >= -tolerance && p.u + p.v <= 1 + tolerance);
+    LIMSURF_CHECK(inside, InputError, "parameter (", p.u, ", ", p.v, ") is outside the ",
+                  impl_->quad ? "unit square" : "triangle u, v >= 0, u + v <= 1", " of ptex face ", p.face);
+    p.u = std::clamp(p.u, 0.0, 1.0);
+    p.v = std::clamp(p.v, 0.0, 1.0);
+    if (!impl_->quad && p.u + p.v > 1.0) {
+        const double excess = (p.u + p.v - 1.0) / 2.0;
+        p.u -= excess;
+        p.v -= excess;
+    }
+    impl_->evaluate(p, out);
+    const int keep = order == DerivativeOrder::Value ? 1 : order == DerivativeOrder::First ? 3 : 6;
+    out.w.bottomRows(6 - keep).setZero();
+}
+
+LimitWeights LimitBasis::evaluate(const SurfacePoint& point, DerivativeOrder order) const {
+    LimitWeights out;
+    evaluate(point, out, order);
+    return out;
+}
+
+Eigen::Matrix<double, 6, 3> LimitBasis::evaluate(const Points& X, const SurfacePoint& point,
+                                                 DerivativeOrder order) const {
+    LIMSURF_CHECK(X.rows() == impl_->topology.num_vertices(), InputError, "limit evaluation: ", X.rows(),
+                  " positions for ", impl_->topology.num_vertices(), " vertices");
+    return evaluate(point, order).apply(X);
+}
+
+namespace {
+
+/// A point of the limit surface at control vertex v: an incident face with a limit
+/// surface and the ptex coordinates of v's corner in it.
+std::optional<SurfacePoint> point_at_vertex(const LimitBasis& basis, Index v) {
+    const Topology& t = basis.topology();
+    const auto faces = t.vertex_faces(v);
+    const auto corners = t.vertex_face_corners(v);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const Index f = faces[i];
+        const Index first = basis.first_ptex_face(f);
+        const bool split = basis.ptex_face(first).corner >= 0;
+        const Index p = split ? first + corners[i] : first;
+        if (!basis.has_limit_surface(p)) {
+            continue;
+        }
+        const Eigen::Vector2d uv =
+            split ? Eigen::Vector2d(0, 0) : domain_corner(basis.domain() == ParameterDomain::Quad, corners[i]);
+        return SurfacePoint{p, uv.x(), uv.y()};
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+LimitWeights LimitBasis::vertex_limit(Index v) const {
+    LIMSURF_CHECK(v >= 0 && v < impl_->topology.num_vertices(), InputError, "vertex ", v, " out of range");
+    const auto point = point_at_vertex(*this, v);
+    if (!point) {
+        LimitWeights own;
+        own.vertices = {v};
+        own.w = Eigen::Matrix<double, 6, 1>::Zero();
+        own.w(0, 0) = 1.0;
+        return own;
+    }
+    return evaluate(*point, DerivativeOrder::First);
+}
+
+SparseMatrix LimitBasis::vertex_limit_matrix() const {
+    const Index n = impl_->topology.num_vertices();
+    std::vector<Eigen::Triplet<double>> entries;
+    for (Index v = 0; v < n; ++v) {
+        const LimitWeights w = vertex_limit(v);
+        for (Index i = 0; i < w.size(); ++i) {
+            if (w.w(0, i) != 0.0) {
+                entries.emplace_back(v, w.vertices[at(i)], w.w(0, i));
+            }
+        }
+    }
+    SparseMatrix P(n, n);
+    P.setFromTriplets(entries.begin(), entries.end());
+    return P;
+}
+
+}  // namespace limsurf

@@ -1,0 +1,219 @@
+#include "limsurf/quadrature/rules.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <span>
+
+#include "limsurf/core/error.h"
+
+namespace limsurf {
+namespace detail {
+namespace {
+
+/// Orbits of a fully symmetric triangle rule, in barycentric coordinates:
+/// S3 the centroid, S21 (a, a, 1-2a) (3 points), S111 (a, b, 1-a-b) (6 points).
+enum class Orbit { S3, S21, S111 };
+
+struct OrbitEntry {
+    Orbit orbit;
+    double a;
+    double b;
+    double weight;  ///< of each point of the orbit; the weights of a rule sum to 1/2
+};
+
+// Published values (see rules.h), solved again from the moment equations
+// ∫ u^i v^j = i! j! / (i+j+2)! in 60-digit arithmetic (a Gauss–Newton iteration from
+// the published digits; every value moved by less than 1e-16) and rounded to 21 digits.
+constexpr OrbitEntry degree1[] = {{Orbit::S3, 0.0, 0.0, 0.5}};
+constexpr OrbitEntry degree2[] = {{Orbit::S21, 1.0 / 6.0, 0.0, 1.0 / 6.0}};
+constexpr OrbitEntry degree3[] = {
+    {Orbit::S21, 0.162882850395891907725, 0.0, 0.140574901220489816747},
+    {Orbit::S21, 0.477919883567563687805, 0.0, 0.0260917654461768499199},
+};
+constexpr OrbitEntry degree4[] = {
+    {Orbit::S21, 0.445948490915964886318, 0.0, 0.111690794839005732848},
+    {Orbit::S21, 0.0915762135097707434596, 0.0, 0.0549758718276609338192},
+};
+constexpr OrbitEntry degree5[] = {
+    {Orbit::S3, 0.0, 0.0, 0.1125},
+    {Orbit::S21, 0.101286507323456338801, 0.0, 0.0629695902724135762978},
+    {Orbit::S21, 0.47014206410511508977, 0.0, 0.0661970763942530903688},
+};
+constexpr OrbitEntry degree6[] = {
+    {Orbit::S21, 0.0630890144915022283403, 0.0, 0.0254224531851034084605},
+    {Orbit::S21, 0.249286745170910421292, 0.0, 0.0583931378631896830126},
+    {Orbit::S111, 0.0531450498448169473532, 0.310352451033784405417, 0.0414255378091867875968},
+};
+constexpr OrbitEntry degree7[] = {
+    {Orbit::S21, 0.0282639241560763237719, 0.0, 0.00676693125783277673021},
+    {Orbit::S21, 0.474311323267222575283, 0.0, 0.0394756272160054931459},
+    {Orbit::S21, 0.241143325849848808871, 0.0, 0.0643039639094530383376},
+    {Orbit::S111, 0.761222748024523819072, 0.0462708777988089082457, 0.0280600721416876792264},
+};
+constexpr OrbitEntry degree8[] = {
+    {Orbit::S3, 0.0, 0.0, 0.0721578038388935841255},
+    {Orbit::S21, 0.170569307751760206622, 0.0, 0.0516086852673591251409},
+    {Orbit::S21, 0.0505472283170309754584, 0.0, 0.0162292488115990401555},
+    {Orbit::S21, 0.459292588292723156029, 0.0, 0.0475458171336423123969},
+    {Orbit::S111, 0.263112829634638113422, 0.00839477740995760533721, 0.0136151570872174971324},
+};
+
+constexpr int max_tabulated_triangle_degree = 8;
+
+std::span<const OrbitEntry> tabulated_triangle_rule(int degree) {
+    switch (degree) {
+    case 1:
+        return degree1;
+    case 2:
+        return degree2;
+    case 3:
+        return degree3;
+    case 4:
+        return degree4;
+    case 5:
+        return degree5;
+    case 6:
+        return degree6;
+    case 7:
+        return degree7;
+    default:
+        return degree8;
+    }
+}
+
+void add_point(QuadratureRule& rule, double u, double v, double weight) {
+    rule.u.push_back(u);
+    rule.v.push_back(v);
+    rule.weight.push_back(weight);
+}
+
+QuadratureRule expand_orbits(std::span<const OrbitEntry> orbits, int degree) {
+    QuadratureRule rule;
+    rule.degree = degree;
+    for (const OrbitEntry& o : orbits) {
+        switch (o.orbit) {
+        case Orbit::S3:
+            add_point(rule, 1.0 / 3.0, 1.0 / 3.0, o.weight);
+            break;
+        case Orbit::S21: {
+            const double c = 1.0 - 2.0 * o.a;
+            add_point(rule, o.a, o.a, o.weight);
+            add_point(rule, c, o.a, o.weight);
+            add_point(rule, o.a, c, o.weight);
+            break;
+        }
+        case Orbit::S111: {
+            const double c = 1.0 - o.a - o.b;
+            add_point(rule, o.a, o.b, o.weight);
+            add_point(rule, o.b, o.a, o.weight);
+            add_point(rule, o.a, c, o.weight);
+            add_point(rule, c, o.a, o.weight);
+            add_point(rule, o.b, c, o.weight);
+            add_point(rule, c, o.b, o.weight);
+            break;
+        }
+        }
+    }
+    return rule;
+}
+
+/// Gauss–Legendre nodes mapped to [0, 1] (increasing) and their weights on [0, 1].
+/// Computed in long double and rounded once: the nodes near 0 are (1 - z)/2 with z
+/// close to 1, which would lose digits in double, and monomials of degree ~100 amplify
+/// any error in the nodes a hundredfold.
+void gauss_legendre_unit(int n, std::vector<double>& u, std::vector<double>& w) {
+    using Real = long double;
+    u.assign(static_cast<std::size_t>(n), 0.0);
+    w.assign(static_cast<std::size_t>(n), 0.0);
+    // P_n(z) and P_n'(z) by the three-term recurrence.
+    const auto legendre = [n](Real z, Real& p, Real& dp) {
+        Real p0 = 1.0L;
+        Real p1 = z;
+        for (int k = 2; k <= n; ++k) {
+            const Real p2 = ((2.0L * k - 1.0L) * z * p1 - (k - 1.0L) * p0) / k;
+            p0 = p1;
+            p1 = p2;
+        }
+        p = p1;
+        dp = n * (z * p1 - p0) / (z * z - 1.0L);
+    };
+    const Real pi = std::numbers::pi_v<Real>;
+    const Real tolerance = 4.0L * std::numeric_limits<Real>::epsilon();
+    for (int i = 0; i < (n + 1) / 2; ++i) {
+        // the i-th largest root; Tricomi's first-order guess lies in the basin of Newton's method
+        Real z = std::cos(pi * (i + 0.75L) / (n + 0.5L));
+        Real p = 0.0L;
+        Real dp = 0.0L;
+        for (int iteration = 0; iteration < 100; ++iteration) {
+            legendre(z, p, dp);
+            const Real step = p / dp;
+            z -= step;
+            if (std::abs(step) <= tolerance) {
+                break;
+            }
+        }
+        if (2 * i + 1 == n) {
+            z = 0.0L;  // the middle node, exactly
+        }
+        legendre(z, p, dp);
+        const Real weight = 1.0L / ((1.0L - z * z) * dp * dp);  // half of the weight on [-1, 1]
+        const auto lo = static_cast<std::size_t>(i);
+        const auto hi = static_cast<std::size_t>(n - 1 - i);
+        u[lo] = static_cast<double>((1.0L - z) / 2.0L);
+        u[hi] = static_cast<double>((1.0L + z) / 2.0L);
+        w[lo] = static_cast<double>(weight);
+        w[hi] = static_cast<double>(weight);
+    }
+}
+
+}  // namespace
+}  // namespace detail
+
+QuadratureRule gauss_legendre_1d(int n) {
+    LIMSURF_CHECK(n >= 1 && n <= 64, InputError, "gauss_legendre_1d: number of points ", n, " is outside [1, 64]");
+    QuadratureRule rule;
+    rule.degree = 2 * n - 1;
+    detail::gauss_legendre_unit(n, rule.u, rule.weight);
+    rule.v.assign(rule.u.size(), 0.0);
+    return rule;
+}
+
+QuadratureRule square_rule(int degree) {
+    LIMSURF_CHECK(degree >= 1 && degree <= 127, InputError, "square_rule: degree ", degree, " is outside [1, 127]");
+    const QuadratureRule line = gauss_legendre_1d((degree + 2) / 2);
+    const std::size_t n = line.u.size();
+    QuadratureRule rule;
+    rule.degree = line.degree;
+    rule.u.reserve(n * n);
+    rule.v.reserve(n * n);
+    rule.weight.reserve(n * n);
+    for (std::size_t j = 0; j < n; ++j) {
+        for (std::size_t i = 0; i < n; ++i) {
+            detail::add_point(rule, line.u[i], line.u[j], line.weight[i] * line.weight[j]);
+        }
+    }
+    return rule;
+}
+
+QuadratureRule triangle_rule(int degree) {
+    LIMSURF_CHECK(degree >= 1 && degree <= 60, InputError, "triangle_rule: degree ", degree, " is outside [1, 60]");
+    if (degree <= detail::max_tabulated_triangle_degree) {
+        return detail::expand_orbits(detail::tabulated_triangle_rule(degree), degree);
+    }
+    // Collapsed square: u^a v^b on the triangle is ξ^a (1-ξ)^(b+1) η^b dξ dη, of degree
+    // <= degree + 1 in ξ and <= degree in η.
+    const QuadratureRule xi = gauss_legendre_1d((degree + 3) / 2);
+    const QuadratureRule eta = gauss_legendre_1d((degree + 2) / 2);
+    QuadratureRule rule;
+    rule.degree = degree;
+    for (std::size_t j = 0; j < eta.u.size(); ++j) {
+        for (std::size_t i = 0; i < xi.u.size(); ++i) {
+            const double one_minus_xi = 1.0 - xi.u[i];
+            detail::add_point(rule, xi.u[i], one_minus_xi * eta.u[j], xi.weight[i] * eta.weight[j] * one_minus_xi);
+        }
+    }
+    return rule;
+}
+
+}  // namespace limsurf
