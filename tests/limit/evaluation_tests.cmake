@@ -5,3 +5,5 @@ if(TARGET limsurf::peer_opensubdiv)
     limsurf_add_test(limit_peer_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_peer_test.cpp LABELS peer
                      LIBRARIES limsurf_osd_limit limsurf_limit_reference)
 endif()
+# Published limit masks (regular and extraordinary Catmull–Clark, Loop, boundary curve).
+limsurf_add_test(limit_published_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_published_test.cpp LABELS published)
