@@ -31,6 +31,7 @@ struct PeerCase {
     SchemeKind scheme;
     BoundaryInterpolation boundary;
     CreasingMethod creasing = CreasingMethod::Uniform;
+    TriangleSubdivision triangles = TriangleSubdivision::CatmullClark;
 };
 
 void PrintTo(const PeerCase& c, std::ostream* os) {
@@ -49,6 +50,8 @@ std::vector<PeerCase> peer_cases() {
         {"quad_valence_8", cc, B::EdgeAndCorner},
         {"genus2", cc, B::EdgeAndCorner},
         {"tetrahedron", cc, B::EdgeAndCorner},
+        {"tetrahedron", cc, B::EdgeAndCorner, CreasingMethod::Uniform, TriangleSubdivision::Smooth},
+        {"tetra_and_cube", cc, B::EdgeAndCorner, CreasingMethod::Uniform, TriangleSubdivision::Smooth},
         {"disk_ev5_quads", cc, B::EdgeAndCorner},
         {"disk_ev5_quads", cc, B::EdgeOnly},
         {"disk_ev5_quads", cc, B::None},
@@ -78,6 +81,7 @@ Loaded load(const PeerCase& c) {
     Loaded m{built.mesh.topology(), built.mesh.positions(), {}, 1.0};
     m.options.boundary = c.boundary;
     m.options.creasing = c.creasing;
+    m.options.triangles = c.triangles;
     m.scale = (m.X.colwise().maxCoeff() - m.X.colwise().minCoeff()).norm();
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> jitter(-0.02, 0.02);
@@ -232,6 +236,7 @@ INSTANTIATE_TEST_SUITE_P(Peers, LimitPeer, ::testing::ValuesIn(peer_cases()), []
     name += c.boundary == BoundaryInterpolation::None       ? "_none"
             : c.boundary == BoundaryInterpolation::EdgeOnly ? "_edge"
                                                             : "_corner";
+    name += c.triangles == TriangleSubdivision::Smooth ? "_smooth_triangles" : "";
     return name + (c.creasing == CreasingMethod::Chaikin ? "_chaikin" : "");
 });
 
