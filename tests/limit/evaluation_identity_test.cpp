@@ -11,8 +11,10 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "limsurf/core/error.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/scheme/tuned_weights.h"
 #include "support/mesh_zoo.h"
 
 namespace limsurf::test {
@@ -246,6 +248,50 @@ TEST_P(LimitIdentity, StationaryTablesAgreeWithLocalSubdivisionNearCorners) {
             }
         }
     }
+}
+
+// Tuned weights (iga-tuned-catmull-clark-weights): the same weights given per valence
+// or per vertex (to every vertex of that valence) give the same limit surface; they
+// change the surface next to the extraordinary vertices only.
+TEST(LimitTunedWeights, PerVertexEqualsPerValenceAndActsLocally) {
+    const Loaded m = load("quad_valence_5");
+    const TunedWeights by_valence = TunedWeights::preset("cup");
+    TunedWeights by_vertex;
+    for (Index v = 0; v < m.topology.num_vertices(); ++v) {
+        if (!m.topology.is_boundary_vertex(v) && m.topology.valence(v) == 5) {
+            by_vertex.set_vertex(v, by_valence.at(v, 5));
+        }
+    }
+    const LimitBasis plain(m.topology, SchemeKind::CatmullClark, m.options);
+    const LimitBasis a(m.topology, SchemeKind::CatmullClark, m.options, by_valence);
+    const LimitBasis b(m.topology, SchemeKind::CatmullClark, m.options, by_vertex);
+    std::mt19937 rng(17);
+    double changed = 0.0;
+    for (Index p = 0; p < a.num_ptex_faces(); ++p) {
+        for (const auto& uv : sample_domain(true, rng, 6)) {
+            const SurfacePoint point{p, uv.x(), uv.y()};
+            const auto x = a.evaluate(m.X, point);
+            const auto y = b.evaluate(m.X, point);
+            EXPECT_LT((x - y).norm(), 1e-12 * m.scale * std::max(1.0, x.norm() / m.scale))
+                << "ptex " << p << " at " << uv.transpose() << "\n"
+                << x << "\n"
+                << y;
+            changed = std::max(changed, (x.row(0) - plain.evaluate(m.X, point).row(0)).norm());
+        }
+    }
+    EXPECT_GT(changed, 1e-6 * m.scale);
+}
+
+TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {
+    const Loaded m = load("quad_grid");
+    TunedWeights w;
+    for (Index v = 0; v < m.topology.num_vertices(); ++v) {
+        if (!m.topology.is_boundary_vertex(v) && m.topology.valence(v) == 4) {
+            w.set_vertex(v, {13.0, 1.0, 1.0});
+            break;
+        }
+    }
+    EXPECT_THROW(LimitBasis(m.topology, SchemeKind::CatmullClark, m.options, w), UnsupportedError);
 }
 
 INSTANTIATE_TEST_SUITE_P(Bundled, LimitIdentity, ::testing::ValuesIn(all_cases()), [](const auto& info) {

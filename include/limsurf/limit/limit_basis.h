@@ -85,8 +85,9 @@ class LimitBasis {
     /// @param topology control topology (copied); sharpness tags are honoured
     /// @param scheme   CatmullClark or Loop (DooSabin: see doo_sabin_limit.h)
     /// @param options  boundary rule, creasing method, triangle rule
-    /// @param weights  tuned Catmull–Clark weights (per valence; per-vertex presets are refused)
-    /// @throws UnsupportedError for other schemes, Loop on non-triangles, per-vertex tuned weights
+    /// @param weights  tuned Catmull–Clark weights, per valence or per vertex (weights that change a
+    ///   regular interior valence-4 vertex are refused: they change the regular patches)
+    /// @throws UnsupportedError for other schemes, Loop on non-triangles, tuned weights at valence 4
     LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options = {},
                const TunedWeights& weights = {}, LimitEvaluation evaluation = LimitEvaluation::Stationary);
     ~LimitBasis();

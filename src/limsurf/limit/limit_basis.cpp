@@ -189,6 +189,7 @@ struct Node {
     Dense G;             ///< Regular: patch points over local vertices
     Affine patch_frame;  ///< Regular: node coordinates = patch_frame(patch coordinates)
     std::shared_ptr<const StationaryClass> stationary;
+    std::vector<Index> control;      ///< control vertex of each local vertex (per-vertex tuned weights only)
     std::unique_ptr<Level> refined;  ///< Refine: the one-ring subdivided once
     std::array<std::atomic<Node*>, 4> children{};
 };
@@ -222,13 +223,22 @@ struct LimitBasis::Impl {
         return quad ? detail::catmull_clark_regular_patch(t, f, options.boundary, out)
                     : detail::loop_regular_patch(t, f, options.boundary, out);
     }
-    [[nodiscard]] Level refine_once(const Topology& t) const { return refine(t, scheme, options, weights); }
+    bool per_vertex_weights = false;
+
+    /// One refinement step of a one-ring copy whose local vertex i copies control vertex control[i].
+    [[nodiscard]] Level refine_once(const Topology& t, const std::vector<Index>& control) const;
+    /// The canonical signature, with the tuned weights of each local vertex when they vary per vertex.
+    [[nodiscard]] std::string signature(const Topology& t, const std::vector<Index>& control) const;
+    /// Control vertices of a child copy: a child of parent vertex s keeps s's control vertex.
+    [[nodiscard]] std::vector<Index> child_control(const std::vector<Index>& parent_control,
+                                                   const std::vector<Index>& child_source) const;
     [[nodiscard]] int num_children() const { return 4; }
 
     const Root& root(Index p) const;
     std::unique_ptr<Root> build_root(Index p) const;
-    Node* make_node(detail::PatchMesh mesh, Dense W, int depth) const;
-    std::shared_ptr<const StationaryClass> make_class(const Level& refined, const Dense& A) const;
+    Node* make_node(detail::PatchMesh mesh, Dense W, int depth, std::vector<Index> control) const;
+    std::shared_ptr<const StationaryClass> make_class(const Level& refined, const Dense& A,
+                                                      const std::vector<Index>& control) const;
     Node* child(Node& node, int q) const;
     void evaluate(const SurfacePoint& point, LimitWeights& out) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
@@ -256,6 +266,52 @@ int start_corner(const Topology& t, Index f, bool quad) {
 }
 
 }  // namespace
+
+Level LimitBasis::Impl::refine_once(const Topology& t, const std::vector<Index>& control) const {
+    if (!per_vertex_weights) {
+        return refine(t, scheme, options, weights);
+    }
+    // Per-vertex weights name control vertices: restate them for the local numbering.
+    TunedWeights local;
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        const int valence = t.valence(v);
+        if (valence >= 3) {
+            local.set_valence(valence, weights.at(invalid_index, valence));
+            if (control[at(v)] != invalid_index) {
+                local.set_vertex(v, weights.at(control[at(v)], valence));
+            }
+        }
+    }
+    return refine(t, scheme, options, local);
+}
+
+std::string LimitBasis::Impl::signature(const Topology& t, const std::vector<Index>& control) const {
+    std::string bytes = detail::topology_signature(t);
+    if (per_vertex_weights) {
+        for (Index v = 0; v < t.num_vertices(); ++v) {
+            const Index c = control[at(v)];
+            const VertexRuleWeights w = weights.at(c, t.valence(v));
+            const double values[3] = {w.alpha, w.beta, w.gamma};
+            bytes.append(reinterpret_cast<const char*>(values), sizeof values);
+        }
+    }
+    return bytes;
+}
+
+std::vector<Index> LimitBasis::Impl::child_control(const std::vector<Index>& parent_control,
+                                                   const std::vector<Index>& child_source) const {
+    if (parent_control.empty()) {
+        return {};
+    }
+    // Child vertex s < #parent vertices is the child of parent vertex s (Catmull–Clark, Loop).
+    std::vector<Index> control(child_source.size(), invalid_index);
+    for (std::size_t i = 0; i < child_source.size(); ++i) {
+        if (at(child_source[i]) < parent_control.size()) {
+            control[i] = parent_control[at(child_source[i])];
+        }
+    }
+    return control;
+}
 
 std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
     auto root = std::make_unique<Root>();
@@ -299,20 +355,23 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
         auto mesh = detail::extract_patch_mesh(topology, f, start);
         root->support = mesh.source;
         root->frame = rotation(quad, start);
-        root->node = make_node(std::move(mesh), Dense(), 0);
+        std::vector<Index> control = per_vertex_weights ? mesh.source : std::vector<Index>{};
+        root->node = make_node(std::move(mesh), Dense(), 0, std::move(control));
         return root;
     }
     // Sub-face k of an n-gon: child k of the face after one local refinement.
     auto mesh = detail::extract_patch_mesh(topology, f, 0);
     root->support = mesh.source;
-    const Level level = refine_once(mesh.topology);
+    const std::vector<Index> control = per_vertex_weights ? mesh.source : std::vector<Index>{};
+    const Level level = refine_once(mesh.topology, control);
     auto child_mesh = detail::extract_patch_mesh(level.topology, pf.corner, 0);
     Dense W = dense_rows(level.S0, child_mesh.source);
-    root->node = make_node(std::move(child_mesh), std::move(W), 1);
+    std::vector<Index> child = child_control(control, child_mesh.source);
+    root->node = make_node(std::move(child_mesh), std::move(W), 1, std::move(child));
     return root;
 }
 
-Node* LimitBasis::Impl::make_node(detail::PatchMesh mesh, Dense W, int depth) const {
+Node* LimitBasis::Impl::make_node(detail::PatchMesh mesh, Dense W, int depth, std::vector<Index> control) const {
     const int limit = use_tables ? max_depth : max_stationary_levels;
     LIMSURF_CHECK(depth <= limit, NumericalError, "limit evaluation: local subdivision did not reach a regular or ",
                   "self-similar patch after ", limit, " levels (a point too close to an extraordinary vertex for ",
@@ -320,26 +379,28 @@ Node* LimitBasis::Impl::make_node(detail::PatchMesh mesh, Dense W, int depth) co
     auto node = std::make_unique<Node>();
     node->W = std::move(W);
     node->depth = depth;
+    node->control = std::move(control);
     detail::RegularPatch patch;
     if (regular_patch(mesh.topology, 0, patch)) {
         node->kind = Node::Kind::Regular;
         node->G = patch_matrix(patch, mesh.topology.num_vertices());
         node->patch_frame = rotation(quad, patch.rotation);
     } else {
-        const std::string signature = detail::topology_signature(mesh.topology);
-        const auto known = use_tables ? classes.find(signature) : classes.end();
+        const std::string own_signature = signature(mesh.topology, node->control);
+        const auto known = use_tables ? classes.find(own_signature) : classes.end();
         if (known != classes.end()) {
             node->kind = Node::Kind::Stationary;
             node->stationary = known->second;
         } else {
-            node->refined = std::make_unique<Level>(refine_once(mesh.topology));
+            node->refined = std::make_unique<Level>(refine_once(mesh.topology, node->control));
             auto corner = detail::extract_patch_mesh(node->refined->topology, 0, 0);
             node->mesh = std::move(mesh);
-            if (use_tables && detail::topology_signature(corner.topology) == signature) {
+            const auto corner_control = child_control(node->control, corner.source);
+            if (use_tables && signature(corner.topology, corner_control) == own_signature) {
                 const Dense A = dense_rows(node->refined->S0, corner.source);
-                auto cls = make_class(*node->refined, A);
+                auto cls = make_class(*node->refined, A, node->control);
                 if (cls->usable) {
-                    classes.emplace(signature, cls);
+                    classes.emplace(own_signature, cls);
                     node->kind = Node::Kind::Stationary;
                     node->stationary = std::move(cls);
                 }
@@ -353,7 +414,8 @@ Node* LimitBasis::Impl::make_node(detail::PatchMesh mesh, Dense W, int depth) co
     return nodes.back().get();
 }
 
-std::shared_ptr<const StationaryClass> LimitBasis::Impl::make_class(const Level& refined, const Dense& A) const {
+std::shared_ptr<const StationaryClass> LimitBasis::Impl::make_class(const Level& refined, const Dense& A,
+                                                                    const std::vector<Index>& control) const {
     auto cls = std::make_shared<StationaryClass>();
     constexpr int children = 4;
     cls->tables.resize(children);
@@ -364,7 +426,8 @@ std::shared_ptr<const StationaryClass> LimitBasis::Impl::make_class(const Level&
         Dense M = dense_rows(refined.S0, mesh.source);
         detail::RegularPatch patch;
         if (!regular_patch(mesh.topology, 0, patch)) {
-            cls->subtrees[at(q)] = make_node(std::move(mesh), std::move(M), 1);
+            auto sub_control = child_control(control, mesh.source);
+            cls->subtrees[at(q)] = make_node(std::move(mesh), std::move(M), 1, std::move(sub_control));
             continue;
         }
         cls->patch_frames[at(q)] = child_map(quad, q).then(rotation(quad, patch.rotation));
@@ -408,7 +471,8 @@ Node* LimitBasis::Impl::child(Node& node, int q) const {
     auto mesh = detail::extract_patch_mesh(node.refined->topology, q, 0);
     Dense M = dense_rows(node.refined->S0, mesh.source);
     Dense W = node.W.size() == 0 ? M : Dense(M * node.W);
-    Node* made = make_node(std::move(mesh), std::move(W), node.depth + 1);
+    auto control = child_control(node.control, mesh.source);
+    Node* made = make_node(std::move(mesh), std::move(W), node.depth + 1, std::move(control));
     node.children[at(q)].store(made, std::memory_order_release);
     return made;
 }
@@ -437,8 +501,10 @@ Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
     const bool at_vertex = in_corner_child(quad, p);
     if (at_vertex) {
         // At the extraordinary vertex itself: the exact limit position, and the
-        // derivatives 2^-61 away (they vanish or diverge at the vertex itself).
-        n = max_stationary_levels;
+        // derivatives 2^-61 away in ptex units along the first edge (they vanish or
+        // diverge at the vertex itself), whatever the depth of this node.
+        const int node_depth = static_cast<int>(std::lround(-0.5 * std::log2(std::abs(frame.axes.determinant()))));
+        n = std::clamp(max_stationary_levels - node_depth, 0, max_stationary_levels);
         p = {0.5, 0.0};
     }
     const int q = child_containing(quad, p);
@@ -521,10 +587,8 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
     : impl_(std::make_unique<Impl>()) {
     LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop, UnsupportedError,
                   "limit evaluation: scheme ", to_string(scheme), " is not supported here (catmull-clark, loop)");
-    LIMSURF_CHECK(weights.largest_vertex() == invalid_index, UnsupportedError,
-                  "limit evaluation: tuned weights per vertex are not supported (use per-valence weights)");
-    const VertexRuleWeights plain = TunedWeights().at(0, 4);
-    const VertexRuleWeights four = weights.at(0, 4);
+    const VertexRuleWeights plain = TunedWeights().at(invalid_index, 4);
+    const VertexRuleWeights four = weights.at(invalid_index, 4);
     LIMSURF_CHECK(four.alpha == plain.alpha && four.beta == plain.beta && four.gamma == plain.gamma, UnsupportedError,
                   "limit evaluation: tuned weights for valence 4 change the regular patches");
     Impl& m = *impl_;
@@ -532,6 +596,15 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
     m.scheme = scheme;
     m.options = options;
     m.weights = weights;
+    m.per_vertex_weights = weights.largest_vertex() != invalid_index;
+    for (Index v = 0; m.per_vertex_weights && v <= std::min(weights.largest_vertex(), topology.num_vertices() - 1);
+         ++v) {
+        const VertexRuleWeights own = weights.at(v, 4);
+        const bool regular = !topology.is_boundary_vertex(v) && topology.valence(v) == 4;
+        LIMSURF_CHECK(!regular || (own.alpha == plain.alpha && own.beta == plain.beta && own.gamma == plain.gamma),
+                      UnsupportedError, "limit evaluation: tuned weights on the valence-4 vertex ", v,
+                      " change the regular patches");
+    }
     m.quad = scheme == SchemeKind::CatmullClark;
     m.use_tables = evaluation == LimitEvaluation::Stationary;
     m.first_ptex.reserve(at(topology.num_faces() + 1));
