@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
     add_info_command(app, status);
     add_convert_command(app, status);
     add_subdivide_command(app, status);
+    add_eval_command(app, status);
+    add_measure_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -32,6 +32,13 @@ echo "   Loop and Doo-Sabin on other bundled meshes:"
     python3 -c 'import json,sys; d=json.load(sys.stdin); print("   valence-5 sphere with the tuned cup weights:", d["output"]["num_faces"], "faces")'
 echo
 
+echo "== limsurf measure and eval: the limit surface of the cube (area, volume, curvature)"
+"$limsurf" measure data/meshes/cube.obj --scheme catmull-clark --json |
+    python3 -c 'import json,sys; d=json.load(sys.stdin); print("   area %.12f  volume %.12f  (error estimates %.1e, %.1e)" % (d["area"], d["volume"], d["error_estimate"]["area"], d["error_estimate"]["volume"]))'
+"$limsurf" eval data/meshes/sphere_quads.obj --scheme catmull-clark --grid 2 --json |
+    python3 -c 'import json,sys; p=json.load(sys.stdin)["points"]; k=[q["gaussian_curvature"] for q in p]; print("   sphere_quads: %d points, Gaussian curvature %.4f..%.4f" % (len(p), min(k), max(k)))'
+echo
+
 echo "== a broken file is refused with the file, line and element named"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 1 2 4\nf 2 1 5\nf 1 2 5\n' > "$out/broken.obj"
 if "$limsurf" convert "$out/broken.obj" "$out/broken.ply"; then

@@ -13,5 +13,7 @@ struct CommandStatus {
 void add_info_command(CLI::App& app, CommandStatus& status);
 void add_convert_command(CLI::App& app, CommandStatus& status);
 void add_subdivide_command(CLI::App& app, CommandStatus& status);
+void add_eval_command(CLI::App& app, CommandStatus& status);
+void add_measure_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

@@ -294,8 +294,8 @@ TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {
     EXPECT_THROW(LimitBasis(m.topology, SchemeKind::CatmullClark, m.options, w), UnsupportedError);
 }
 
-INSTANTIATE_TEST_SUITE_P(Bundled, LimitIdentity, ::testing::ValuesIn(all_cases()), [](const auto& info) {
-    return info.param.mesh + "_" + (info.param.scheme == SchemeKind::Loop ? "loop" : "catmull_clark");
+INSTANTIATE_TEST_SUITE_P(Bundled, LimitIdentity, ::testing::ValuesIn(all_cases()), [](const auto& test_info) {
+    return test_info.param.mesh + "_" + (test_info.param.scheme == SchemeKind::Loop ? "loop" : "catmull_clark");
 });
 
 }  // namespace

@@ -50,6 +50,10 @@ enum DerivativeRow : int { Value = 0, Du = 1, Dv = 2, Duu = 3, Duv = 4, Dvv = 5 
 struct LimitWeights {
     std::vector<Index> vertices;
     Eigen::Matrix<double, 6, Eigen::Dynamic> w;
+    /// True when the point is an extraordinary, crease or corner vertex itself (within
+    /// 2^-60): the value is exact, the derivatives are taken 2^-61 away (at the vertex they
+    /// vanish or diverge), so curvatures there are not meaningful.
+    bool at_extraordinary_vertex = false;
 
     [[nodiscard]] Index size() const noexcept { return static_cast<Index>(vertices.size()); }
     /// The 6 rows (value and derivatives) applied to per-vertex data X (#V × 3).

@@ -242,8 +242,8 @@ struct LimitBasis::Impl {
     Node* child(Node& node, int q) const;
     void evaluate(const SurfacePoint& point, LimitWeights& out) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
-    Rows descend(Node* node, Eigen::Vector2d p, Affine frame) const;
-    Rows stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame) const;
+    Rows descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex) const;
+    Rows stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, bool& at_vertex) const;
 };
 
 namespace {
@@ -492,14 +492,16 @@ const Root& LimitBasis::Impl::root(Index p) const {
     return *existing;
 }
 
-Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame) const {
+Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
+                                       bool& at_vertex) const {
     int n = 0;
     while (n < max_stationary_levels && in_corner_child(quad, p)) {
         p *= 2.0;
         ++n;
     }
-    const bool at_vertex = in_corner_child(quad, p);
-    if (at_vertex) {
+    const bool here = in_corner_child(quad, p);
+    at_vertex = at_vertex || here;
+    if (here) {
         // At the extraordinary vertex itself: the exact limit position, and the
         // derivatives 2^-61 away in ptex units along the first edge (they vanish or
         // diverge at the vertex itself), whatever the depth of this node.
@@ -520,7 +522,7 @@ Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
         }
     } else {
         const Affine map = child_map(quad, q);
-        rows = descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map));
+        rows = descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map), at_vertex);
         if (n > 0) {
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
@@ -533,13 +535,13 @@ Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
             rows.row(0) += value_sum * cls.limit_row;
         }
     }
-    if (at_vertex) {
+    if (here) {
         rows.row(0) = cls.limit_row;
     }
     return rows;
 }
 
-Rows LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame) const {
+Rows LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex) const {
     Rows rows;
     while (true) {
         if (node->kind == Node::Kind::Regular) {
@@ -548,7 +550,7 @@ Rows LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame) cons
             break;
         }
         if (node->kind == Node::Kind::Stationary) {
-            rows = stationary_rows(*node->stationary, p, frame);
+            rows = stationary_rows(*node->stationary, p, frame, at_vertex);
             break;
         }
         const int q = child_containing(quad, p);
@@ -569,7 +571,8 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) co
                   ptex[at(point.face)].control_face, ") has no limit surface (a hole, or a boundary face under ",
                   "boundary interpolation 'none')");
     out.vertices = r.support;
-    out.w = descend(r.node, r.frame.to_child({point.u, point.v}), r.frame);
+    out.at_extraordinary_vertex = false;
+    out.w = descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, out.at_extraordinary_vertex);
 }
 
 // --- public API --------------------------------------------------------------

@@ -1,0 +1,210 @@
+// limsurf eval MESH --scheme S (--points FILE | --grid N) [--json] [-o OUT]:
+// position, derivatives, normal and curvatures of the limit surface at ptex points.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "commands/commands.h"
+#include "commands/limit_options.h"
+#include "limsurf/io/atomic_file.h"
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/limit/surface_frame.h"
+#include "output.h"
+
+namespace limsurf::cli {
+namespace {
+
+struct EvalOptions {
+    std::string input;
+    LimitSchemeOptions scheme;
+    std::string points;
+    int grid = 0;
+    std::string output;
+    bool json = false;
+};
+
+/// Reads "face u v" lines ('#' starts a comment) and checks each point against @p basis.
+std::vector<SurfacePoint> read_points(const std::string& path, const LimitBasis& basis) {
+    std::ifstream in(path);
+    LIMSURF_CHECK(in, InputError, path, ": cannot open");
+    std::vector<SurfacePoint> points;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (const auto hash = line.find('#'); hash != std::string::npos) {
+            line.erase(hash);
+        }
+        std::istringstream fields(line);
+        std::string first;
+        if (!(fields >> first)) {
+            continue;
+        }
+        fields.str(line);
+        fields.clear();
+        long long face = 0;
+        double u = 0.0;
+        double v = 0.0;
+        std::string extra;
+        LIMSURF_CHECK((fields >> face >> u >> v) && !(fields >> extra) && std::isfinite(u) && std::isfinite(v),
+                      InputError, path, ":", number, ": expected 'face u v', got '", line, "'");
+        LIMSURF_CHECK(face >= 0 && face < basis.num_ptex_faces(), InputError, path, ":", number, ": ptex face ", face,
+                      " out of range (the mesh has ", basis.num_ptex_faces(), " ptex faces)");
+        const bool inside = basis.domain() == ParameterDomain::Quad ? u >= 0 && u <= 1 && v >= 0 && v <= 1
+                                                                    : u >= 0 && v >= 0 && u + v <= 1;
+        LIMSURF_CHECK(inside, InputError, path, ":", number, ": (u, v) = (", u, ", ", v, ") is outside the ",
+                      basis.domain() == ParameterDomain::Quad ? "unit square" : "triangle u, v >= 0, u + v <= 1",
+                      " of ptex face ", face);
+        LIMSURF_CHECK(basis.has_limit_surface(static_cast<Index>(face)), InputError, path, ":", number, ": ptex face ",
+                      face, " has no limit surface (a hole, or a boundary under --boundary none)");
+        points.push_back({static_cast<Index>(face), u, v});
+    }
+    return points;
+}
+
+std::vector<SurfacePoint> grid_points(int n, const LimitBasis& basis) {
+    std::vector<SurfacePoint> points;
+    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+        if (!basis.has_limit_surface(p)) {
+            continue;
+        }
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) {
+                const double u = (i + 0.5) / n;
+                const double v = (j + 0.5) / n;
+                if (basis.domain() == ParameterDomain::Triangle && u + v > 1.0) {
+                    continue;
+                }
+                points.push_back({p, u, v});
+            }
+        }
+    }
+    return points;
+}
+
+struct Evaluated {
+    SurfacePoint point;
+    Eigen::Matrix<double, 6, 3> d;
+    std::optional<SurfaceFrame> frame;  // empty where the tangent plane is degenerate
+    bool at_vertex = false;             // an extraordinary vertex itself: curvature not defined
+};
+
+nlohmann::json row_json(const Eigen::Matrix<double, 6, 3>& d, int row) {
+    return {d(row, 0), d(row, 1), d(row, 2)};
+}
+
+nlohmann::json points_json(const std::vector<Evaluated>& results) {
+    nlohmann::json points = nlohmann::json::array();
+    const char* names[] = {"position", "du", "dv", "duu", "duv", "dvv"};
+    for (const Evaluated& r : results) {
+        nlohmann::json p{{"face", r.point.face}, {"u", r.point.u}, {"v", r.point.v}};
+        for (int row = 0; row < 6; ++row) {
+            p[names[row]] = row_json(r.d, row);
+        }
+        if (r.frame) {
+            p["normal"] = {r.frame->normal.x(), r.frame->normal.y(), r.frame->normal.z()};
+            p["gaussian_curvature"] =
+                r.at_vertex ? nlohmann::json(nullptr) : nlohmann::json(r.frame->gaussian_curvature);
+            p["mean_curvature"] = r.at_vertex ? nlohmann::json(nullptr) : nlohmann::json(r.frame->mean_curvature);
+        } else {
+            p["normal"] = nullptr;
+            p["gaussian_curvature"] = nullptr;
+            p["mean_curvature"] = nullptr;
+        }
+        points.push_back(p);
+    }
+    return {{"points", points}};
+}
+
+void write_table(std::ostream& out, const std::vector<Evaluated>& results) {
+    out << "# face u v  x y z  du(3) dv(3) duu(3) duv(3) dvv(3)  normal(3)  gaussian_curvature mean_curvature\n"
+        << "# '-' where the tangent plane is degenerate, and for curvatures at an extraordinary vertex itself\n";
+    out << std::setprecision(17);
+    for (const Evaluated& r : results) {
+        out << r.point.face << ' ' << r.point.u << ' ' << r.point.v;
+        for (int row = 0; row < 6; ++row) {
+            out << ' ' << r.d(row, 0) << ' ' << r.d(row, 1) << ' ' << r.d(row, 2);
+        }
+        if (r.frame) {
+            out << ' ' << r.frame->normal.x() << ' ' << r.frame->normal.y() << ' ' << r.frame->normal.z();
+            if (r.at_vertex) {
+                out << " - -\n";
+            } else {
+                out << ' ' << r.frame->gaussian_curvature << ' ' << r.frame->mean_curvature << '\n';
+            }
+        } else {
+            out << " - - - - -\n";
+        }
+    }
+}
+
+int run_eval(const EvalOptions& options) {
+    const BuildResult built = read_mesh(options.input);
+    for (const Issue& issue : built.report.issues) {
+        std::cerr << "warning: " << issue.to_string() << '\n';
+    }
+    const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
+    const std::vector<SurfacePoint> points =
+        options.points.empty() ? grid_points(options.grid, basis) : read_points(options.points, basis);
+    std::vector<Evaluated> results;
+    results.reserve(points.size());
+    for (const SurfacePoint& point : points) {
+        const LimitWeights weights = basis.evaluate(point);
+        Evaluated r{point, weights.apply(built.mesh.positions()), std::nullopt, weights.at_extraordinary_vertex};
+        try {
+            r.frame = surface_frame(r.d);
+        } catch (const NumericalError&) {
+            r.frame.reset();  // degenerate tangent plane (e.g. some extraordinary vertices): reported as null
+        }
+        results.push_back(r);
+    }
+    const bool json_file = std::filesystem::path(options.output).extension() == ".json";
+    if (!options.output.empty()) {
+        write_file_atomically(options.output, [&](std::ostream& out) {
+            if (json_file) {
+                out << points_json(results).dump(2) << '\n';
+            } else {
+                write_table(out, results);
+            }
+        });
+    } else if (options.json) {
+        std::cout << points_json(results).dump(2) << '\n';
+    } else {
+        write_table(std::cout, results);
+    }
+    return exit_ok;
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app, CommandStatus& status) {
+    auto options = std::make_shared<EvalOptions>();
+    CLI::App* cmd = app.add_subcommand("eval", "Evaluate the limit surface: position, derivatives, normal, curvature");
+    cmd->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
+    add_limit_scheme_options(cmd, options->scheme);
+    auto* points = cmd->add_option("--points", options->points, "File of 'face u v' lines (ptex faces; '#' comments)");
+    auto* grid = cmd->add_option("--grid", options->grid, "N x N points on every ptex face (u, v = (i + 0.5)/N)")
+                     ->check(CLI::Range(1, 1000));
+    points->excludes(grid);
+    grid->excludes(points);
+    cmd->add_option("-o,--output", options->output,
+                    "Write the table (or JSON when OUT ends in .json) to OUT, atomically, instead of stdout");
+    cmd->add_flag("--json", options->json, "Print JSON: {\"points\": [...]}");
+    cmd->callback([options, &status, points, grid] {
+        if (points->count() == 0 && grid->count() == 0) {
+            std::cerr << "error: eval needs --points FILE or --grid N (see 'limsurf eval --help')\n";
+            status.exit_code = exit_usage;
+            return;
+        }
+        status.exit_code = run_guarded([&] { return run_eval(*options); });
+    });
+}
+
+}  // namespace limsurf::cli

@@ -1,0 +1,89 @@
+// Options shared by the commands that evaluate the limit surface (eval, measure):
+// the scheme and its rules, taken from the command line, else the file's hints.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "limsurf/core/error.h"
+#include "limsurf/limit/limit_basis.h"
+#include "limsurf/mesh/control_mesh.h"
+
+namespace limsurf::cli {
+
+struct LimitSchemeOptions {
+    std::string scheme;
+    std::string boundary;   // empty: the file's hint, else edge-and-corner
+    std::string creasing;   // empty: the file's hint, else uniform
+    std::string triangles;  // empty: the file's hint, else catmull-clark
+};
+
+inline const std::map<std::string, SchemeKind>& limit_schemes() {
+    static const std::map<std::string, SchemeKind> names{{"catmull-clark", SchemeKind::CatmullClark},
+                                                         {"loop", SchemeKind::Loop}};
+    return names;
+}
+inline const std::map<std::string, BoundaryInterpolation>& boundary_names() {
+    static const std::map<std::string, BoundaryInterpolation> names{
+        {"none", BoundaryInterpolation::None},
+        {"edge-only", BoundaryInterpolation::EdgeOnly},
+        {"edge-and-corner", BoundaryInterpolation::EdgeAndCorner}};
+    return names;
+}
+inline const std::map<std::string, CreasingMethod>& creasing_names() {
+    static const std::map<std::string, CreasingMethod> names{{"uniform", CreasingMethod::Uniform},
+                                                             {"chaikin", CreasingMethod::Chaikin}};
+    return names;
+}
+inline const std::map<std::string, TriangleSubdivision>& triangle_names() {
+    static const std::map<std::string, TriangleSubdivision> names{{"catmull-clark", TriangleSubdivision::CatmullClark},
+                                                                  {"smooth", TriangleSubdivision::Smooth}};
+    return names;
+}
+
+template <class T>
+std::vector<std::string> names_of(const std::map<std::string, T>& names) {
+    std::vector<std::string> out;
+    for (const auto& [name, value] : names) {
+        out.push_back(name);
+    }
+    return out;
+}
+
+/// Registers --scheme (required), --boundary, --creasing, --triangles on @p cmd.
+inline void add_limit_scheme_options(CLI::App* cmd, LimitSchemeOptions& options) {
+    cmd->add_option("--scheme", options.scheme, "Subdivision scheme of the limit surface")
+        ->required()
+        ->check(CLI::IsMember(names_of(limit_schemes())));
+    cmd->add_option("--boundary", options.boundary,
+                    "Boundary rule (default: the file's interpolateboundary tag, else edge-and-corner)")
+        ->check(CLI::IsMember(names_of(boundary_names())));
+    cmd->add_option("--creasing", options.creasing, "Semi-sharp crease decay (default: the file's tag, else uniform)")
+        ->check(CLI::IsMember(names_of(creasing_names())));
+    cmd->add_option("--triangles", options.triangles,
+                    "Catmull-Clark rule for triangles (default: the file's tag, else catmull-clark)")
+        ->check(CLI::IsMember(names_of(triangle_names())));
+}
+
+template <class T>
+T choose_rule(const std::string& flag, const std::map<std::string, T>& names, const std::optional<T>& hint,
+              T fallback) {
+    return flag.empty() ? hint.value_or(fallback) : names.at(flag);
+}
+
+/// The limit basis of @p mesh under the chosen scheme and rules.
+inline LimitBasis make_limit_basis(const ControlMesh& mesh, const LimitSchemeOptions& options) {
+    const SchemeHints& hints = mesh.hints();
+    const SchemeOptions defaults;
+    SchemeOptions rules;
+    rules.boundary = choose_rule(options.boundary, boundary_names(), hints.boundary, defaults.boundary);
+    rules.creasing = choose_rule(options.creasing, creasing_names(), hints.creasing, defaults.creasing);
+    rules.triangles = choose_rule(options.triangles, triangle_names(), hints.triangles, defaults.triangles);
+    return LimitBasis(mesh.topology(), limit_schemes().at(options.scheme), rules);
+}
+
+}  // namespace limsurf::cli

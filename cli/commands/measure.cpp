@@ -1,0 +1,93 @@
+// limsurf measure MESH --scheme S [--degree D] [--tiles K] [--json]: area, enclosed
+// volume, centroids of the limit surface by quadrature, each with an error estimate.
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "commands/commands.h"
+#include "commands/limit_options.h"
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/quadrature/integrals.h"
+#include "output.h"
+
+namespace limsurf::cli {
+namespace {
+
+struct MeasureOptions {
+    std::string input;
+    LimitSchemeOptions scheme;
+    int degree = 8;
+    int tiles = 6;
+    bool json = false;
+};
+
+nlohmann::json vector_json(const Eigen::Vector3d& x) {
+    return {x.x(), x.y(), x.z()};
+}
+
+int run_measure(const MeasureOptions& options) {
+    const BuildResult built = read_mesh(options.input);
+    for (const Issue& issue : built.report.issues) {
+        std::cerr << "warning: " << issue.to_string() << '\n';
+    }
+    const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
+    const SamplerOptions sampler{options.degree, options.tiles, 0};
+    const MeasureReport r = measure_with_error(basis, built.mesh.positions(), sampler);
+    if (options.json) {
+        nlohmann::json errors{{"area", r.error.area}, {"surface_centroid", r.error.surface_centroid}};
+        errors["volume"] = r.closed ? nlohmann::json(r.error.volume) : nlohmann::json(nullptr);
+        errors["centroid"] = r.closed ? nlohmann::json(r.error.centroid) : nlohmann::json(nullptr);
+        nlohmann::json out{
+            {"closed", r.closed},
+            {"area", r.value.area},
+            {"surface_centroid", vector_json(r.value.surface_centroid)},
+            {"error_estimate", errors},
+            {"degree", options.degree},
+            {"tiles", options.tiles},
+            {"reference", {{"degree", r.finer.degree}, {"tiles", r.finer.subdivide_near_extraordinary}}}};
+        out["volume"] = r.closed ? nlohmann::json(r.value.volume) : nlohmann::json(nullptr);
+        out["centroid"] = r.closed ? vector_json(r.value.centroid) : nlohmann::json(nullptr);
+        std::cout << out.dump(2) << '\n';
+        return exit_ok;
+    }
+    const auto vec = [](const Eigen::Vector3d& x) {
+        std::ostringstream s;
+        s << std::setprecision(15) << x.x() << ' ' << x.y() << ' ' << x.z();
+        return s.str();
+    };
+    std::cout << std::setprecision(15) << "area              " << r.value.area << "  (error estimate "
+              << std::setprecision(2) << r.error.area << ")\n";
+    if (r.closed) {
+        std::cout << std::setprecision(15) << "volume            " << r.value.volume << "  (error estimate "
+                  << std::setprecision(2) << r.error.volume << ")\n"
+                  << "centroid          " << vec(r.value.centroid) << "  (error estimate " << r.error.centroid << ")\n";
+    } else {
+        std::cout << "volume            not defined (the limit surface is not closed)\n";
+    }
+    std::cout << "surface centroid  " << vec(r.value.surface_centroid) << "  (error estimate " << std::setprecision(2)
+              << r.error.surface_centroid << ")\n"
+              << "quadrature        degree " << options.degree << ", " << options.tiles
+              << " tile levels near extraordinary vertices; estimate: difference to degree " << r.finer.degree << ", "
+              << r.finer.subdivide_near_extraordinary << " tile levels\n";
+    return exit_ok;
+}
+
+}  // namespace
+
+void add_measure_command(CLI::App& app, CommandStatus& status) {
+    auto options = std::make_shared<MeasureOptions>();
+    CLI::App* cmd = app.add_subcommand("measure", "Area, enclosed volume and centroids of the limit surface");
+    cmd->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
+    add_limit_scheme_options(cmd, options->scheme);
+    cmd->add_option("--degree", options->degree, "Quadrature degree per tile (1..60)")->check(CLI::Range(1, 60));
+    cmd->add_option("--tiles", options->tiles, "Tile levels towards extraordinary vertices (0..20)")
+        ->check(CLI::Range(0, 20));
+    cmd->add_flag("--json", options->json, "Print JSON");
+    cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_measure(*options); }); });
+}
+
+}  // namespace limsurf::cli

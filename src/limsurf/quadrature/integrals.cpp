@@ -1,0 +1,172 @@
+#include "limsurf/quadrature/integrals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include <Eigen/Geometry>
+
+#include "limsurf/core/error.h"
+
+namespace limsurf {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+/// Parallel sum over samples of a fixed-size vector quantity.
+template <int N, class F>
+Eigen::Matrix<double, N, 1> reduce(const LimitSampler& sampler, const Points& X, F term) {
+    LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "control points have ", X.rows(),
+                  " rows, the sampler ", sampler.num_vertices(), " vertices");
+    Eigen::Matrix<double, N, 1> total = Eigen::Matrix<double, N, 1>::Zero();
+    std::mutex total_mutex;
+    parallel_ranges(sampler.num_samples(), sampler.options().num_threads, [&](Index begin, Index end) {
+        Eigen::Matrix<double, N, 1> partial = Eigen::Matrix<double, N, 1>::Zero();
+        for (Index s = begin; s < end; ++s) {
+            partial += term(sampler.weight(s), sampler.evaluate(X, s));
+        }
+        const std::lock_guard lock(total_mutex);
+        total += partial;
+    });
+    return total;
+}
+
+/// Gradient accumulation: per sample, rows (value, ∂u, ∂v) of the weights times 3-vectors.
+template <class F>
+Points gradient(const LimitSampler& sampler, const Points& X, F coefficients) {
+    LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "control points have ", X.rows(),
+                  " rows, the sampler ", sampler.num_vertices(), " vertices");
+    Points g = Points::Zero(X.rows(), 3);
+    // Serial scatter: the gradient is cheap next to the sampler's construction.
+    for (Index s = 0; s < sampler.num_samples(); ++s) {
+        const Eigen::Matrix<double, 6, 3> d = sampler.evaluate(X, s);
+        const Eigen::Matrix3d c = coefficients(sampler.weight(s), d);  // rows: for W_0, W_u, W_v
+        const auto ids = sampler.vertices(s);
+        const auto w = sampler.limit_weights(s);
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            const auto col = static_cast<Eigen::Index>(k);
+            g.row(ids[k]) += w(0, col) * c.row(0) + w(1, col) * c.row(1) + w(2, col) * c.row(2);
+        }
+    }
+    return g;
+}
+
+Vec3 cross_uv(const Eigen::Matrix<double, 6, 3>& d) {
+    return Vec3(d.row(1)).cross(Vec3(d.row(2)));
+}
+
+}  // namespace
+
+double area(const LimitSampler& sampler, const Points& X) {
+    return reduce<1>(sampler, X, [](double w, const Eigen::Matrix<double, 6, 3>& d) {
+        return Eigen::Matrix<double, 1, 1>(w * cross_uv(d).norm());
+    })(0);
+}
+
+double enclosed_volume(const LimitSampler& sampler, const Points& X) {
+    return reduce<1>(sampler, X, [](double w, const Eigen::Matrix<double, 6, 3>& d) {
+        return Eigen::Matrix<double, 1, 1>(w * Vec3(d.row(0)).dot(cross_uv(d)) / 3.0);
+    })(0);
+}
+
+SurfaceMeasures measure(const LimitSampler& sampler, const Points& X, bool closed) {
+    // Integrate about the mean control point o: the continuum values do not depend on o, but the
+    // quadrature sums satisfy ∫ n dA = 0 and ∫ x_i n_i dA = V only approximately; taking o inside
+    // the surface makes the discrete centroids exactly translation equivariant and keeps |x| small.
+    const Vec3 o = X.rows() > 0 ? Vec3(X.colwise().mean().transpose()) : Vec3::Zero();
+    // 0: area, 1: 3V, 2-4: ∫ x_i²/2 n_i dA, 5-7: ∫ x dA (x relative to o)
+    const Eigen::Matrix<double, 8, 1> sums =
+        reduce<8>(sampler, X, [&o](double w, const Eigen::Matrix<double, 6, 3>& d) {
+            const Vec3 x = d.row(0).transpose() - o;
+            const Vec3 a = cross_uv(d);
+            const double da = a.norm();
+            Eigen::Matrix<double, 8, 1> t;
+            t << da, x.dot(a), 0.5 * x.cwiseProduct(x).cwiseProduct(a), x * da;
+            return Eigen::Matrix<double, 8, 1>(w * t);
+        });
+    SurfaceMeasures m;
+    m.area = sums(0);
+    LIMSURF_CHECK(m.area > 0.0, NumericalError, "the limit surface has zero area");
+    m.surface_centroid = o + sums.segment<3>(5) / m.area;
+    if (closed) {
+        m.volume = sums(1) / 3.0;
+        LIMSURF_CHECK(std::abs(m.volume) > 1e-14 * std::pow(m.area, 1.5), NumericalError,
+                      "the enclosed volume is zero (", m.volume, "): the solid centroid is not defined");
+        m.centroid = o + sums.segment<3>(2) / m.volume;
+    }
+    return m;
+}
+
+Eigen::Vector3d centroid(const LimitSampler& sampler, const Points& X) {
+    return measure(sampler, X, true).centroid;
+}
+
+Eigen::Vector3d surface_centroid(const LimitSampler& sampler, const Points& X) {
+    return measure(sampler, X, false).surface_centroid;
+}
+
+Points area_gradient(const LimitSampler& sampler, const Points& X) {
+    return gradient(sampler, X, [](double w, const Eigen::Matrix<double, 6, 3>& d) {
+        const Vec3 xu = d.row(1);
+        const Vec3 xv = d.row(2);
+        const Vec3 a = xu.cross(xv);
+        const double norm = a.norm();
+        Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+        if (norm > 0.0) {
+            const Vec3 n = a / norm;
+            c.row(1) = w * xv.cross(n);
+            c.row(2) = w * n.cross(xu);
+        }
+        return c;
+    });
+}
+
+Points volume_gradient(const LimitSampler& sampler, const Points& X) {
+    return gradient(sampler, X, [](double w, const Eigen::Matrix<double, 6, 3>& d) {
+        const Vec3 x = d.row(0);
+        const Vec3 xu = d.row(1);
+        const Vec3 xv = d.row(2);
+        Eigen::Matrix3d c;
+        c.row(0) = w / 3.0 * xu.cross(xv);
+        c.row(1) = w / 3.0 * xv.cross(x);
+        c.row(2) = w / 3.0 * x.cross(xu);
+        return c;
+    });
+}
+
+bool encloses_volume(const LimitBasis& basis) {
+    const Topology& t = basis.topology();
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        if (t.is_boundary_vertex(v)) {
+            return false;
+        }
+    }
+    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+        if (!basis.has_limit_surface(p)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+MeasureReport measure_with_error(const LimitBasis& basis, const Points& X, const SamplerOptions& options) {
+    MeasureReport report;
+    report.closed = encloses_volume(basis);
+    report.finer = options;
+    const int max_degree = basis.domain() == ParameterDomain::Quad ? 127 : 60;
+    report.finer.degree = std::min(options.degree + 4, max_degree);
+    if (options.subdivide_near_extraordinary > 0) {
+        report.finer.subdivide_near_extraordinary = std::min(options.subdivide_near_extraordinary + 1, 30);
+    }
+    const LimitSampler coarse(basis, options);
+    const LimitSampler fine(basis, report.finer);
+    report.value = measure(coarse, X, report.closed);
+    const SurfaceMeasures better = measure(fine, X, report.closed);
+    report.error.area = std::abs(report.value.area - better.area);
+    report.error.volume = std::abs(report.value.volume - better.volume);
+    report.error.centroid = (report.value.centroid - better.centroid).norm();
+    report.error.surface_centroid = (report.value.surface_centroid - better.surface_centroid).norm();
+    return report;
+}
+
+}  // namespace limsurf

@@ -1,0 +1,306 @@
+#include "limsurf/quadrature/sampler.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "limsurf/core/error.h"
+#include "limsurf/quadrature/rules.h"
+
+namespace limsurf {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+/// A tile of a ptex domain: a square or a triangle given by its corners (3 or 4).
+struct Tile {
+    std::array<Vec2, 4> corner;
+    int num_corners = 4;
+    int level = 0;
+};
+
+/// True where the limit surface is not a plain polynomial patch around control vertex v.
+/// A boundary vertex with half the regular number of faces (2 quads, 3 triangles) is a
+/// regular boundary: its patches are B-spline/box-spline patches with phantom points.
+bool is_irregular_vertex(const Topology& t, Index v, int regular_valence) {
+    const auto faces = static_cast<int>(t.vertex_faces(v).size());
+    const bool regular = t.is_boundary_vertex(v) ? 2 * faces == regular_valence : faces == regular_valence;
+    if (!regular || t.vertex_sharpness(v) > 0.0) {
+        return true;
+    }
+    for (const Index e : t.vertex_edges(v)) {
+        if (t.edge_sharpness(e) > 0.0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/// Parameter points of the irregular corners of ptex face p.
+std::vector<Vec2> irregular_corners(const LimitBasis& basis, Index p) {
+    const Topology& t = basis.topology();
+    const PtexFace ptex = basis.ptex_face(p);
+    const auto fv = t.face_vertices(ptex.control_face);
+    const Index n = static_cast<Index>(fv.size());
+    std::vector<Vec2> corners;
+    if (basis.domain() == ParameterDomain::Triangle) {
+        const std::array<Vec2, 3> at{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+        for (int i = 0; i < 3; ++i) {
+            if (is_irregular_vertex(t, fv[static_cast<std::size_t>(i)], 6)) {
+                corners.push_back(at[static_cast<std::size_t>(i)]);
+            }
+        }
+        return corners;
+    }
+    const std::array<Vec2, 4> at{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+    if (ptex.corner < 0) {
+        for (int i = 0; i < 4; ++i) {
+            if (is_irregular_vertex(t, fv[static_cast<std::size_t>(i)], 4)) {
+                corners.push_back(at[static_cast<std::size_t>(i)]);
+            }
+        }
+        return corners;
+    }
+    // Sub-face k of an n-gon: (0,0) = v_k, (1,1) = the face point (valence n != 4),
+    // (1,0) and (0,1) = points of the edges (v_k, v_k+1) and (v_k-1, v_k), irregular on a boundary or crease.
+    const Index k = ptex.corner;
+    const Index vk = fv[static_cast<std::size_t>(k)];
+    if (is_irregular_vertex(t, vk, 4)) {
+        corners.push_back(at[0]);
+    }
+    corners.push_back(at[2]);
+    const auto edge_irregular = [&](Index a, Index b) {
+        const Index e = t.find_edge(a, b);
+        return e == invalid_index || t.is_boundary_edge(e) || t.edge_sharpness(e) > 0.0;
+    };
+    if (edge_irregular(vk, fv[static_cast<std::size_t>((k + 1) % n)])) {
+        corners.push_back(at[1]);
+    }
+    if (edge_irregular(fv[static_cast<std::size_t>((k + n - 1) % n)], vk)) {
+        corners.push_back(at[3]);
+    }
+    return corners;
+}
+
+bool touches(const Tile& tile, const std::vector<Vec2>& points) {
+    for (int i = 0; i < tile.num_corners; ++i) {
+        for (const Vec2& p : points) {
+            if (tile.corner[static_cast<std::size_t>(i)] == p) {  // dyadic coordinates: exact
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+/// The 4 children of a tile: quadtree split of a square, 1-to-4 split of a triangle.
+std::array<Tile, 4> split(const Tile& t) {
+    std::array<Tile, 4> out;
+    const auto& c = t.corner;
+    if (t.num_corners == 4) {
+        const Vec2 o = c[0];
+        const double h = (c[1] - c[0]).x() / 2.0;
+        for (int j = 0; j < 2; ++j) {
+            for (int i = 0; i < 2; ++i) {
+                Tile& s = out[static_cast<std::size_t>(2 * j + i)];
+                const Vec2 a = o + Vec2(i * h, j * h);
+                s.corner = {a, a + Vec2(h, 0), a + Vec2(h, h), a + Vec2(0, h)};
+                s.num_corners = 4;
+                s.level = t.level + 1;
+            }
+        }
+        return out;
+    }
+    const Vec2 ab = (c[0] + c[1]) / 2.0;
+    const Vec2 bc = (c[1] + c[2]) / 2.0;
+    const Vec2 ca = (c[2] + c[0]) / 2.0;
+    const std::array<std::array<Vec2, 3>, 4> tris{{{c[0], ab, ca}, {ab, c[1], bc}, {ca, bc, c[2]}, {bc, ca, ab}}};
+    for (std::size_t i = 0; i < 4; ++i) {
+        out[i].corner = {tris[i][0], tris[i][1], tris[i][2], Vec2::Zero()};
+        out[i].num_corners = 3;
+        out[i].level = t.level + 1;
+    }
+    return out;
+}
+
+struct Pending {
+    SurfacePoint point;
+    double weight = 0.0;
+};
+
+/// Maps the rule onto @p tile (affine map from the reference square / triangle).
+void place_rule(const QuadratureRule& rule, const Tile& tile, Index face, std::vector<Pending>& out) {
+    const Vec2 o = tile.corner[0];
+    const Vec2 e1 = tile.corner[1] - o;
+    const Vec2 e2 = (tile.num_corners == 4 ? tile.corner[3] : tile.corner[2]) - o;
+    const double jacobian = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    for (int q = 0; q < rule.num_points(); ++q) {
+        const auto i = static_cast<std::size_t>(q);
+        const Vec2 x = o + rule.u[i] * e1 + rule.v[i] * e2;
+        out.push_back({{face, x.x(), x.y()}, rule.weight[i] * jacobian});
+    }
+}
+
+void place_tiles(const QuadratureRule& rule, const Tile& tile, Index face, const std::vector<Vec2>& irregular,
+                 int max_level, std::vector<Pending>& out) {
+    if (tile.level < max_level && touches(tile, irregular)) {
+        for (const Tile& child : split(tile)) {
+            place_tiles(rule, child, face, irregular, max_level, out);
+        }
+        return;
+    }
+    place_rule(rule, tile, face, out);
+}
+
+int thread_count(int requested, Index n) {
+    const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const int wanted = requested > 0 ? requested : hardware;
+    return static_cast<int>(std::clamp<Index>(n / 64, 1, wanted));
+}
+
+/// body(begin, end) on exactly @p threads contiguous ranges of [0, n), one std::thread each.
+void run_ranges(Index n, int threads, const std::function<void(Index, Index)>& body) {
+    if (threads <= 1) {
+        body(0, n);
+        return;
+    }
+    std::vector<std::thread> pool;
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    for (int t = 0; t < threads; ++t) {
+        const Index begin = static_cast<Index>(std::int64_t{n} * t / threads);
+        const Index end = static_cast<Index>(std::int64_t{n} * (t + 1) / threads);
+        pool.emplace_back([&, begin, end] {
+            try {
+                body(begin, end);
+            } catch (...) {
+                const std::lock_guard lock(failure_mutex);
+                if (!failure) {
+                    failure = std::current_exception();
+                }
+            }
+        });
+    }
+    for (std::thread& thread : pool) {
+        thread.join();
+    }
+    if (failure) {
+        std::rethrow_exception(failure);
+    }
+}
+
+}  // namespace
+
+void parallel_ranges(Index n, int num_threads, const std::function<void(Index, Index)>& body) {
+    run_ranges(n, thread_count(num_threads, n), body);
+}
+
+LimitSampler::LimitSampler(const LimitBasis& basis, int degree, int subdivide_near_extraordinary)
+    : LimitSampler(basis, SamplerOptions{degree, subdivide_near_extraordinary, 0}) {}
+
+LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& options)
+    : options_(options), domain_(basis.domain()), num_vertices_(basis.topology().num_vertices()) {
+    LIMSURF_CHECK(options.subdivide_near_extraordinary >= 0 && options.subdivide_near_extraordinary <= 30, InputError,
+                  "tile levels near extraordinary vertices must be in 0..30, not ",
+                  options.subdivide_near_extraordinary);
+    const QuadratureRule rule =
+        domain_ == ParameterDomain::Quad ? square_rule(options.degree) : triangle_rule(options.degree);
+
+    std::vector<Pending> pending;
+    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+        if (!basis.has_limit_surface(p)) {
+            continue;
+        }
+        Tile root;
+        if (domain_ == ParameterDomain::Quad) {
+            root.corner = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+            root.num_corners = 4;
+        } else {
+            root.corner = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2::Zero()};
+            root.num_corners = 3;
+        }
+        const std::vector<Vec2> irregular =
+            options.subdivide_near_extraordinary > 0 ? irregular_corners(basis, p) : std::vector<Vec2>{};
+        place_tiles(rule, root, p, irregular, options.subdivide_near_extraordinary, pending);
+    }
+
+    const Index n = static_cast<Index>(pending.size());
+    points_.resize(pending.size());
+    weights_.resize(pending.size());
+    for (std::size_t s = 0; s < pending.size(); ++s) {
+        points_[s] = pending[s].point;
+        weights_[s] = pending[s].weight;
+    }
+
+    // Evaluate in parallel chunks, each into its own CSR piece, then concatenate in order.
+    const int threads = thread_count(options.num_threads, n);
+    struct Piece {
+        std::vector<std::size_t> sizes;
+        std::vector<Index> vertices;
+        std::vector<double> limit;
+    };
+    std::vector<Piece> pieces(static_cast<std::size_t>(threads));
+    run_ranges(threads, threads, [&](Index first_chunk, Index last_chunk) {
+        LimitWeights w;
+        for (Index c = first_chunk; c < last_chunk; ++c) {
+            Piece& piece = pieces[static_cast<std::size_t>(c)];
+            const Index begin = static_cast<Index>(std::int64_t{n} * c / threads);
+            const Index end = static_cast<Index>(std::int64_t{n} * (c + 1) / threads);
+            for (Index s = begin; s < end; ++s) {
+                basis.evaluate(points_[static_cast<std::size_t>(s)], w, DerivativeOrder::Second);
+                piece.sizes.push_back(w.vertices.size());
+                piece.vertices.insert(piece.vertices.end(), w.vertices.begin(), w.vertices.end());
+                piece.limit.insert(piece.limit.end(), w.w.data(), w.w.data() + w.w.size());
+            }
+        }
+    });
+    offsets_.reserve(pending.size() + 1);
+    offsets_.push_back(0);
+    for (Piece& piece : pieces) {
+        for (const std::size_t size : piece.sizes) {
+            offsets_.push_back(offsets_.back() + size);
+        }
+        vertices_.insert(vertices_.end(), piece.vertices.begin(), piece.vertices.end());
+        limit_.insert(limit_.end(), piece.limit.begin(), piece.limit.end());
+        piece = Piece{};
+    }
+}
+
+std::span<const Index> LimitSampler::vertices(Index s) const {
+    const auto i = static_cast<std::size_t>(s);
+    return {vertices_.data() + offsets_[i], offsets_[i + 1] - offsets_[i]};
+}
+
+Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> LimitSampler::limit_weights(Index s) const {
+    const auto i = static_cast<std::size_t>(s);
+    return {limit_.data() + 6 * offsets_[i], 6, static_cast<Eigen::Index>(offsets_[i + 1] - offsets_[i])};
+}
+
+Eigen::Matrix<double, 6, 3> LimitSampler::evaluate(const Points& X, Index s) const {
+    LIMSURF_CHECK(X.rows() == num_vertices_, InputError, "control points have ", X.rows(), " rows, the sampler ",
+                  num_vertices_, " vertices");
+    const auto ids = vertices(s);
+    const auto w = limit_weights(s);
+    Eigen::Matrix<double, 6, 3> out = Eigen::Matrix<double, 6, 3>::Zero();
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+        out.noalias() += w.col(static_cast<Eigen::Index>(k)) * X.row(ids[k]);
+    }
+    return out;
+}
+
+std::vector<Eigen::Matrix<double, 6, 3>> LimitSampler::evaluate(const Points& X) const {
+    LIMSURF_CHECK(X.rows() == num_vertices_, InputError, "control points have ", X.rows(), " rows, the sampler ",
+                  num_vertices_, " vertices");
+    std::vector<Eigen::Matrix<double, 6, 3>> out(points_.size());
+    parallel_ranges(num_samples(), options_.num_threads, [&](Index begin, Index end) {
+        for (Index s = begin; s < end; ++s) {
+            out[static_cast<std::size_t>(s)] = evaluate(X, s);
+        }
+    });
+    return out;
+}
+
+}  // namespace limsurf

@@ -1,0 +1,311 @@
+// The limit sampler and the integrals on it: identities (gradients against finite
+// differences, rigid motions and scaling, orientation), an analytic value (the area of a
+// planar grid's limit surface from its B-spline boundary curve), and a witness: the
+// polyhedral area and volume of deeply subdivided control meshes, Richardson-extrapolated.
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/limit/limit_basis.h"
+#include "limsurf/quadrature/integrals.h"
+#include "limsurf/quadrature/rules.h"
+#include "limsurf/quadrature/sampler.h"
+#include "limsurf/refine/hierarchy.h"
+#include "support/mesh_zoo.h"
+
+namespace limsurf::test {
+namespace {
+
+/// A bundled mesh with its basis; the BuildResult stays alive alongside.
+struct Loaded {
+    explicit Loaded(const std::string& name, SchemeKind scheme = SchemeKind::CatmullClark)
+        : built(read_mesh(find_bundled(name).path)), basis(built.mesh.topology(), scheme) {}
+    [[nodiscard]] const Points& X() const { return built.mesh.positions(); }
+    BuildResult built;
+    LimitBasis basis;
+};
+
+TEST(LimitSampler, StoresOneSampleperRulePointAndWeightsSumToTheDomain) {
+    const Loaded cube("cube");
+    const LimitSampler sampler(cube.basis, 5);
+    const int per_face = square_rule(5).num_points();
+    ASSERT_EQ(sampler.num_samples(), cube.basis.num_ptex_faces() * per_face);
+    double total = 0.0;
+    for (Index s = 0; s < sampler.num_samples(); ++s) {
+        total += sampler.weight(s);
+        const auto w = sampler.limit_weights(s);
+        EXPECT_NEAR(w.row(0).sum(), 1.0, 1e-12);
+        const LimitWeights direct = cube.basis.evaluate(sampler.point(s));
+        EXPECT_LT((sampler.evaluate(cube.X(), s) - direct.apply(cube.X())).cwiseAbs().maxCoeff(), 1e-13);
+    }
+    EXPECT_NEAR(total, cube.basis.num_ptex_faces(), 1e-12);
+}
+
+TEST(LimitSampler, TilesCoverTheDomainAndCrowdTowardsExtraordinaryCorners) {
+    for (const auto& [name, scheme, domain] :
+         {std::tuple{"cube", SchemeKind::CatmullClark, 1.0}, std::tuple{"icosahedron", SchemeKind::Loop, 0.5},
+          std::tuple{"dodecahedron", SchemeKind::CatmullClark, 1.0}}) {
+        SCOPED_TRACE(name);
+        const Loaded m(name, scheme);
+        const LimitSampler plain(m.basis, 4);
+        const LimitSampler tiled(m.basis, 4, 3);
+        EXPECT_GT(tiled.num_samples(), plain.num_samples());
+        double total = 0.0;
+        for (Index s = 0; s < tiled.num_samples(); ++s) {
+            total += tiled.weight(s);
+        }
+        EXPECT_NEAR(total, domain * m.basis.num_ptex_faces(), 1e-12);
+    }
+}
+
+TEST(LimitSampler, EvaluateAllMatchesEvaluateOne) {
+    const Loaded torus("quad_torus");
+    const LimitSampler sampler(torus.basis, SamplerOptions{6, 0, 3});
+    const auto all = sampler.evaluate(torus.X());
+    ASSERT_EQ(static_cast<Index>(all.size()), sampler.num_samples());
+    for (Index s = 0; s < sampler.num_samples(); s += 7) {
+        EXPECT_EQ(all[static_cast<std::size_t>(s)], sampler.evaluate(torus.X(), s));
+    }
+}
+
+/// Central differences of f with respect to every control coordinate.
+template <class F>
+Points finite_difference(const Points& X, F f, double h = 1e-6) {
+    Points g(X.rows(), 3);
+    for (Index k = 0; k < X.rows(); ++k) {
+        for (int c = 0; c < 3; ++c) {
+            Points plus = X;
+            Points minus = X;
+            plus(k, c) += h;
+            minus(k, c) -= h;
+            g(k, c) = (f(plus) - f(minus)) / (2 * h);
+        }
+    }
+    return g;
+}
+
+TEST(Integrals, AreaAndVolumeGradientsMatchFiniteDifferences) {
+    for (const auto& [name, scheme] :
+         {std::pair{"cube", SchemeKind::CatmullClark}, std::pair{"cube_ngons", SchemeKind::CatmullClark},
+          std::pair{"octahedron", SchemeKind::Loop}}) {
+        SCOPED_TRACE(name);
+        const Loaded m(name, scheme);
+        const LimitSampler sampler(m.basis, 6, 2);
+        Points X = m.X();
+        X.col(0) += 0.1 * X.col(1).cwiseProduct(X.col(1));  // break symmetry
+        const Points ga = area_gradient(sampler, X);
+        const Points fa = finite_difference(X, [&](const Points& Y) { return area(sampler, Y); });
+        EXPECT_LT((ga - fa).cwiseAbs().maxCoeff(), 1e-7 * ga.cwiseAbs().maxCoeff());
+        const Points gv = volume_gradient(sampler, X);
+        const Points fv = finite_difference(X, [&](const Points& Y) { return enclosed_volume(sampler, Y); });
+        EXPECT_LT((gv - fv).cwiseAbs().maxCoeff(), 1e-7 * gv.cwiseAbs().maxCoeff());
+        // Translating every control point moves only positions: the discrete area is exactly translation
+        // invariant (derivative weights sum to 0), so its gradient sums to 0. (Σ_k ∂V/∂X_k = 1/3 Σ w a is
+        // ∫ n dA / 3 = 0 only up to the quadrature error, so it is not tested here.)
+        EXPECT_LT(ga.colwise().sum().norm(), 1e-10);
+    }
+}
+
+TEST(Integrals, RigidMotionsKeepAndScalingMultipliesAreaAndVolume) {
+    const Loaded m("genus2");
+    const LimitSampler sampler(m.basis, 6, 1);
+    const Points& X = m.X();
+    const double a = area(sampler, X);
+    const double v = enclosed_volume(sampler, X);
+    EXPECT_GT(v, 0.0);  // faces counter-clockwise seen from outside
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::RowVector3d t(3.0, -1.5, 0.25);
+    const Points moved = (X * R.transpose()).rowwise() + t;
+    EXPECT_NEAR(area(sampler, moved), a, 1e-12 * a);
+    EXPECT_NEAR(enclosed_volume(sampler, moved), v, 1e-12 * v);
+    const Points translated = X.rowwise() + t;
+    EXPECT_NEAR(enclosed_volume(sampler, translated), v, 1e-12 * v);
+    EXPECT_LT((centroid(sampler, translated) - centroid(sampler, X) - t.transpose()).norm(), 1e-12);
+    EXPECT_LT((surface_centroid(sampler, translated) - surface_centroid(sampler, X) - t.transpose()).norm(), 1e-12);
+    const double s = 1.7;
+    EXPECT_NEAR(area(sampler, s * X), s * s * a, 1e-12 * a);
+    EXPECT_NEAR(enclosed_volume(sampler, s * X), s * s * s * v, 1e-12 * v);
+    // Reversing the orientation (a reflection) flips the sign of the volume.
+    Points mirrored = X;
+    mirrored.col(2) *= -1.0;
+    EXPECT_NEAR(enclosed_volume(sampler, mirrored), -v, 1e-12 * v);
+}
+
+TEST(Integrals, SymmetricSurfacesHaveTheirCentroidOnTheSymmetryCentre) {
+    const Loaded m("cube");
+    const LimitSampler sampler(m.basis, 6, 2);
+    const Points X = m.X().rowwise() + Eigen::RowVector3d(1.0, 2.0, 3.0);
+    EXPECT_LT((centroid(sampler, X) - Eigen::Vector3d(1, 2, 3)).norm(), 1e-12);
+    EXPECT_LT((surface_centroid(sampler, X) - Eigen::Vector3d(1, 2, 3)).norm(), 1e-12);
+}
+
+/// Area enclosed by the limit boundary of a planar grid (EdgeAndCorner): each side between two
+/// corners is the uniform cubic B-spline of (2 P0 - P1, P0, ..., Pm, 2 Pm - Pm-1), the curve
+/// the boundary rules (1/8, 6/8, 1/8), (1/2, 1/2) with fixed corners refine to. Green's theorem
+/// per span, Gauss–Legendre exact for the degree-5 integrand.
+double boundary_spline_area(const Topology& t, const Points& X) {
+    std::map<Index, Index> next;  // boundary edges in the direction of their face (counter-clockwise)
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        const auto fv = t.face_vertices(f);
+        for (std::size_t i = 0; i < fv.size(); ++i) {
+            const Index a = fv[i];
+            const Index b = fv[(i + 1) % fv.size()];
+            if (t.is_boundary_edge(t.find_edge(a, b))) {
+                next[a] = b;
+            }
+        }
+    }
+    Index start = next.begin()->first;
+    while (t.valence(start) != 2) {
+        start = next.at(start);
+    }
+    const QuadratureRule gauss = gauss_legendre_1d(4);
+    double twice_area = 0.0;
+    Index corner = start;
+    do {
+        std::vector<Eigen::Vector2d> P{X.row(corner).head<2>().transpose()};
+        Index v = corner;
+        do {
+            v = next.at(v);
+            P.emplace_back(X.row(v).head<2>().transpose());
+        } while (t.valence(v) != 2);
+        std::vector<Eigen::Vector2d> Q{2 * P[0] - P[1]};
+        Q.insert(Q.end(), P.begin(), P.end());
+        Q.push_back(2 * P.back() - P[P.size() - 2]);
+        for (std::size_t i = 0; i + 3 < Q.size(); ++i) {
+            for (int q = 0; q < gauss.num_points(); ++q) {
+                const double s = gauss.u[static_cast<std::size_t>(q)];
+                const double r = 1 - s;
+                const Eigen::Vector2d x = (r * r * r * Q[i] + (3 * s * s * s - 6 * s * s + 4) * Q[i + 1] +
+                                           (-3 * s * s * s + 3 * s * s + 3 * s + 1) * Q[i + 2] + s * s * s * Q[i + 3]) /
+                                          6.0;
+                const Eigen::Vector2d dx = (-3 * r * r * Q[i] + (9 * s * s - 12 * s) * Q[i + 1] +
+                                            (-9 * s * s + 6 * s + 3) * Q[i + 2] + 3 * s * s * Q[i + 3]) /
+                                           6.0;
+                twice_area += gauss.weight[static_cast<std::size_t>(q)] * (x.x() * dx.y() - x.y() * dx.x());
+            }
+        }
+        corner = v;
+    } while (corner != start);
+    return twice_area / 2.0;
+}
+
+TEST(Integrals, PlanarGridAreaEqualsTheAreaInsideItsBSplineBoundary) {
+    const Loaded grid("quad_grid");
+    Points X = grid.X();
+    // Move every vertex in the plane (smoothly, keeping the map one-to-one) so that the
+    // boundary is a genuine B-spline curve rather than the straight sides of the square.
+    for (Index v = 0; v < X.rows(); ++v) {
+        const double x = X(v, 0);
+        const double y = X(v, 1);
+        X(v, 0) = x + 0.08 * std::sin(2.0 * y + 0.3) + 0.05 * x * y;
+        X(v, 1) = y + 0.06 * std::cos(1.5 * x) - 0.04 * x * x;
+    }
+    const double expected = boundary_spline_area(grid.basis.topology(), X);
+    EXPECT_NEAR(area(LimitSampler(grid.basis, 5), X), expected, 1e-13 * expected);
+    EXPECT_NEAR(area(LimitSampler(grid.basis, 5, 2), X), expected, 1e-13 * expected);
+    EXPECT_NEAR(
+        area(grid.basis.topology().num_vertices() > 0 ? LimitSampler(grid.basis, 5) : LimitSampler(grid.basis, 5),
+             grid.X()),
+        4.0, 1e-13);  // straight sides: the square [-1, 1]² itself
+}
+
+/// Polyhedral area and volume of a level of control mesh (faces fanned about their centroid).
+std::pair<double, double> polyhedral_measures(const Topology& t, const Points& X) {
+    double a = 0.0;
+    double v = 0.0;
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        const auto fv = t.face_vertices(f);
+        Eigen::Vector3d c = Eigen::Vector3d::Zero();
+        for (const Index i : fv) {
+            c += X.row(i).transpose();
+        }
+        c /= static_cast<double>(fv.size());
+        for (std::size_t i = 0; i < fv.size(); ++i) {
+            const Eigen::Vector3d p = X.row(fv[i]).transpose();
+            const Eigen::Vector3d q = X.row(fv[(i + 1) % fv.size()]).transpose();
+            const Eigen::Vector3d n = (p - c).cross(q - c);
+            a += 0.5 * n.norm();
+            v += c.dot(p.cross(q)) / 6.0;
+        }
+    }
+    return {a, v};
+}
+
+struct Witness {
+    std::string mesh;
+    SchemeKind scheme;
+    double tolerance;  ///< relative agreement that holds (see the test's comment)
+};
+
+class IntegralsWitness : public ::testing::TestWithParam<Witness> {};
+
+/// Richardson tableau for errors c1 4^-L + c2 16^-L ...: returns the most extrapolated value and
+/// the difference between the last two estimates of the highest order.
+std::pair<double, double> richardson(const std::vector<double>& values) {
+    std::vector<double> row = values;
+    double factor = 4.0;
+    double last_change = 0.0;
+    while (row.size() > 1) {
+        std::vector<double> next;
+        for (std::size_t i = 0; i + 1 < row.size(); ++i) {
+            next.push_back((factor * row[i + 1] - row[i]) / (factor - 1));
+        }
+        last_change = row.size() >= 2 ? std::abs(row.back() - row[row.size() - 2]) : 0.0;
+        row = next;
+        factor *= 2.0;  // then 8^-L (from the (C1) geometry next to extraordinary vertices), 16^-L, ...
+    }
+    return {row.back(), last_change};
+}
+
+TEST_P(IntegralsWitness, AgreesWithExtrapolatedPolyhedralMeasuresOfDeepSubdivision) {
+    const Loaded m(GetParam().mesh, GetParam().scheme);
+    RefineOptions refine;
+    refine.scheme = GetParam().scheme;
+    refine.levels = 6;
+    const Hierarchy hierarchy(m.built.mesh.topology(), refine);
+    std::vector<double> areas;
+    std::vector<double> volumes;
+    for (int level = 2; level <= refine.levels; ++level) {
+        const auto [a, v] = polyhedral_measures(hierarchy.topology(level), hierarchy.positions(level, m.X()));
+        areas.push_back(a);
+        volumes.push_back(v);
+    }
+    const auto [area_limit, area_change] = richardson(areas);
+    const auto [volume_limit, volume_change] = richardson(volumes);
+    const LimitSampler sampler(m.basis, SamplerOptions{14, 10, 0});
+    const double a = area(sampler, m.X());
+    const double v = enclosed_volume(sampler, m.X());
+    const double tolerance = GetParam().tolerance;
+    std::printf("%s: relative differences to the extrapolated polyhedral values: area %.2g, volume %.2g "
+                "(extrapolation's last change %.2g, %.2g)\n",
+                GetParam().mesh.c_str(), std::abs(a - area_limit) / area_limit,
+                std::abs(v - volume_limit) / volume_limit, area_change / area_limit, volume_change / volume_limit);
+    EXPECT_NEAR(a, area_limit, tolerance * area_limit);
+    EXPECT_NEAR(v, volume_limit, tolerance * volume_limit);
+}
+
+// Levels 2..6, Richardson with 4^-L, 8^-L, 16^-L, ... The polyhedral values converge like 4^-L
+// (h²) and the tableau removes that; what is left is limited by the levels a test can afford.
+// Observed relative agreement of the quadrature (degree 14, 10 tile levels) with the
+// extrapolation: quad_torus 3e-12 (area) / 1.6e-11 (volume), tri_torus 1.5e-11 / 1.6e-11, so the
+// issue's 1e-9 (here 1e-10) holds on regular meshes. Next to extraordinary vertices the
+// correction terms decay like powers of the subdominant eigenvalues rather than of 1/2, the
+// tableau's orders are only approximate (its last change is 1e-8..1e-7), and the agreement is
+// cube 1.4e-9 / 1.5e-9, icosahedron (Loop) 6.6e-10 / 2.5e-10: 5e-9 is what honestly holds there,
+// limited by the extrapolation, not by the quadrature.
+INSTANTIATE_TEST_SUITE_P(Meshes, IntegralsWitness,
+                         ::testing::Values(Witness{"quad_torus", SchemeKind::CatmullClark, 1e-10},
+                                           Witness{"cube", SchemeKind::CatmullClark, 5e-9},
+                                           Witness{"icosahedron", SchemeKind::Loop, 5e-9},
+                                           Witness{"tri_torus", SchemeKind::Loop, 1e-10}),
+                         [](const auto& param_info) { return param_info.param.mesh; });
+
+}  // namespace
+}  // namespace limsurf::test
