@@ -123,16 +123,32 @@ Eigen::Matrix<double, 6, N> to_ptex(const Eigen::Matrix<double, 6, N>& b, const 
     return r;
 }
 
-/// The basis of a regular patch at (s, t), as ptex derivative rows.
-Rows patch_rows(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J) {
+/// The basis of a regular patch at (s, t), as ptex derivative rows, times @p M
+/// (fixed-size basis: no allocation per point).
+template <class Matrix>
+void patch_rows_times(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, const Matrix& M, Rows& out) {
     if (quad) {
         Eigen::Matrix<double, 6, 16> b;
         cubic_bspline_patch_weights(st.x(), st.y(), b);
-        return to_ptex<16>(b, J);
+        out.noalias() = to_ptex<16>(b, J).lazyProduct(M);
+    } else {
+        Eigen::Matrix<double, 6, 12> b;
+        quartic_box_spline_patch_weights(st.x(), st.y(), b);
+        out.noalias() = to_ptex<12>(b, J).lazyProduct(M);
     }
-    Eigen::Matrix<double, 6, 12> b;
-    quartic_box_spline_patch_weights(st.x(), st.y(), b);
-    return to_ptex<12>(b, J);
+}
+
+/// The basis of a regular patch at (s, t), as ptex derivative rows.
+void patch_rows(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, Rows& out) {
+    if (quad) {
+        Eigen::Matrix<double, 6, 16> b;
+        cubic_bspline_patch_weights(st.x(), st.y(), b);
+        out = to_ptex<16>(b, J);
+    } else {
+        Eigen::Matrix<double, 6, 12> b;
+        quartic_box_spline_patch_weights(st.x(), st.y(), b);
+        out = to_ptex<12>(b, J);
+    }
 }
 
 /// Dense patch_size × num_local matrix of a regular patch's points.
@@ -159,11 +175,11 @@ Dense dense_rows(const SparseMatrix& S, const std::vector<Index>& rows) {
 }
 
 struct Node;
+struct Template;
 
 /// A self-similar local configuration (see the file comment), shared by all nodes
-/// whose canonical one-ring has this topology.
+/// whose canonical one-ring has this signature.
 struct StationaryClass {
-    bool usable = false;
     /// tables[q][0] = G_q · M_q, tables[q][n] = G_q · M_q · R^n (n >= 1; patch_size × K) when
     /// child q is regular; q = 0 unused. R = A − 1ℓᵀ is A without its dominant part
     /// (A^n = 1ℓᵀ + R^n), so derivatives never cancel the constant part (Stam's reason for
@@ -180,17 +196,36 @@ struct StationaryClass {
     Eigen::RowVectorXd limit_row;
 };
 
-struct Node {
+/// Child q of a Refine template: its template and the rows M_q of the local step.
+struct TemplateChild {
+    const Template* child = nullptr;
+    Dense M;                    ///< #child local × #local
+    std::vector<Index> source;  ///< #child local: the local vertex of the refined copy it copies
+};
+
+/// Everything about a canonical one-ring that does not depend on the face it came
+/// from: shared by all faces with the same signature (most irregular faces of a
+/// mesh share a handful of templates), so its topology work is done once.
+struct Template {
     enum class Kind { Regular, Stationary, Refine };
     Kind kind = Kind::Refine;
-    detail::PatchMesh mesh;  ///< empty for a regular root read off the control mesh
-    Dense W;                 ///< #local × #support; empty: the identity
-    int depth = 0;
+    Index num_local = 0;
     Dense G;             ///< Regular: patch points over local vertices
     Affine patch_frame;  ///< Regular: node coordinates = patch_frame(patch coordinates)
     std::shared_ptr<const StationaryClass> stationary;
-    std::vector<Index> control;      ///< control vertex of each local vertex (per-vertex tuned weights only)
-    std::unique_ptr<Level> refined;  ///< Refine: the one-ring subdivided once
+    detail::PatchMesh mesh;          ///< Refine: the copy, refined below
+    std::unique_ptr<Level> refined;  ///< Refine: the copy subdivided once
+    std::vector<Index> control;      ///< control vertices of the copy that made it (per-vertex weights)
+    std::array<std::atomic<TemplateChild*>, 4> children{};
+};
+
+/// A template placed on the control mesh: W maps its local vertices to the root's support.
+struct Node {
+    const Template* shape = nullptr;
+    Dense W;   ///< #local × #support; empty: the identity
+    Dense GW;  ///< Regular: G · W (patch points over the support)
+    int depth = 0;
+    std::vector<Index> control;  ///< per-vertex tuned weights only
     std::array<std::atomic<Node*>, 4> children{};
 };
 
@@ -199,6 +234,7 @@ struct Root {
     std::vector<Index> support;
     Affine frame;  ///< ptex = frame(node coordinates)
     Node* node = nullptr;
+    bool identity = false;  ///< Regular root whose support is its 16 (12) patch points in order
 };
 
 }  // namespace
@@ -210,40 +246,48 @@ struct LimitBasis::Impl {
     TunedWeights weights;
     bool quad = true;
     bool use_tables = true;
+    bool per_vertex_weights = false;
     std::vector<Index> first_ptex;  // #F + 1
     std::vector<PtexFace> ptex;
 
-    mutable std::mutex mutex;
-    mutable std::vector<std::unique_ptr<Node>> nodes;  // owner of every node
+    // Guards the owners and caches below; built items are published through atomics and
+    // read without it. Recursive: building a root descends into a child.
+    mutable std::recursive_mutex mutex;
+    mutable std::vector<std::unique_ptr<Node>> nodes;
+    mutable std::vector<std::unique_ptr<TemplateChild>> template_children;
+    mutable std::unordered_map<std::string, std::unique_ptr<Template>> templates;
+    mutable std::unordered_map<std::string, std::shared_ptr<const StationaryClass>> classes;
     mutable std::vector<std::atomic<Root*>> roots;
     mutable std::vector<std::unique_ptr<Root>> root_storage;
-    mutable std::unordered_map<std::string, std::shared_ptr<const StationaryClass>> classes;
 
     [[nodiscard]] bool regular_patch(const Topology& t, Index f, detail::RegularPatch& out) const {
         return quad ? detail::catmull_clark_regular_patch(t, f, options.boundary, out)
                     : detail::loop_regular_patch(t, f, options.boundary, out);
     }
-    bool per_vertex_weights = false;
 
     /// One refinement step of a one-ring copy whose local vertex i copies control vertex control[i].
     [[nodiscard]] Level refine_once(const Topology& t, const std::vector<Index>& control) const;
     /// The canonical signature, with the tuned weights of each local vertex when they vary per vertex.
-    [[nodiscard]] std::string signature(const Topology& t, const std::vector<Index>& control) const;
+    [[nodiscard]] std::string signature(const detail::PatchArrays& arrays, const std::vector<Index>& control) const;
     /// Control vertices of a child copy: a child of parent vertex s keeps s's control vertex.
-    [[nodiscard]] std::vector<Index> child_control(const std::vector<Index>& parent_control,
-                                                   const std::vector<Index>& child_source) const;
-    [[nodiscard]] int num_children() const { return 4; }
+    [[nodiscard]] static std::vector<Index> child_control(const std::vector<Index>& parent_control,
+                                                          const std::vector<Index>& child_source);
 
     const Root& root(Index p) const;
     std::unique_ptr<Root> build_root(Index p) const;
-    Node* make_node(detail::PatchMesh mesh, Dense W, int depth, std::vector<Index> control) const;
+    /// The template of a copy (built on first sight). @pre mutex held
+    const Template* shape_of(detail::PatchArrays arrays, const std::vector<Index>& control) const;
+    /// A node of @p shape with weights W. @pre mutex held
+    Node* make_node(const Template* shape, Dense W, int depth, std::vector<Index> control) const;
     std::shared_ptr<const StationaryClass> make_class(const Level& refined, const Dense& A,
                                                       const std::vector<Index>& control) const;
+    const TemplateChild& template_child(const Template& shape, int q) const;
     Node* child(Node& node, int q) const;
     void evaluate(const SurfacePoint& point, LimitWeights& out) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
-    Rows descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex) const;
-    Rows stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, bool& at_vertex) const;
+    void descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex, Rows& rows) const;
+    void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, bool& at_vertex,
+                         Rows& rows) const;
 };
 
 namespace {
@@ -285,13 +329,16 @@ Level LimitBasis::Impl::refine_once(const Topology& t, const std::vector<Index>&
     return refine(t, scheme, options, local);
 }
 
-std::string LimitBasis::Impl::signature(const Topology& t, const std::vector<Index>& control) const {
-    std::string bytes = detail::topology_signature(t);
+std::string LimitBasis::Impl::signature(const detail::PatchArrays& arrays, const std::vector<Index>& control) const {
+    std::string bytes = detail::patch_signature(arrays);
     if (per_vertex_weights) {
-        for (Index v = 0; v < t.num_vertices(); ++v) {
-            const Index c = control[at(v)];
-            const VertexRuleWeights w = weights.at(c, t.valence(v));
-            const double values[3] = {w.alpha, w.beta, w.gamma};
+        // A vertex's own weights (valence 0 never has a valence entry, so a difference
+        // from the default means a per-vertex override).
+        const VertexRuleWeights none = weights.at(invalid_index, 0);
+        for (const Index c : control) {
+            const VertexRuleWeights w = weights.at(c, 0);
+            const bool own = w.alpha != none.alpha || w.beta != none.beta || w.gamma != none.gamma;
+            const double values[3] = {own ? w.alpha : -1.0, w.beta, w.gamma};
             bytes.append(reinterpret_cast<const char*>(values), sizeof values);
         }
     }
@@ -299,7 +346,7 @@ std::string LimitBasis::Impl::signature(const Topology& t, const std::vector<Ind
 }
 
 std::vector<Index> LimitBasis::Impl::child_control(const std::vector<Index>& parent_control,
-                                                   const std::vector<Index>& child_source) const {
+                                                   const std::vector<Index>& child_source) {
     if (parent_control.empty()) {
         return {};
     }
@@ -330,9 +377,8 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
     if (pf.corner < 0) {
         detail::RegularPatch patch;
         if (regular_patch(topology, f, patch)) {
-            // Fast path: read the patch straight off the control mesh.
+            // Fast path: a template-free node read straight off the control mesh.
             auto node = std::make_unique<Node>();
-            node->kind = Node::Kind::Regular;
             for (int i = 0; i < patch.size; ++i) {
                 auto& point = patch.points[at(i)];
                 for (int k = 0; k < point.size; ++k) {
@@ -345,71 +391,85 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
                     point.vertex[at(k)] = static_cast<Index>(it - root->support.begin());
                 }
             }
-            node->G = patch_matrix(patch, static_cast<Index>(root->support.size()));
-            node->patch_frame = rotation(quad, patch.rotation);
+            node->GW = patch_matrix(patch, static_cast<Index>(root->support.size()));
+            root->identity = node->GW.rows() == node->GW.cols() && node->GW.isIdentity(0.0);
+            if (root->identity) {
+                node->GW = Dense();  // the support is the patch points in order
+            }
+            root->frame = rotation(quad, patch.rotation);
             nodes.push_back(std::move(node));
             root->node = nodes.back().get();
             return root;
         }
         const int start = start_corner(topology, f, quad);
-        auto mesh = detail::extract_patch_mesh(topology, f, start);
-        root->support = mesh.source;
+        auto arrays = detail::extract_patch_arrays(topology, f, start);
+        root->support = arrays.source;
         root->frame = rotation(quad, start);
-        std::vector<Index> control = per_vertex_weights ? mesh.source : std::vector<Index>{};
-        root->node = make_node(std::move(mesh), Dense(), 0, std::move(control));
+        std::vector<Index> control = per_vertex_weights ? arrays.source : std::vector<Index>{};
+        const Template* shape = shape_of(std::move(arrays), control);
+        root->node = make_node(shape, Dense(), 0, std::move(control));
         return root;
     }
     // Sub-face k of an n-gon: child k of the face after one local refinement.
-    auto mesh = detail::extract_patch_mesh(topology, f, 0);
-    root->support = mesh.source;
-    const std::vector<Index> control = per_vertex_weights ? mesh.source : std::vector<Index>{};
-    const Level level = refine_once(mesh.topology, control);
-    auto child_mesh = detail::extract_patch_mesh(level.topology, pf.corner, 0);
-    Dense W = dense_rows(level.S0, child_mesh.source);
-    std::vector<Index> child = child_control(control, child_mesh.source);
-    root->node = make_node(std::move(child_mesh), std::move(W), 1, std::move(child));
+    auto arrays = detail::extract_patch_arrays(topology, f, 0);
+    root->support = arrays.source;
+    std::vector<Index> control = per_vertex_weights ? arrays.source : std::vector<Index>{};
+    const Template* shape = shape_of(std::move(arrays), control);
+    LIMSURF_ASSERT(shape->kind == Template::Kind::Refine, "an n-gon's one-ring is refined");
+    auto sub = detail::extract_patch_arrays(shape->refined->topology, pf.corner, 0);
+    Dense W = dense_rows(shape->refined->S0, sub.source);
+    auto sub_control = child_control(control, sub.source);
+    const Template* sub_shape = shape_of(std::move(sub), sub_control);
+    root->node = make_node(sub_shape, std::move(W), 1, std::move(sub_control));
     return root;
 }
 
-Node* LimitBasis::Impl::make_node(detail::PatchMesh mesh, Dense W, int depth, std::vector<Index> control) const {
+const Template* LimitBasis::Impl::shape_of(detail::PatchArrays arrays, const std::vector<Index>& control) const {
+    std::string key = signature(arrays, control);
+    if (const auto known = templates.find(key); known != templates.end()) {
+        return known->second.get();
+    }
+    auto shape = std::make_unique<Template>();
+    shape->num_local = static_cast<Index>(arrays.source.size());
+    shape->control = control;
+    shape->mesh = detail::make_patch_mesh(std::move(arrays));
+    detail::RegularPatch patch;
+    if (regular_patch(shape->mesh.topology, 0, patch)) {
+        shape->kind = Template::Kind::Regular;
+        shape->G = patch_matrix(patch, shape->num_local);
+        shape->patch_frame = rotation(quad, patch.rotation);
+    } else if (const auto known = use_tables ? classes.find(key) : classes.end(); known != classes.end()) {
+        shape->kind = Template::Kind::Stationary;
+        shape->stationary = known->second;
+    } else {
+        shape->refined = std::make_unique<Level>(refine_once(shape->mesh.topology, control));
+        auto corner = detail::extract_patch_arrays(shape->refined->topology, 0, 0);
+        const auto corner_control = child_control(control, corner.source);
+        if (use_tables && signature(corner, corner_control) == key) {
+            const Dense A = dense_rows(shape->refined->S0, corner.source);
+            auto cls = make_class(*shape->refined, A, control);
+            classes.emplace(key, cls);
+            shape->kind = Template::Kind::Stationary;
+            shape->stationary = std::move(cls);
+        }
+    }
+    return templates.emplace(std::move(key), std::move(shape)).first->second.get();
+}
+
+Node* LimitBasis::Impl::make_node(const Template* shape, Dense W, int depth, std::vector<Index> control) const {
     const int limit = use_tables ? max_depth : max_stationary_levels;
     LIMSURF_CHECK(depth <= limit, NumericalError, "limit evaluation: local subdivision did not reach a regular or ",
                   "self-similar patch after ", limit, " levels (a point too close to an extraordinary vertex for ",
                   "LimitEvaluation::Subdivision?)");
     auto node = std::make_unique<Node>();
-    node->W = std::move(W);
+    node->shape = shape;
     node->depth = depth;
     node->control = std::move(control);
-    detail::RegularPatch patch;
-    if (regular_patch(mesh.topology, 0, patch)) {
-        node->kind = Node::Kind::Regular;
-        node->G = patch_matrix(patch, mesh.topology.num_vertices());
-        node->patch_frame = rotation(quad, patch.rotation);
+    if (shape->kind == Template::Kind::Regular) {
+        node->GW = W.size() == 0 ? shape->G : Dense(shape->G * W);
     } else {
-        const std::string own_signature = signature(mesh.topology, node->control);
-        const auto known = use_tables ? classes.find(own_signature) : classes.end();
-        if (known != classes.end()) {
-            node->kind = Node::Kind::Stationary;
-            node->stationary = known->second;
-        } else {
-            node->refined = std::make_unique<Level>(refine_once(mesh.topology, node->control));
-            auto corner = detail::extract_patch_mesh(node->refined->topology, 0, 0);
-            node->mesh = std::move(mesh);
-            const auto corner_control = child_control(node->control, corner.source);
-            if (use_tables && signature(corner.topology, corner_control) == own_signature) {
-                const Dense A = dense_rows(node->refined->S0, corner.source);
-                auto cls = make_class(*node->refined, A, node->control);
-                if (cls->usable) {
-                    classes.emplace(own_signature, cls);
-                    node->kind = Node::Kind::Stationary;
-                    node->stationary = std::move(cls);
-                }
-            }
-            nodes.push_back(std::move(node));
-            return nodes.back().get();
-        }
+        node->W = std::move(W);
     }
-    node->mesh = std::move(mesh);
     nodes.push_back(std::move(node));
     return nodes.back().get();
 }
@@ -422,16 +482,16 @@ std::shared_ptr<const StationaryClass> LimitBasis::Impl::make_class(const Level&
     cls->subtrees.resize(children, nullptr);
     cls->patch_frames.resize(children);
     for (int q = 1; q < children; ++q) {
-        auto mesh = detail::extract_patch_mesh(refined.topology, q, 0);
-        Dense M = dense_rows(refined.S0, mesh.source);
-        detail::RegularPatch patch;
-        if (!regular_patch(mesh.topology, 0, patch)) {
-            auto sub_control = child_control(control, mesh.source);
-            cls->subtrees[at(q)] = make_node(std::move(mesh), std::move(M), 1, std::move(sub_control));
+        auto arrays = detail::extract_patch_arrays(refined.topology, q, 0);
+        Dense M = dense_rows(refined.S0, arrays.source);
+        auto sub_control = child_control(control, arrays.source);
+        const Template* shape = shape_of(std::move(arrays), sub_control);
+        if (shape->kind != Template::Kind::Regular) {
+            cls->subtrees[at(q)] = make_node(shape, std::move(M), 1, std::move(sub_control));
             continue;
         }
-        cls->patch_frames[at(q)] = child_map(quad, q).then(rotation(quad, patch.rotation));
-        cls->tables[at(q)].push_back(patch_matrix(patch, mesh.topology.num_vertices()) * M);
+        cls->patch_frames[at(q)] = child_map(quad, q).then(shape->patch_frame);
+        cls->tables[at(q)].push_back(shape->G * M);
     }
     // Dominant left eigenvector ℓ (ℓᵀA = ℓᵀ, ℓ·1 = 1): any row of A^(2^8).
     Dense power = A;
@@ -454,36 +514,44 @@ std::shared_ptr<const StationaryClass> LimitBasis::Impl::make_class(const Level&
     for (int j = 1; j < 8; ++j) {
         cls->powers.push_back(cls->powers.back() * cls->powers.back());
     }
-    cls->usable = true;
     return cls;
 }
 
+const TemplateChild& LimitBasis::Impl::template_child(const Template& shape, int q) const {
+    if (const TemplateChild* known = shape.children[at(q)].load(std::memory_order_acquire)) {
+        return *known;
+    }
+    auto made = std::make_unique<TemplateChild>();
+    auto arrays = detail::extract_patch_arrays(shape.refined->topology, q, 0);
+    made->M = dense_rows(shape.refined->S0, arrays.source);
+    made->source = arrays.source;
+    made->child = shape_of(std::move(arrays), child_control(shape.control, made->source));
+    template_children.push_back(std::move(made));
+    const_cast<Template&>(shape).children[at(q)].store(template_children.back().get(), std::memory_order_release);
+    return *template_children.back();
+}
+
 Node* LimitBasis::Impl::child(Node& node, int q) const {
-    Node* existing = node.children[at(q)].load(std::memory_order_acquire);
-    if (existing != nullptr) {
+    if (Node* existing = node.children[at(q)].load(std::memory_order_acquire)) {
         return existing;
     }
     const std::lock_guard lock(mutex);
-    existing = node.children[at(q)].load(std::memory_order_relaxed);
-    if (existing != nullptr) {
+    if (Node* existing = node.children[at(q)].load(std::memory_order_relaxed)) {
         return existing;
     }
-    auto mesh = detail::extract_patch_mesh(node.refined->topology, q, 0);
-    Dense M = dense_rows(node.refined->S0, mesh.source);
-    Dense W = node.W.size() == 0 ? M : Dense(M * node.W);
-    auto control = child_control(node.control, mesh.source);
-    Node* made = make_node(std::move(mesh), std::move(W), node.depth + 1, std::move(control));
+    const TemplateChild& step = template_child(*node.shape, q);
+    Dense W = node.W.size() == 0 ? step.M : Dense(step.M * node.W);
+    Node* made = make_node(step.child, std::move(W), node.depth + 1, child_control(node.control, step.source));
     node.children[at(q)].store(made, std::memory_order_release);
     return made;
 }
 
 const Root& LimitBasis::Impl::root(Index p) const {
-    Root* existing = roots[at(p)].load(std::memory_order_acquire);
-    if (existing != nullptr) {
+    if (Root* existing = roots[at(p)].load(std::memory_order_acquire)) {
         return *existing;
     }
     const std::lock_guard lock(mutex);
-    existing = roots[at(p)].load(std::memory_order_relaxed);
+    Root* existing = roots[at(p)].load(std::memory_order_relaxed);
     if (existing == nullptr) {
         root_storage.push_back(build_root(p));
         existing = root_storage.back().get();
@@ -492,8 +560,8 @@ const Root& LimitBasis::Impl::root(Index p) const {
     return *existing;
 }
 
-Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
-                                       bool& at_vertex) const {
+void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
+                                       bool& at_vertex, Rows& rows) const {
     int n = 0;
     while (n < max_stationary_levels && in_corner_child(quad, p)) {
         p *= 2.0;
@@ -512,17 +580,15 @@ Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
     const int q = child_containing(quad, p);
     Affine scaled = frame;
     scaled.axes *= std::ldexp(1.0, -n);
-    Rows rows;
     if (cls.subtrees[at(q)] == nullptr) {
         const Affine patch = scaled.then(cls.patch_frames[at(q)]);
-        const Rows basis = patch_rows(quad, cls.patch_frames[at(q)].to_child(p), patch.axes);
-        rows = basis * cls.tables[at(q)][at(n)];
+        patch_rows_times(quad, cls.patch_frames[at(q)].to_child(p), patch.axes, cls.tables[at(q)][at(n)], rows);
         if (n > 0) {
-            rows.row(0) += basis.row(0).sum() * cls.limit_row;
+            rows.row(0) += cls.limit_row;  // the value basis sums to 1: A^n = 1ℓᵀ + R^n
         }
     } else {
         const Affine map = child_map(quad, q);
-        rows = descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map), at_vertex);
+        descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map), at_vertex, rows);
         if (n > 0) {
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
@@ -538,31 +604,27 @@ Rows LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
     if (here) {
         rows.row(0) = cls.limit_row;
     }
-    return rows;
 }
 
-Rows LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex) const {
-    Rows rows;
-    while (true) {
-        if (node->kind == Node::Kind::Regular) {
-            const Affine patch = frame.then(node->patch_frame);
-            rows = patch_rows(quad, node->patch_frame.to_child(p), patch.axes) * node->G;
-            break;
-        }
-        if (node->kind == Node::Kind::Stationary) {
-            rows = stationary_rows(*node->stationary, p, frame, at_vertex);
-            break;
-        }
+void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex, Rows& rows) const {
+    while (node->shape != nullptr && node->shape->kind == Template::Kind::Refine) {
         const int q = child_containing(quad, p);
         const Affine map = child_map(quad, q);
         p = map.to_child(p);
         frame = frame.then(map);
         node = child(*node, q);
     }
-    if (node->W.size() == 0) {
-        return rows;
+    if (node->shape == nullptr || node->shape->kind == Template::Kind::Regular) {
+        const Affine& patch_frame = node->shape == nullptr ? Affine{} : node->shape->patch_frame;
+        const Affine patch = frame.then(patch_frame);
+        patch_rows_times(quad, patch_frame.to_child(p), patch.axes, node->GW, rows);
+        return;
     }
-    return rows * node->W;
+    Rows local;
+    stationary_rows(*node->shape->stationary, p, frame, at_vertex, node->W.size() == 0 ? rows : local);
+    if (node->W.size() != 0) {
+        rows.noalias() = local.lazyProduct(node->W);
+    }
 }
 
 void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) const {
@@ -572,7 +634,13 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) co
                   "boundary interpolation 'none')");
     out.vertices = r.support;
     out.at_extraordinary_vertex = false;
-    out.w = descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, out.at_extraordinary_vertex);
+    if (r.identity) {
+        // Regular patch whose support is its points in order: the basis is the weights.
+        const Eigen::Vector2d st = r.frame.to_child({point.u, point.v});
+        patch_rows(quad, st, r.frame.axes, out.w);
+        return;
+    }
+    descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, out.at_extraordinary_vertex, out.w);
 }
 
 // --- public API --------------------------------------------------------------

@@ -53,7 +53,7 @@ Index fan_of(const Topology& source, Index x, Index g, const std::vector<Index>&
 
 }  // namespace
 
-PatchMesh extract_patch_mesh(const Topology& source, Index face, int start_corner) {
+PatchArrays extract_patch_arrays(const Topology& source, Index face, int start_corner) {
     const auto corners = source.face_vertices(face);
     const auto n = static_cast<int>(corners.size());
     // 1. The one-ring faces, canonically: the face, then around each of its
@@ -76,7 +76,7 @@ PatchMesh extract_patch_mesh(const Topology& source, Index face, int start_corne
     }
     // 2. Local vertices in order of first appearance; a rim vertex gets one local
     //    vertex per fan of one-ring faces around it.
-    PatchMesh patch;
+    PatchArrays patch;
     struct Key {
         Index vertex;
         Index fan;
@@ -94,9 +94,10 @@ PatchMesh extract_patch_mesh(const Topology& source, Index face, int start_corne
         patch.source.push_back(x);
         return static_cast<Index>(keys.size() - 1);
     };
-    std::vector<Index> offsets{0};
-    std::vector<Index> local_corners;
-    SharpnessTags tags;
+    std::vector<Index>& offsets = patch.offsets;
+    std::vector<Index>& local_corners = patch.corners;
+    SharpnessTags& tags = patch.tags;
+    offsets.push_back(0);
     for (std::size_t i = 0; i < faces.size(); ++i) {
         const Index g = faces[i];
         const auto g_corners = source.face_vertices(g);
@@ -131,8 +132,44 @@ PatchMesh extract_patch_mesh(const Topology& source, Index face, int start_corne
             tags.corners.push_back({static_cast<Index>(v), sharpness, 0});
         }
     }
-    patch.topology = Topology(static_cast<Index>(patch.source.size()), offsets, local_corners, tags);
     return patch;
+}
+
+PatchMesh make_patch_mesh(PatchArrays arrays) {
+    PatchMesh mesh;
+    mesh.topology =
+        refined_topology(static_cast<Index>(arrays.source.size()), arrays.offsets, arrays.corners, arrays.tags);
+    mesh.source = std::move(arrays.source);
+    return mesh;
+}
+
+PatchMesh extract_patch_mesh(const Topology& source, Index face, int start_corner) {
+    return make_patch_mesh(extract_patch_arrays(source, face, start_corner));
+}
+
+std::string patch_signature(const PatchArrays& arrays) {
+    std::string bytes;
+    const auto append = [&bytes](const void* data, std::size_t size) {
+        bytes.append(static_cast<const char*>(data), size);
+    };
+    const std::size_t counts[5] = {arrays.source.size(), arrays.offsets.size(), arrays.tags.creases.size(),
+                                   arrays.tags.corners.size(), arrays.tags.holes.size()};
+    append(counts, sizeof counts);
+    append(arrays.offsets.data(), arrays.offsets.size() * sizeof(Index));
+    append(arrays.corners.data(), arrays.corners.size() * sizeof(Index));
+    for (const CreaseTag& t : arrays.tags.creases) {
+        append(&t.v0, sizeof t.v0);
+        append(&t.v1, sizeof t.v1);
+        append(&t.sharpness, sizeof t.sharpness);
+    }
+    for (const CornerTag& t : arrays.tags.corners) {
+        append(&t.vertex, sizeof t.vertex);
+        append(&t.sharpness, sizeof t.sharpness);
+    }
+    for (const HoleTag& t : arrays.tags.holes) {
+        append(&t.face, sizeof t.face);
+    }
+    return bytes;
 }
 
 std::string topology_signature(const Topology& topology) {

@@ -32,10 +32,29 @@ struct PatchMesh {
     std::vector<Index> source;  ///< #local: the vertex of the source topology each local vertex copies
 };
 
+/// The canonical one-ring copy as plain arrays, before any Topology is built: cheap
+/// to compare, so that equal configurations share their refinement (limit_basis.cpp).
+struct PatchArrays {
+    std::vector<Index> offsets;  ///< #faces + 1
+    std::vector<Index> corners;  ///< local vertex of each face corner
+    SharpnessTags tags;          ///< creases, corners and holes in local numbering
+    std::vector<Index> source;   ///< #local: the vertex of the source topology each local vertex copies
+};
+
 /// @brief The canonical one-ring copy of @p face of @p source, starting at corner @p start_corner.
 ///   Rim vertices where the one-ring touches itself only at a vertex are split into one
 ///   local vertex per fan, so the copy is always a manifold.
+[[nodiscard]] PatchArrays extract_patch_arrays(const Topology& source, Index face, int start_corner);
+
+/// The Topology of a copy (built without re-validating: a one-ring copy is a manifold by construction).
+[[nodiscard]] PatchMesh make_patch_mesh(PatchArrays arrays);
+
+/// extract_patch_arrays followed by make_patch_mesh.
 [[nodiscard]] PatchMesh extract_patch_mesh(const Topology& source, Index face, int start_corner);
+
+/// Bytes that identify a copy with its sharpness: equal exactly when two copies have the
+/// same canonical structure (faces, corners, tags in canonical order).
+[[nodiscard]] std::string patch_signature(const PatchArrays& arrays);
 
 /// Bytes that identify a topology with its sharpness (equal for canonical copies of the same structure).
 [[nodiscard]] std::string topology_signature(const Topology& topology);
