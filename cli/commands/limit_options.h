@@ -23,8 +23,8 @@ struct LimitSchemeOptions {
 };
 
 inline const std::map<std::string, SchemeKind>& limit_schemes() {
-    static const std::map<std::string, SchemeKind> names{{"catmull-clark", SchemeKind::CatmullClark},
-                                                         {"loop", SchemeKind::Loop}};
+    static const std::map<std::string, SchemeKind> names{
+        {"catmull-clark", SchemeKind::CatmullClark}, {"loop", SchemeKind::Loop}, {"doo-sabin", SchemeKind::DooSabin}};
     return names;
 }
 inline const std::map<std::string, BoundaryInterpolation>& boundary_names() {

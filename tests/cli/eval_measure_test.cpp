@@ -175,8 +175,8 @@ TEST(CliEval, BadPointsFilesNameTheFileAndLine) {
 TEST(CliEval, UsageErrorsExitTwo) {
     const std::string cube = test::find_bundled("cube").path.string();
     EXPECT_EQ(limsurf({"eval", cube, "--scheme", "catmull-clark"}).exit_code, 2);  // neither --points nor --grid
-    EXPECT_EQ(limsurf({"eval", cube, "--scheme", "doo-sabin", "--grid", "2"}).exit_code, 2);
-    EXPECT_EQ(limsurf({"eval", cube, "--grid", "2"}).exit_code, 2);  // --scheme is required
+    EXPECT_EQ(limsurf({"eval", cube, "--scheme", "bilinear", "--grid", "2"}).exit_code, 2);  // no limit evaluation
+    EXPECT_EQ(limsurf({"eval", cube, "--grid", "2"}).exit_code, 2);                          // --scheme is required
     EXPECT_EQ(limsurf({"eval", cube, "--scheme", "catmull-clark", "--grid", "2", "--points", "x"}).exit_code, 2);
     EXPECT_EQ(limsurf({"measure", cube, "--scheme", "catmull-clark", "--degree", "0"}).exit_code, 2);
 }
@@ -185,6 +185,16 @@ TEST(CliEval, LoopOnQuadsIsAnInputError) {
     const CliRun run = limsurf({"eval", test::find_bundled("cube").path.string(), "--scheme", "loop", "--grid", "1"});
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_EQ(run.err.rfind("error: ", 0), 0U) << run.err;
+}
+
+// The Doo–Sabin cube encloses exactly 6241/9920 (volume-trilinear-forms); measure with a
+// fine rule reproduces it.
+TEST(CliMeasure, DooSabinCubeEnclosesThePublishedVolume) {
+    const CliRun run = limsurf({"measure", test::find_bundled("cube").path.string(), "--scheme", "doo-sabin",
+                                "--degree", "14", "--tiles", "12", "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_NEAR(json["volume"].get<double>(), 6241.0 / 9920.0, 1e-10);
 }
 
 TEST(CliMeasure, CubeJsonHasTheKeysAndTheKnownValues) {

@@ -10,6 +10,8 @@
 //     with (0,0)=v_k, (1,0)=point of edge (v_k, v_k+1), (1,1)=face point,
 //     (0,1)=point of edge (v_k-1, v_k) — the child quad k of the first refinement.
 //   Loop: each triangle is one ptex face, (0,0)=v0, (1,0)=v1, (0,1)=v2, u,v >= 0, u+v <= 1.
+//   Doo–Sabin: the ptex faces of Catmull–Clark; region (face, corner k) is the patch of
+//     the first-level Doo–Sabin vertex of that corner (docs/doo_sabin_limit.md).
 //
 // Exactness (iga-with-catmull-clark §4, c2g0 §3.1): the surface over a face
 // is subdivided locally until the point lies in a regular tile (bicubic
@@ -80,14 +82,15 @@ enum class LimitEvaluation {
     Subdivision
 };
 
-/// @brief The exact limit basis of a control topology under Catmull–Clark or Loop.
+/// @brief The exact limit basis of a control topology under Catmull–Clark, Loop or Doo–Sabin.
 ///
 /// Construction is cheap; the local patches around irregular faces are built
 /// on first use and cached. evaluate() is thread-safe.
 class LimitBasis {
   public:
     /// @param topology control topology (copied); sharpness tags are honoured
-    /// @param scheme   CatmullClark or Loop (DooSabin: see doo_sabin_limit.h)
+    /// @param scheme   CatmullClark, Loop or DooSabin (Doo–Sabin: closed interior faces only, see
+    ///   docs/doo_sabin_limit.md)
     /// @param options  boundary rule, creasing method, triangle rule
     /// @param weights  tuned Catmull–Clark weights, per valence or per vertex (weights that change a
     ///   regular interior valence-4 vertex are refused: they change the regular patches)

@@ -22,6 +22,7 @@
 
 #include <Eigen/LU>
 
+#include "doo_sabin_limit.h"
 #include "limsurf/core/error.h"
 #include "limsurf/limit/patch_basis.h"
 #include "limsurf/refine/refine.h"
@@ -249,6 +250,7 @@ struct LimitBasis::Impl {
     bool per_vertex_weights = false;
     std::vector<Index> first_ptex;  // #F + 1
     std::vector<PtexFace> ptex;
+    std::unique_ptr<detail::DooSabinLimit> doo_sabin;  // Doo–Sabin: its own evaluator (dual patches)
 
     // Guards the owners and caches below; built items are published through atomics and
     // read without it. Recursive: building a root descends into a child.
@@ -628,6 +630,11 @@ void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool
 }
 
 void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) const {
+    if (doo_sabin) {
+        out.at_extraordinary_vertex = false;
+        doo_sabin->evaluate(point.face, point.u, point.v, out.vertices, out.w);
+        return;
+    }
     const Root& r = root(point.face);
     LIMSURF_CHECK(r.has_limit, InputError, "ptex face ", point.face, " (control face ",
                   ptex[at(point.face)].control_face, ") has no limit surface (a hole, or a boundary face under ",
@@ -656,8 +663,9 @@ Eigen::Matrix<double, 6, 3> LimitWeights::apply(const Points& X) const {
 LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options,
                        const TunedWeights& weights, LimitEvaluation evaluation)
     : impl_(std::make_unique<Impl>()) {
-    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop, UnsupportedError,
-                  "limit evaluation: scheme ", to_string(scheme), " is not supported here (catmull-clark, loop)");
+    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
+                  UnsupportedError, "limit evaluation: scheme ", to_string(scheme),
+                  " has no limit evaluation (catmull-clark, loop, doo-sabin)");
     const VertexRuleWeights plain = TunedWeights().at(invalid_index, 4);
     const VertexRuleWeights four = weights.at(invalid_index, 4);
     LIMSURF_CHECK(four.alpha == plain.alpha && four.beta == plain.beta && four.gamma == plain.gamma, UnsupportedError,
@@ -676,7 +684,21 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
                       UnsupportedError, "limit evaluation: tuned weights on the valence-4 vertex ", v,
                       " change the regular patches");
     }
-    m.quad = scheme == SchemeKind::CatmullClark;
+    m.quad = scheme != SchemeKind::Loop;
+    if (scheme == SchemeKind::DooSabin) {
+        LIMSURF_CHECK(weights.is_catmull_clark(), UnsupportedError, "tuned weights apply to Catmull–Clark only");
+        m.doo_sabin = std::make_unique<detail::DooSabinLimit>(topology, options, evaluation);
+        m.first_ptex.push_back(0);
+        for (Index f = 0; f < topology.num_faces(); ++f) {
+            const Index first = m.doo_sabin->first_ptex_face(f);
+            const Index count = topology.face_degree(f) == 4 ? 1 : topology.face_degree(f);
+            for (Index k = 0; k < count; ++k) {
+                m.ptex.push_back(m.doo_sabin->ptex_face(first + k));
+            }
+            m.first_ptex.push_back(static_cast<Index>(m.ptex.size()));
+        }
+        return;
+    }
     m.use_tables = evaluation == LimitEvaluation::Stationary;
     m.first_ptex.reserve(at(topology.num_faces() + 1));
     m.first_ptex.push_back(0);
@@ -725,6 +747,9 @@ Index LimitBasis::first_ptex_face(Index control_face) const {
 }
 bool LimitBasis::has_limit_surface(Index p) const {
     (void)ptex_face(p);
+    if (impl_->doo_sabin) {
+        return impl_->doo_sabin->has_limit_surface(p);
+    }
     return impl_->root(p).has_limit;
 }
 

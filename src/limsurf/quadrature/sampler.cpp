@@ -224,6 +224,15 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
         }
         const std::vector<Vec2> irregular =
             options.subdivide_near_extraordinary > 0 ? irregular_corners(basis, p) : std::vector<Vec2>{};
+        if (basis.scheme() == SchemeKind::DooSabin && basis.ptex_face(p).corner < 0) {
+            // A Doo–Sabin quad carries four polynomial patches, one per quadrant
+            // (docs/doo_sabin_limit.md): integrate each on its own.
+            for (Tile quarter : split(root)) {
+                quarter.level = 0;
+                place_tiles(rule, quarter, p, irregular, options.subdivide_near_extraordinary, pending);
+            }
+            continue;
+        }
         place_tiles(rule, root, p, irregular, options.subdivide_near_extraordinary, pending);
     }
 
