@@ -105,23 +105,25 @@ int child_containing(bool quad, const Eigen::Vector2d& p) {
 }
 
 /// Basis rows in patch coordinates (s, t) turned into ptex derivatives, for
-/// ptex = offset + J · (s, t).
-template <int N>
-Eigen::Matrix<double, 6, N> to_ptex(const Eigen::Matrix<double, 6, N>& b, const Eigen::Matrix2d& J) {
+/// ptex = offset + J · (s, t); @p r may be any 6 × N matrix (it is resized).
+template <int N, class Out>
+void to_ptex(const Eigen::Matrix<double, 6, N>& b, const Eigen::Matrix2d& J, Out& r) {
     const Eigen::Matrix2d Ji = J.inverse();
-    Eigen::Matrix<double, 6, N> r;
-    r.row(0) = b.row(0);
-    r.row(1) = Ji(0, 0) * b.row(1) + Ji(1, 0) * b.row(2);
-    r.row(2) = Ji(0, 1) * b.row(1) + Ji(1, 1) * b.row(2);
+    r.resize(6, N);
     // H_uv(a, c) = sum_{i,j} Ji(i, a) H_st(i, j) Ji(j, c), with H_st = [[ss, st], [st, tt]].
-    const auto hessian_row = [&](int a, int c) {
-        return (Ji(0, a) * Ji(0, c)) * b.row(3) + (Ji(0, a) * Ji(1, c) + Ji(1, a) * Ji(0, c)) * b.row(4) +
-               (Ji(1, a) * Ji(1, c)) * b.row(5);
-    };
-    r.row(3) = hessian_row(0, 0);
-    r.row(4) = hessian_row(0, 1);
-    r.row(5) = hessian_row(1, 1);
-    return r;
+    const double h[3][3] = {{Ji(0, 0) * Ji(0, 0), 2.0 * Ji(0, 0) * Ji(1, 0), Ji(1, 0) * Ji(1, 0)},
+                            {Ji(0, 0) * Ji(0, 1), Ji(0, 0) * Ji(1, 1) + Ji(1, 0) * Ji(0, 1), Ji(1, 0) * Ji(1, 1)},
+                            {Ji(0, 1) * Ji(0, 1), 2.0 * Ji(0, 1) * Ji(1, 1), Ji(1, 1) * Ji(1, 1)}};
+    for (int k = 0; k < N; ++k) {
+        const double ds = b(1, k);
+        const double dt = b(2, k);
+        r(0, k) = b(0, k);
+        r(1, k) = Ji(0, 0) * ds + Ji(1, 0) * dt;
+        r(2, k) = Ji(0, 1) * ds + Ji(1, 1) * dt;
+        for (int i = 0; i < 3; ++i) {
+            r(3 + i, k) = h[i][0] * b(3, k) + h[i][1] * b(4, k) + h[i][2] * b(5, k);
+        }
+    }
 }
 
 /// The basis of a regular patch at (s, t), as ptex derivative rows, times @p M
@@ -130,12 +132,16 @@ template <class Matrix>
 void patch_rows_times(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, const Matrix& M, Rows& out) {
     if (quad) {
         Eigen::Matrix<double, 6, 16> b;
+        Eigen::Matrix<double, 6, 16> r;
         cubic_bspline_patch_weights(st.x(), st.y(), b);
-        out.noalias() = to_ptex<16>(b, J).lazyProduct(M);
+        to_ptex<16>(b, J, r);
+        out.noalias() = r.lazyProduct(M);
     } else {
         Eigen::Matrix<double, 6, 12> b;
+        Eigen::Matrix<double, 6, 12> r;
         quartic_box_spline_patch_weights(st.x(), st.y(), b);
-        out.noalias() = to_ptex<12>(b, J).lazyProduct(M);
+        to_ptex<12>(b, J, r);
+        out.noalias() = r.lazyProduct(M);
     }
 }
 
@@ -144,11 +150,11 @@ void patch_rows(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, 
     if (quad) {
         Eigen::Matrix<double, 6, 16> b;
         cubic_bspline_patch_weights(st.x(), st.y(), b);
-        out = to_ptex<16>(b, J);
+        to_ptex<16>(b, J, out);
     } else {
         Eigen::Matrix<double, 6, 12> b;
         quartic_box_spline_patch_weights(st.x(), st.y(), b);
-        out = to_ptex<12>(b, J);
+        to_ptex<12>(b, J, out);
     }
 }
 
@@ -251,6 +257,16 @@ struct LimitBasis::Impl {
     std::vector<Index> first_ptex;  // #F + 1
     std::vector<PtexFace> ptex;
     std::unique_ptr<detail::DooSabinLimit> doo_sabin;  // Doo–Sabin: its own evaluator (dual patches)
+    /// Regular ptex faces whose patch points are plain control vertices (most faces of a
+    /// typical mesh), found in the constructor and stored flat: evaluating them is one
+    /// look-up, no tree. fast_index[p] is the entry of ptex face p, or -1.
+    struct FastPatch {
+        std::array<Index, 16> points{};
+        int rotation = 0;
+    };
+    std::vector<Index> fast_index;
+    std::vector<FastPatch> fast;
+    void find_fast_patches();
 
     // Guards the owners and caches below; built items are published through atomics and
     // read without it. Recursive: building a root descends into a child.
@@ -629,7 +645,39 @@ void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool
     }
 }
 
+void LimitBasis::Impl::find_fast_patches() {
+    fast_index.assign(ptex.size(), -1);
+    detail::RegularPatch patch;
+    for (std::size_t p = 0; p < ptex.size(); ++p) {
+        const Index f = ptex[p].control_face;
+        if (ptex[p].corner >= 0 || topology.is_hole(f) || !regular_patch(topology, f, patch)) {
+            continue;
+        }
+        FastPatch entry;
+        entry.rotation = patch.rotation;
+        bool plain = true;
+        for (int i = 0; i < patch.size && plain; ++i) {
+            plain = patch.points[at(i)].size == 1 && patch.points[at(i)].weight[0] == 1.0;
+            entry.points[at(i)] = patch.points[at(i)].vertex[0];
+        }
+        if (plain) {  // all corners smooth and interior: never a boundary face
+            fast_index[p] = static_cast<Index>(fast.size());
+            fast.push_back(entry);
+        }
+    }
+}
+
 void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) const {
+    if (!fast_index.empty() && fast_index[at(point.face)] >= 0) {
+        // A regular patch of plain control vertices: the basis is the weights.
+        const FastPatch& entry = fast[at(fast_index[at(point.face)])];
+        const int size = quad ? 16 : 12;
+        out.vertices.assign(entry.points.begin(), entry.points.begin() + size);
+        out.at_extraordinary_vertex = false;
+        const Affine frame = rotation(quad, entry.rotation);
+        patch_rows(quad, frame.to_child({point.u, point.v}), frame.axes, out.w);
+        return;
+    }
     if (doo_sabin) {
         out.at_extraordinary_vertex = false;
         doo_sabin->evaluate(point.face, point.u, point.v, out.vertices, out.w);
@@ -717,6 +765,7 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
         m.first_ptex.push_back(static_cast<Index>(m.ptex.size()));
     }
     m.roots = std::vector<std::atomic<Root*>>(m.ptex.size());
+    m.find_fast_patches();
 }
 
 LimitBasis::~LimitBasis() = default;
