@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
 #include "support/mesh_zoo.h"
 #include "support/paths.h"
 
@@ -21,26 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string quote(const std::string& arg) {
-    std::string quoted = "'";
-    for (const char c : arg) {
-        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    }
-    return quoted + "'";
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
-}
+using test::CliRun;
+using test::slurp;
 
 const fs::path& temp_dir() {
     static const fs::path dir = test::make_temp_dir("cli_eval_measure");
@@ -48,26 +31,7 @@ const fs::path& temp_dir() {
 }
 
 CliRun limsurf(const std::vector<std::string>& args) {
-    const fs::path err_file = temp_dir() / "stderr.txt";
-    std::string command = quote(LIMSURF_CLI_PATH);
-    for (const std::string& arg : args) {
-        command += " " + quote(arg);
-    }
-    command += " 2>" + quote(err_file.string());
-    CliRun run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return run;
-    }
-    char buffer[4096];
-    std::size_t n = 0;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-        run.out.append(buffer, n);
-    }
-    const int status = pclose(pipe);
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    run.err = slurp(err_file);
-    return run;
+    return test::run_limsurf(args, temp_dir());
 }
 
 std::string write_points(const std::string& name, const std::string& text) {

@@ -13,6 +13,7 @@
 
 #include "face_split/face_split_helpers.h"
 #include "limsurf/refine/refine.h"
+#include "support/opensubdiv_refiner.h"
 
 namespace limsurf::test {
 namespace {
@@ -20,70 +21,8 @@ namespace {
 namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
 
-struct OsdPoint {
-    double p[3];
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0; }
-    void AddWithWeight(const OsdPoint& src, double w) {
-        p[0] += w * src.p[0];
-        p[1] += w * src.p[1];
-        p[2] += w * src.p[2];
-    }
-};
-
 std::unique_ptr<Far::TopologyRefiner> make_refiner(const Topology& t, SchemeKind kind, const SchemeOptions& o) {
-    Sdc::Options options;
-    options.SetVtxBoundaryInterpolation(o.boundary == BoundaryInterpolation::None ? Sdc::Options::VTX_BOUNDARY_NONE
-                                        : o.boundary == BoundaryInterpolation::EdgeOnly
-                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                            : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    options.SetCreasingMethod(o.creasing == CreasingMethod::Uniform ? Sdc::Options::CREASE_UNIFORM
-                                                                    : Sdc::Options::CREASE_CHAIKIN);
-    options.SetTriangleSubdivision(o.triangles == TriangleSubdivision::Smooth ? Sdc::Options::TRI_SUB_SMOOTH
-                                                                              : Sdc::Options::TRI_SUB_CATMARK);
-    static thread_local std::vector<int> degrees;
-    static thread_local std::vector<Far::Index> crease_pairs, corners, holes;
-    static thread_local std::vector<float> crease_weights, corner_weights;
-    degrees.clear();
-    crease_pairs.clear();
-    corners.clear();
-    holes.clear();
-    crease_weights.clear();
-    corner_weights.clear();
-    for (Index f = 0; f < t.num_faces(); ++f) {
-        degrees.push_back(t.face_degree(f));
-        if (t.is_hole(f)) {
-            holes.push_back(f);
-        }
-    }
-    for (Index e = 0; e < t.num_edges(); ++e) {
-        if (t.edge_sharpness(e) > 0.0) {
-            crease_pairs.push_back(t.edge_vertices(e)[0]);
-            crease_pairs.push_back(t.edge_vertices(e)[1]);
-            crease_weights.push_back(static_cast<float>(t.edge_sharpness(e)));
-        }
-    }
-    for (Index v = 0; v < t.num_vertices(); ++v) {
-        if (t.vertex_sharpness(v) > 0.0) {
-            corners.push_back(v);
-            corner_weights.push_back(static_cast<float>(t.vertex_sharpness(v)));
-        }
-    }
-    Far::TopologyDescriptor desc;
-    desc.numVertices = t.num_vertices();
-    desc.numFaces = t.num_faces();
-    desc.numVertsPerFace = degrees.data();
-    desc.vertIndicesPerFace = t.all_face_vertices().data();
-    desc.numCreases = static_cast<int>(crease_weights.size());
-    desc.creaseVertexIndexPairs = crease_pairs.data();
-    desc.creaseWeights = crease_weights.data();
-    desc.numCorners = static_cast<int>(corner_weights.size());
-    desc.cornerVertexIndices = corners.data();
-    desc.cornerWeights = corner_weights.data();
-    desc.numHoles = static_cast<int>(holes.size());
-    desc.holeIndices = holes.data();
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    const auto type = kind == SchemeKind::Loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK;
-    return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(type, options)));
+    return make_opensubdiv_refiner(t, kind, o);
 }
 
 void compare_with_opensubdiv(const Topology& t0, const Points& p0, SchemeKind kind, const SchemeOptions& options,

@@ -9,7 +9,7 @@ target_link_libraries(limsurf_limit_reference PUBLIC limsurf_test_support PRIVAT
 if(TARGET limsurf::peer_opensubdiv)
     add_library(limsurf_osd_limit STATIC ${CMAKE_CURRENT_LIST_DIR}/support/osd_limit.cpp)
     target_include_directories(limsurf_osd_limit PUBLIC ${CMAKE_CURRENT_LIST_DIR}/support)
-    target_link_libraries(limsurf_osd_limit PUBLIC limsurf::limsurf limsurf::peer_opensubdiv PRIVATE limsurf::warnings)
+    target_link_libraries(limsurf_osd_limit PUBLIC limsurf_test_support limsurf::peer_opensubdiv PRIVATE limsurf::warnings)
     limsurf_add_test(osd_harness_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/osd_harness_test.cpp LABELS peer
                      LIBRARIES limsurf_osd_limit limsurf_limit_reference)
 endif()

@@ -38,6 +38,7 @@
 #include "limsurf/limit/patch_basis.h"
 #include "limsurf/refine/refine.h"
 #include "local_patch.h"
+#include "parameter_maps.h"
 
 namespace limsurf::detail {
 namespace {
@@ -55,47 +56,17 @@ std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
 }
 
-/// parent = offset + axes · child.
-struct Affine {
-    Eigen::Vector2d offset = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d axes = Eigen::Matrix2d::Identity();
-
-    [[nodiscard]] Eigen::Vector2d to_child(const Eigen::Vector2d& parent) const {
-        return axes.inverse() * (parent - offset);
-    }
-    [[nodiscard]] Affine then(const Affine& inner) const {  // this ∘ inner
-        return {offset + axes * inner.offset, axes * inner.axes};
-    }
-};
-
-Eigen::Vector2d square_corner(int k) {
-    static const Eigen::Vector2d square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    return square[k % 4];
-}
-
-/// The square seen from corner k: (0,0) at corner k, (1,0) at corner k+1, (0,1) at corner k-1.
 Affine rotation(int k) {
-    const Eigen::Vector2d p = square_corner(k);
-    Affine a;
-    a.offset = p;
-    a.axes.col(0) = square_corner(k + 1) - p;
-    a.axes.col(1) = square_corner(k + 3) - p;
-    return a;
+    return detail::rotation(true, k);
 }
-
-/// Quadrant q: the half-size square at corner q, rotated so that its (0,0) is corner q.
 Affine child_map(int q) {
-    Affine a = rotation(q);
-    a.axes *= 0.5;
-    return a;
+    return detail::child_map(true, q);
 }
-
 bool in_corner_child(const Eigen::Vector2d& p) {
-    return p.x() < 0.5 && p.y() < 0.5;
+    return detail::in_corner_child(true, p);
 }
-
 int child_containing(const Eigen::Vector2d& p) {
-    return p.x() < 0.5 ? (p.y() < 0.5 ? 0 : 3) : (p.y() < 0.5 ? 1 : 2);
+    return detail::child_containing(true, p);
 }
 
 /// Biquadratic basis rows at patch coordinates @p st as ptex derivatives, for
@@ -103,31 +74,9 @@ int child_containing(const Eigen::Vector2d& p) {
 Rows patch_rows(const Eigen::Vector2d& st, const Eigen::Matrix2d& J) {
     Eigen::Matrix<double, 6, 9> b;
     quadratic_bspline_patch_weights(st.x(), st.y(), b);
-    const Eigen::Matrix2d Ji = J.inverse();
-    Rows r(6, 9);
-    r.row(0) = b.row(0);
-    r.row(1) = Ji(0, 0) * b.row(1) + Ji(1, 0) * b.row(2);
-    r.row(2) = Ji(0, 1) * b.row(1) + Ji(1, 1) * b.row(2);
-    // H_uv(a, c) = sum_{i,j} Ji(i, a) H_st(i, j) Ji(j, c), with H_st = [[ss, st], [st, tt]].
-    const auto hessian_row = [&](int a, int c) {
-        return (Ji(0, a) * Ji(0, c)) * b.row(3) + (Ji(0, a) * Ji(1, c) + Ji(1, a) * Ji(0, c)) * b.row(4) +
-               (Ji(1, a) * Ji(1, c)) * b.row(5);
-    };
-    r.row(3) = hessian_row(0, 0);
-    r.row(4) = hessian_row(0, 1);
-    r.row(5) = hessian_row(1, 1);
+    Rows r;
+    to_ptex<9>(b, J, r);
     return r;
-}
-
-/// Rows @p rows of the sparse matrix S as a dense matrix.
-Dense dense_rows(const SparseMatrix& S, const std::vector<Index>& rows) {
-    Dense M = Dense::Zero(static_cast<Index>(rows.size()), S.cols());
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-        for (SparseMatrix::InnerIterator it(S, rows[r]); it; ++it) {
-            M(static_cast<Index>(r), it.col()) = it.value();
-        }
-    }
-    return M;
 }
 
 /// The faces around one interior vertex x, copied canonically: local vertex 0 is x,
@@ -142,7 +91,7 @@ struct Disc {
 
 Disc make_disc(const Topology& t, Index face, Index corner) {
     const Index x = t.face_vertices(face)[at(corner)];
-    const auto valence = static_cast<Index>(t.vertex_faces(x).size());
+    [[maybe_unused]] const auto valence = static_cast<Index>(t.vertex_faces(x).size());
     // Counter-clockwise about x: the next face lies across the edge (corner - 1, corner).
     std::vector<std::array<Index, 2>> ring;
     Index g = face;

@@ -1,0 +1,85 @@
+// OpenSubdiv Far as a test peer: a TopologyRefiner for a limsurf Topology with the
+// same options and tags (boundary rule, creasing, triangle rule, creases, corners,
+// holes), and the point type Far's primvar interpolation wants. Header-only: only
+// targets that link limsurf::peer_opensubdiv include it.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "limsurf/mesh/topology.h"
+#include "limsurf/scheme/scheme.h"
+
+namespace limsurf::test {
+
+/// A 3D point for Far::PrimvarRefiner and stencil tables.
+struct OsdPoint {
+    double p[3];
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0; }
+    void AddWithWeight(const OsdPoint& src, double w) {
+        p[0] += w * src.p[0];
+        p[1] += w * src.p[1];
+        p[2] += w * src.p[2];
+    }
+};
+
+/// @brief Far's refiner for @p t under Catmull–Clark (any other kind) or Loop, with @p o
+///   mapped onto Sdc::Options; nullptr when Far refuses the topology.
+inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner(const Topology& t, SchemeKind kind,
+                                                                                 const SchemeOptions& o) {
+    namespace Far = OpenSubdiv::Far;
+    namespace Sdc = OpenSubdiv::Sdc;
+    Sdc::Options options;
+    options.SetVtxBoundaryInterpolation(o.boundary == BoundaryInterpolation::None ? Sdc::Options::VTX_BOUNDARY_NONE
+                                        : o.boundary == BoundaryInterpolation::EdgeOnly
+                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                            : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    options.SetCreasingMethod(o.creasing == CreasingMethod::Uniform ? Sdc::Options::CREASE_UNIFORM
+                                                                    : Sdc::Options::CREASE_CHAIKIN);
+    options.SetTriangleSubdivision(o.triangles == TriangleSubdivision::Smooth ? Sdc::Options::TRI_SUB_SMOOTH
+                                                                              : Sdc::Options::TRI_SUB_CATMARK);
+    // The factory copies everything out of the descriptor during Create().
+    std::vector<int> degrees;
+    std::vector<Far::Index> crease_pairs, corners, holes;
+    std::vector<float> crease_weights, corner_weights;
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        degrees.push_back(t.face_degree(f));
+        if (t.is_hole(f)) {
+            holes.push_back(f);
+        }
+    }
+    for (Index e = 0; e < t.num_edges(); ++e) {
+        if (t.edge_sharpness(e) > 0.0) {
+            crease_pairs.push_back(t.edge_vertices(e)[0]);
+            crease_pairs.push_back(t.edge_vertices(e)[1]);
+            crease_weights.push_back(static_cast<float>(t.edge_sharpness(e)));
+        }
+    }
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        if (t.vertex_sharpness(v) > 0.0) {
+            corners.push_back(v);
+            corner_weights.push_back(static_cast<float>(t.vertex_sharpness(v)));
+        }
+    }
+    Far::TopologyDescriptor desc;
+    desc.numVertices = t.num_vertices();
+    desc.numFaces = t.num_faces();
+    desc.numVertsPerFace = degrees.data();
+    desc.vertIndicesPerFace = t.all_face_vertices().data();
+    desc.numCreases = static_cast<int>(crease_weights.size());
+    desc.creaseVertexIndexPairs = crease_pairs.data();
+    desc.creaseWeights = crease_weights.data();
+    desc.numCorners = static_cast<int>(corner_weights.size());
+    desc.cornerVertexIndices = corners.data();
+    desc.cornerWeights = corner_weights.data();
+    desc.numHoles = static_cast<int>(holes.size());
+    desc.holeIndices = holes.data();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    const auto type = kind == SchemeKind::Loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK;
+    return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(type, options)));
+}
+
+}  // namespace limsurf::test
