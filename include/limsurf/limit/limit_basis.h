@@ -131,10 +131,12 @@ class LimitBasis {
     /// Vertices without a limit surface around them (holes, None boundaries) get their own position.
     [[nodiscard]] SparseMatrix vertex_limit_matrix() const;
     /// @brief Limit position (row 0) and two tangents (rows 1, 2) at control vertex v, as
-    ///   weights over control vertices; the tangents span the tangent plane and
-    ///   tangent(1) × tangent(2) points along the outward normal (they are derivatives of
-    ///   the ptex parameterisation of an incident face where it is regular at v, and
-    ///   eigen-tangents scaled to unit subdominant eigenvalue otherwise).
+    ///   weights over control vertices: the ptex derivatives ∂u, ∂v of an incident face at
+    ///   v's corner. They span the tangent plane and ∂u × ∂v points along the outward
+    ///   normal. At an extraordinary, crease or corner vertex they are taken 2^-61 away
+    ///   (at_extraordinary_vertex is set): their directions give the limit tangent plane,
+    ///   their lengths scale like (2λ)^61 with λ the subdominant eigenvalue (tiny or huge).
+    ///   Doo–Sabin: the limit point of v's first-level vertex face.
     [[nodiscard]] LimitWeights vertex_limit(Index v) const;
 
   private:
