@@ -211,6 +211,31 @@ TEST_P(LimitIdentity, VertexLimitAgreesFromEveryFace) {
     }
 }
 
+// Asking for fewer derivatives gives the same leading rows and zeros below.
+TEST_P(LimitIdentity, LowerOrdersAreTheLeadingRows) {
+    const Loaded m = load(GetParam().mesh);
+    const LimitBasis basis(m.topology, GetParam().scheme, m.options);
+    std::mt19937 rng(23);
+    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+        if (!basis.has_limit_surface(p)) {
+            continue;
+        }
+        for (const auto& uv : sample_domain(basis.domain() == ParameterDomain::Quad, rng, 7)) {
+            const SurfacePoint point{p, uv.x(), uv.y()};
+            const LimitWeights all = basis.evaluate(point, DerivativeOrder::Second);
+            for (const auto& [order, rows] :
+                 {std::pair{DerivativeOrder::Value, 1}, std::pair{DerivativeOrder::First, 3}}) {
+                const LimitWeights some = basis.evaluate(point, order);
+                ASSERT_EQ(some.vertices, all.vertices);
+                EXPECT_LT((some.w.topRows(rows) - all.w.topRows(rows)).cwiseAbs().maxCoeff(),
+                          1e-12 * std::max(1.0, all.w.topRows(rows).cwiseAbs().maxCoeff()))
+                    << "ptex " << p;
+                EXPECT_EQ(some.w.bottomRows(6 - rows).cwiseAbs().maxCoeff(), 0.0);
+            }
+        }
+    }
+}
+
 // The stationary tables against plain local subdivision (LimitEvaluation::Subdivision,
 // which never uses them) at points 2^-k from every corner of every ptex face, k up
 // to 30: the two paths share only the one-ring extraction and the refinement engine.

@@ -55,22 +55,32 @@ std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
 }
 
-/// The basis of a regular patch at (s, t), as ptex derivative rows, times @p M
-/// (fixed-size basis: no allocation per point).
+/// out = the first @p k rows of a · b (value; + ∂u, ∂v; + second derivatives), the
+/// other rows 0: derivatives nobody asked for cost nothing.
+template <class A, class B>
+void multiply_rows(const A& a, const B& b, int k, Rows& out) {
+    out.resize(6, b.cols());
+    out.topRows(k).noalias() = a.topRows(k).lazyProduct(b);
+    out.bottomRows(6 - k).setZero();
+}
+
+/// The basis of a regular patch at (s, t), as ptex derivative rows, times @p M (first
+/// @p k rows; fixed-size basis: no allocation per point).
 template <class Matrix>
-void patch_rows_times(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, const Matrix& M, Rows& out) {
+void patch_rows_times(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, const Matrix& M, int k,
+                      Rows& out) {
     if (quad) {
         Eigen::Matrix<double, 6, 16> b;
         Eigen::Matrix<double, 6, 16> r;
         cubic_bspline_patch_weights(st.x(), st.y(), b);
         to_ptex<16>(b, J, r);
-        out.noalias() = r.lazyProduct(M);
+        multiply_rows(r, M, k, out);
     } else {
         Eigen::Matrix<double, 6, 12> b;
         Eigen::Matrix<double, 6, 12> r;
         quartic_box_spline_patch_weights(st.x(), st.y(), b);
         to_ptex<12>(b, J, r);
-        out.noalias() = r.lazyProduct(M);
+        multiply_rows(r, M, k, out);
     }
 }
 
@@ -219,11 +229,12 @@ struct LimitBasis::Impl {
                                                       const std::vector<Index>& control) const;
     const TemplateChild& template_child(const Template& shape, int q) const;
     Node* child(Node& node, int q) const;
-    void evaluate(const SurfacePoint& point, LimitWeights& out) const;
+    /// @param rows_needed 1, 3 or 6 (value; first; second derivatives)
+    void evaluate(const SurfacePoint& point, int rows_needed, LimitWeights& out) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
-    void descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex, Rows& rows) const;
-    void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, bool& at_vertex,
-                         Rows& rows) const;
+    void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
+    void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
+                         bool& at_vertex, Rows& rows) const;
 };
 
 namespace {
@@ -497,7 +508,7 @@ const Root& LimitBasis::Impl::root(Index p) const {
 }
 
 void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
-                                       bool& at_vertex, Rows& rows) const {
+                                       int rows_needed, bool& at_vertex, Rows& rows) const {
     int n = 0;
     while (n < max_stationary_levels && in_corner_child(quad, p)) {
         p *= 2.0;
@@ -518,13 +529,14 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
     scaled.axes *= std::ldexp(1.0, -n);
     if (cls.subtrees[at(q)] == nullptr) {
         const Affine patch = scaled.then(cls.patch_frames[at(q)]);
-        patch_rows_times(quad, cls.patch_frames[at(q)].to_child(p), patch.axes, cls.tables[at(q)][at(n)], rows);
+        patch_rows_times(quad, cls.patch_frames[at(q)].to_child(p), patch.axes, cls.tables[at(q)][at(n)], rows_needed,
+                         rows);
         if (n > 0) {
             rows.row(0) += cls.limit_row;  // the value basis sums to 1: A^n = 1ℓᵀ + R^n
         }
     } else {
         const Affine map = child_map(quad, q);
-        descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map), at_vertex, rows);
+        descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map), rows_needed, at_vertex, rows);
         if (n > 0) {
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
@@ -542,7 +554,8 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
     }
 }
 
-void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool& at_vertex, Rows& rows) const {
+void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex,
+                               Rows& rows) const {
     while (node->shape != nullptr && node->shape->kind == Template::Kind::Refine) {
         const int q = child_containing(quad, p);
         const Affine map = child_map(quad, q);
@@ -553,13 +566,13 @@ void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, bool
     if (node->shape == nullptr || node->shape->kind == Template::Kind::Regular) {
         const Affine& patch_frame = node->shape == nullptr ? Affine{} : node->shape->patch_frame;
         const Affine patch = frame.then(patch_frame);
-        patch_rows_times(quad, patch_frame.to_child(p), patch.axes, node->GW, rows);
+        patch_rows_times(quad, patch_frame.to_child(p), patch.axes, node->GW, rows_needed, rows);
         return;
     }
     Rows local;
-    stationary_rows(*node->shape->stationary, p, frame, at_vertex, node->W.size() == 0 ? rows : local);
+    stationary_rows(*node->shape->stationary, p, frame, rows_needed, at_vertex, node->W.size() == 0 ? rows : local);
     if (node->W.size() != 0) {
-        rows.noalias() = local.lazyProduct(node->W);
+        multiply_rows(local, node->W, rows_needed, rows);
     }
 }
 
@@ -585,7 +598,7 @@ void LimitBasis::Impl::find_fast_patches() {
     }
 }
 
-void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) const {
+void LimitBasis::Impl::evaluate(const SurfacePoint& point, int rows_needed, LimitWeights& out) const {
     if (!fast_index.empty() && fast_index[at(point.face)] >= 0) {
         // A regular patch of plain control vertices: the basis is the weights.
         const FastPatch& entry = fast[at(fast_index[at(point.face)])];
@@ -613,7 +626,7 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, LimitWeights& out) co
         patch_rows(quad, st, r.frame.axes, out.w);
         return;
     }
-    descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, out.at_extraordinary_vertex, out.w);
+    descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, rows_needed, out.at_extraordinary_vertex, out.w);
 }
 
 // --- public API --------------------------------------------------------------
@@ -739,8 +752,8 @@ void LimitBasis::evaluate(const SurfacePoint& point, LimitWeights& out, Derivati
         p.u -= excess;
         p.v -= excess;
     }
-    impl_->evaluate(p, out);
     const int keep = order == DerivativeOrder::Value ? 1 : order == DerivativeOrder::First ? 3 : 6;
+    impl_->evaluate(p, keep, out);
     out.w.bottomRows(6 - keep).setZero();
 }
 
