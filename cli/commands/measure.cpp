@@ -20,8 +20,8 @@ namespace {
 struct MeasureOptions {
     std::string input;
     LimitSchemeOptions scheme;
-    int degree = 8;
-    int tiles = 6;
+    int degree = 12;
+    int tiles = 10;
     bool json = false;
 };
 
