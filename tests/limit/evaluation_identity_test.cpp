@@ -36,6 +36,11 @@ std::vector<Case> all_cases() {
         if (m.triangles_only) {
             cases.push_back({m.name, SchemeKind::Loop});
         }
+        // Doo–Sabin through the same API: closed meshes without tags (its limit surface
+        // covers interior faces only, and it has no crease rules).
+        if (m.closed && m.name != "cube_creases") {
+            cases.push_back({m.name, SchemeKind::DooSabin});
+        }
     }
     return cases;
 }
@@ -320,7 +325,11 @@ TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Bundled, LimitIdentity, ::testing::ValuesIn(all_cases()), [](const auto& test_info) {
-    return test_info.param.mesh + "_" + (test_info.param.scheme == SchemeKind::Loop ? "loop" : "catmull_clark");
+    const SchemeKind scheme = test_info.param.scheme;
+    return test_info.param.mesh + "_" +
+           (scheme == SchemeKind::Loop       ? "loop"
+            : scheme == SchemeKind::DooSabin ? "doo_sabin"
+                                             : "catmull_clark");
 });
 
 }  // namespace
