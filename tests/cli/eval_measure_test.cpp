@@ -75,7 +75,8 @@ TEST(CliEval, SphereLikeMeshesCurvePositivelyWithOutwardNormals) {
         const CliRun run =
             limsurf({"eval", test::find_bundled(name).path.string(), "--scheme", scheme, "--grid", "2", "--json"});
         ASSERT_EQ(run.exit_code, 0) << run.err;
-        for (const auto& p : nlohmann::json::parse(run.out)["points"]) {
+        const auto json = nlohmann::json::parse(run.out);  // alive for the loop (a temporary would not be)
+        for (const auto& p : json["points"]) {
             EXPECT_GT(p["gaussian_curvature"].get<double>(), 0.0);
             EXPECT_GT(p["mean_curvature"].get<double>(), 0.0);
             double outward = 0.0;
