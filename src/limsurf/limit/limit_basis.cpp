@@ -169,7 +169,6 @@ struct Root {
     std::vector<Index> support;
     Affine frame;  ///< ptex = frame(node coordinates)
     Node* node = nullptr;
-    bool identity = false;  ///< Regular root whose support is its 16 (12) patch points in order
 };
 
 }  // namespace
@@ -324,7 +323,8 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
     if (pf.corner < 0) {
         detail::RegularPatch patch;
         if (regular_patch(topology, f, patch)) {
-            // Fast path: a template-free node read straight off the control mesh.
+            // A template-free node read straight off the control mesh (regular patches with
+            // phantom points; those without are the flat fast patches of find_fast_patches).
             auto node = std::make_unique<Node>();
             for (int i = 0; i < patch.size; ++i) {
                 auto& point = patch.points[at(i)];
@@ -339,10 +339,6 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
                 }
             }
             node->GW = patch_matrix(patch, static_cast<Index>(root->support.size()));
-            root->identity = node->GW.rows() == node->GW.cols() && node->GW.isIdentity(0.0);
-            if (root->identity) {
-                node->GW = Dense();  // the support is the patch points in order
-            }
             root->frame = rotation(quad, patch.rotation);
             nodes.push_back(std::move(node));
             root->node = nodes.back().get();
@@ -620,12 +616,6 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, int rows_needed, Limi
                   "boundary interpolation 'none')");
     out.vertices = r.support;
     out.at_extraordinary_vertex = false;
-    if (r.identity) {
-        // Regular patch whose support is its points in order: the basis is the weights.
-        const Eigen::Vector2d st = r.frame.to_child({point.u, point.v});
-        patch_rows(quad, st, r.frame.axes, out.w);
-        return;
-    }
     descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, rows_needed, out.at_extraordinary_vertex, out.w);
 }
 
