@@ -19,6 +19,24 @@ if(LIMSURF_BUILD_TESTS)
     set_package_properties(tinyobjloader PROPERTIES TYPE REQUIRED PURPOSE "peer OBJ reader in tests (libtinyobjloader-dev)")
 endif()
 
+# GMP (exact rationals and long floats, through Boost.Multiprecision's GMP back end) for the
+# volume-form generator and its tests; the library itself needs neither.
+if(LIMSURF_BUILD_TOOLS OR LIMSURF_BUILD_TESTS)
+    find_package(Boost 1.74 REQUIRED)
+    set_package_properties(Boost PROPERTIES TYPE REQUIRED PURPOSE "Boost.Multiprecision for the volume-form generator (libboost-dev)")
+    find_path(GMP_INCLUDE_DIR gmp.h)
+    find_library(GMP_LIBRARY gmp)
+    if(NOT GMP_INCLUDE_DIR OR NOT GMP_LIBRARY)
+        message(FATAL_ERROR "GMP not found: install libgmp-dev (scripts/setup.sh), or configure with "
+                            "-DLIMSURF_BUILD_TOOLS=OFF -DLIMSURF_BUILD_TESTS=OFF")
+    endif()
+    add_library(limsurf_gmp INTERFACE IMPORTED)
+    target_include_directories(limsurf_gmp SYSTEM INTERFACE ${GMP_INCLUDE_DIR})
+    target_link_libraries(limsurf_gmp INTERFACE ${GMP_LIBRARY} Boost::headers)
+    add_library(limsurf::gmp ALIAS limsurf_gmp)
+    add_feature_info(gmp GMP_LIBRARY "GMP for the volume-form generator (libgmp-dev)")
+endif()
+
 # Peers for tests and benchmarks. Debian's OpenSubdivConfig.cmake references
 # static libraries the package does not ship, so locate the headers and the
 # CPU library directly and wrap them in an imported target.

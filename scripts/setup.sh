@@ -12,6 +12,8 @@ packages=(
     libeigen3-dev
     # command-line tool
     libcli11-dev nlohmann-json3-dev
+    # volume-form generator and its tests: exact rationals (GMP through Boost.Multiprecision)
+    libgmp-dev
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
     # peers: tests and benchmarks (OpenSubdiv, CGAL with Boost headers, OpenMesh)

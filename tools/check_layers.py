@@ -18,6 +18,7 @@ LAYERS = {
     "refine": {"core", "mesh", "scheme"},
     "limit": {"core", "mesh", "scheme", "refine"},
     "quadrature": {"core", "mesh", "scheme", "refine", "limit"},
+    "volume": {"core", "mesh", "scheme", "refine"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 

@@ -29,3 +29,4 @@
 #include "limsurf/quadrature/integrals.h"
 #include "limsurf/quadrature/rules.h"
 #include "limsurf/quadrature/sampler.h"
+#include "limsurf/volume/enclosed_volume.h"

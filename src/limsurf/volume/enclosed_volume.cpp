@@ -1,0 +1,498 @@
+// Exact enclosed volume by trilinear forms (enclosed_volume.h).
+//
+// Construction sorts the control mesh's elements (faces; vertices for Doo–Sabin) into
+// facets, used with their control points directly, and the rest, which are refined
+// locally: the faces within a few rings of them are copied into a small Topology,
+// refined once or twice with the scheme's own step, and the descendants' facets take
+// their control points as rows of the composed subdivision matrices ("derived points",
+// combinations of control points). A child vertex is trusted only when its parent
+// element is interior to the copy and everything its stencil reads is trusted; when a
+// facet needs an untrusted point the copy is grown and built again.
+#include "limsurf/volume/enclosed_volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <thread>
+#include <unordered_map>
+
+#include "limsurf/core/error.h"
+#include "limsurf/refine/refine.h"
+#include "limsurf/volume/facet_ring.h"
+#include "limsurf/volume/facet_seed.h"
+#include "limsurf/volume/volume_forms.h"
+
+namespace limsurf {
+namespace {
+
+using detail::FacetRing;
+using detail::VolumeForm;
+
+std::size_t at(Index i) {
+    return static_cast<std::size_t>(i);
+}
+
+Index num_elements(const Topology& t, SchemeKind scheme) {
+    return scheme == SchemeKind::DooSabin ? t.num_vertices() : t.num_faces();
+}
+
+void check_input(const Topology& topology, SchemeKind scheme, const SchemeOptions& options) {
+    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
+                  UnsupportedError, "exact volume: no volume forms for the ", to_string(scheme),
+                  " scheme (catmull-clark, loop and doo-sabin have them)");
+    LIMSURF_CHECK(topology.num_faces() > 0, InputError, "exact volume: the mesh has no faces");
+    for (Index v = 0; v < topology.num_vertices(); ++v) {
+        LIMSURF_CHECK(!topology.is_boundary_vertex(v), InputError, "exact volume: the surface is open (vertex ", v,
+                      " lies on a boundary); only a closed mesh encloses a volume");
+    }
+    LIMSURF_CHECK(!topology.has_sharpness(), UnsupportedError,
+                  "exact volume: the mesh has creases, corners or holes; the volume forms cover the smooth rules only");
+    LIMSURF_CHECK(scheme != SchemeKind::CatmullClark || options.triangles == TriangleSubdivision::CatmullClark,
+                  UnsupportedError, "exact volume: the smooth-triangle Catmull–Clark rule has no volume forms");
+    if (scheme == SchemeKind::Loop) {
+        for (Index f = 0; f < topology.num_faces(); ++f) {
+            LIMSURF_CHECK(topology.face_degree(f) == 3, UnsupportedError, "exact volume: Loop needs triangles, face ",
+                          f, " has ", topology.face_degree(f), " corners");
+        }
+    }
+}
+
+/// A copy of the faces around some elements, as its own Topology.
+struct Region {
+    Topology topology;
+    std::vector<Index> global_vertex;  ///< per local vertex
+    std::vector<Index> local_element;  ///< per requested element: its local face (vertex, Doo–Sabin)
+};
+
+/// Number of separate fans of marked faces around v (0: none; 1 with all marked: the full ring).
+int fan_runs(const Topology& t, Index v, const std::vector<char>& in) {
+    const auto faces = t.vertex_faces(v);
+    const std::size_t n = faces.size();
+    int runs = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (in[at(faces[i])] && !in[at(faces[(i + n - 1) % n])]) {
+            ++runs;
+        }
+    }
+    return runs;
+}
+
+Region make_region(const Topology& t, SchemeKind scheme, const std::vector<Index>& elements, int radius) {
+    std::vector<char> face_in(at(t.num_faces()), 0);
+    std::vector<char> seen(at(t.num_vertices()), 0);
+    std::vector<Index> frontier;
+    for (const Index e : elements) {
+        if (scheme == SchemeKind::DooSabin) {
+            frontier.push_back(e);
+        } else {
+            frontier.insert(frontier.end(), t.face_vertices(e).begin(), t.face_vertices(e).end());
+        }
+    }
+    for (const Index v : frontier) {
+        seen[at(v)] = 1;
+    }
+    for (int r = 0; r < radius; ++r) {
+        std::vector<Index> next;
+        for (const Index v : frontier) {
+            for (const Index f : t.vertex_faces(v)) {
+                if (face_in[at(f)]) {
+                    continue;
+                }
+                face_in[at(f)] = 1;
+                for (const Index u : t.face_vertices(f)) {
+                    if (!seen[at(u)]) {
+                        seen[at(u)] = 1;
+                        next.push_back(u);
+                    }
+                }
+            }
+        }
+        frontier = std::move(next);
+    }
+    // A union of fans can pinch at a rim vertex (two fans meeting at one vertex): close such
+    // vertices' rings so that the copy is a manifold.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (Index f = 0; f < t.num_faces(); ++f) {
+            if (!face_in[at(f)]) {
+                continue;
+            }
+            for (const Index v : t.face_vertices(f)) {
+                if (fan_runs(t, v, face_in) > 1) {
+                    for (const Index g : t.vertex_faces(v)) {
+                        changed = changed || !face_in[at(g)];
+                        face_in[at(g)] = 1;
+                    }
+                }
+            }
+        }
+    }
+    Region region;
+    std::vector<Index> local(at(t.num_vertices()), invalid_index);
+    std::vector<Index> local_face(at(t.num_faces()), invalid_index);
+    std::vector<std::vector<Index>> faces;
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        if (!face_in[at(f)]) {
+            continue;
+        }
+        local_face[at(f)] = static_cast<Index>(faces.size());
+        std::vector<Index> corners;
+        for (const Index v : t.face_vertices(f)) {
+            if (local[at(v)] == invalid_index) {
+                local[at(v)] = static_cast<Index>(region.global_vertex.size());
+                region.global_vertex.push_back(v);
+            }
+            corners.push_back(local[at(v)]);
+        }
+        faces.push_back(std::move(corners));
+    }
+    region.topology = Topology::from_polygons(static_cast<Index>(region.global_vertex.size()), faces);
+    for (const Index e : elements) {
+        region.local_element.push_back(scheme == SchemeKind::DooSabin ? local[at(e)] : local_face[at(e)]);
+    }
+    return region;
+}
+
+/// Which child vertices of @p level have the rule and the inputs they have in the whole mesh.
+std::vector<char> trusted_children(const Topology& parent, const Level& level, SchemeKind scheme,
+                                   const std::vector<char>& trusted_parent) {
+    const Index n = level.topology.num_vertices();
+    std::vector<char> out(at(n), 0);
+    for (Index c = 0; c < n; ++c) {
+        bool ok = true;
+        for (SparseMatrix::InnerIterator it(level.S0, c); it && ok; ++it) {
+            ok = trusted_parent[at(static_cast<Index>(it.col()))] != 0;
+        }
+        if (ok && scheme == SchemeKind::DooSabin) {
+            const auto pc = detail::doo_sabin_parent_corner(parent, c);
+            for (const Index v : parent.face_vertices(pc.face)) {
+                ok = ok && !parent.is_boundary_vertex(v);
+            }
+        } else if (ok) {
+            const Index p = level.provenance.vertex_parent[at(c)];
+            switch (level.provenance.vertex_parent_kind[at(c)]) {
+            case ParentKind::Vertex:
+                ok = !parent.is_boundary_vertex(p);
+                break;
+            case ParentKind::Edge:
+                ok = !parent.is_boundary_edge(p);
+                break;
+            case ParentKind::Face:
+                break;
+            }
+        }
+        out[at(c)] = ok ? 1 : 0;
+    }
+    return out;
+}
+
+/// A sparse combination of control points.
+using Combination = std::map<Index, double>;
+
+}  // namespace
+
+struct EnclosedVolume::Impl {
+    SchemeKind scheme = SchemeKind::CatmullClark;
+    Index num_vertices = 0;
+    VolumeOptions options;
+    VolumeStatistics statistics;
+    std::vector<VolumeForm> forms;
+    std::map<int, std::size_t> form_of_type;
+    std::vector<std::uint32_t> facet_form;  ///< per facet: index into forms
+    std::vector<Index> facet_offset{0};     ///< per facet + 1: offsets into points
+    std::vector<Index> points;              ///< < V: control vertex; >= V: derived point - V
+    SparseMatrix derived;                   ///< D × V
+
+    std::uint32_t form_index(int type) {
+        const auto it = form_of_type.find(type);
+        if (it != form_of_type.end()) {
+            return static_cast<std::uint32_t>(it->second);
+        }
+        LIMSURF_CHECK(detail::is_shipped(scheme, type) || type <= options.max_generated_type, UnsupportedError,
+                      "exact volume: facet type ", type, " (a valence or face degree) is above the limit ",
+                      options.max_generated_type, " for generating its volume form");
+        if (!detail::is_shipped(scheme, type)) {
+            statistics.generated_types.push_back(type);
+        }
+        forms.push_back(detail::load_volume_form(scheme, type));
+        form_of_type.emplace(type, forms.size() - 1);
+        statistics.max_type = std::max(statistics.max_type, type);
+        return static_cast<std::uint32_t>(forms.size() - 1);
+    }
+
+    void add_facet(int type, const std::vector<Index>& facet_points) {
+        facet_form.push_back(form_index(type));
+        points.insert(points.end(), facet_points.begin(), facet_points.end());
+        facet_offset.push_back(static_cast<Index>(points.size()));
+    }
+
+    /// Refines the region around @p elements; false when the region was too small.
+    bool subdivide(const Topology& t, const std::vector<Index>& elements, int radius,
+                   std::vector<Eigen::Triplet<double>>& triplets, Index& num_derived);
+
+    double evaluate(const Points& X, Points* gradient) const;
+};
+
+bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>& elements, int radius,
+                                     std::vector<Eigen::Triplet<double>>& triplets, Index& num_derived) {
+    const Region region = make_region(t, scheme, elements, radius);
+    const Topology& t0 = region.topology;
+    const Level level1 = refine(t0, scheme);
+    const std::vector<char> trusted0(at(t0.num_vertices()), 1);
+    const std::vector<char> trusted1 = trusted_children(t0, level1, scheme, trusted0);
+    Level level2;
+    std::vector<char> trusted2;
+    // Derived points: one per (level, local vertex), as combinations of control points.
+    std::map<std::pair<int, Index>, Index> derived_index;
+    std::vector<Combination> combinations;
+    const auto level1_combination = [&](Index c) {
+        Combination out;
+        for (SparseMatrix::InnerIterator it(level1.S0, c); it; ++it) {
+            out[region.global_vertex[at(static_cast<Index>(it.col()))]] += it.value();
+        }
+        return out;
+    };
+    const auto derive = [&](int level, Index vertex) {
+        const auto key = std::make_pair(level, vertex);
+        const auto it = derived_index.find(key);
+        if (it != derived_index.end()) {
+            return it->second;
+        }
+        Combination c;
+        if (level == 1) {
+            c = level1_combination(vertex);
+        } else {
+            for (SparseMatrix::InnerIterator it2(level2.S0, vertex); it2; ++it2) {
+                for (const auto& [g, w] : level1_combination(static_cast<Index>(it2.col()))) {
+                    c[g] += it2.value() * w;
+                }
+            }
+        }
+        const Index d = num_derived + static_cast<Index>(combinations.size());
+        combinations.push_back(std::move(c));
+        derived_index.emplace(key, d);
+        return d;
+    };
+    struct Pending {
+        int type;
+        int level;
+        std::vector<Index> ring;
+    };
+    std::vector<Pending> pending;
+    for (const Index e : region.local_element) {
+        for (const Index child : detail::child_elements(t0, scheme, e)) {
+            if (auto ring = detail::typed_facet(level1.topology, scheme, child)) {
+                for (const Index p : ring->points) {
+                    if (!trusted1[at(p)]) {
+                        return false;
+                    }
+                }
+                pending.push_back({ring->type, 1, std::move(ring->points)});
+                continue;
+            }
+            if (level2.topology.num_vertices() == 0) {
+                level2 = refine(level1.topology, scheme);
+                trusted2 = trusted_children(level1.topology, level2, scheme, trusted1);
+            }
+            for (const Index grandchild : detail::child_elements(level1.topology, scheme, child)) {
+                auto ring = detail::typed_facet(level2.topology, scheme, grandchild);
+                LIMSURF_CHECK(ring.has_value(), UnsupportedError,
+                              "exact volume: an element is not a facet after two subdivisions (internal error)");
+                for (const Index p : ring->points) {
+                    if (!trusted2[at(p)]) {
+                        return false;
+                    }
+                }
+                pending.push_back({ring->type, 2, std::move(ring->points)});
+            }
+        }
+    }
+    const auto V = num_vertices;
+    for (const Pending& p : pending) {
+        std::vector<Index> facet_points;
+        for (const Index v : p.ring) {
+            facet_points.push_back(V + derive(p.level, v));
+        }
+        add_facet(p.type, facet_points);
+        ++statistics.subdivided_facets;
+    }
+    for (std::size_t d = 0; d < combinations.size(); ++d) {
+        for (const auto& [g, w] : combinations[d]) {
+            triplets.emplace_back(num_derived + static_cast<Index>(d), g, w);
+        }
+    }
+    num_derived += static_cast<Index>(combinations.size());
+    return true;
+}
+
+EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, const SchemeOptions& options,
+                               const VolumeOptions& volume_options)
+    : impl_(std::make_unique<Impl>()) {
+    check_input(topology, scheme, options);
+    Impl& d = *impl_;
+    d.scheme = scheme;
+    d.num_vertices = topology.num_vertices();
+    d.options = volume_options;
+    std::vector<Index> untyped;
+    for (Index e = 0; e < num_elements(topology, scheme); ++e) {
+        if (const auto ring = detail::typed_facet(topology, scheme, e)) {
+            d.add_facet(ring->type, ring->points);
+            ++d.statistics.direct_facets;
+        } else {
+            untyped.push_back(e);
+        }
+    }
+    d.statistics.subdivided_elements = static_cast<Index>(untyped.size());
+    std::vector<Eigen::Triplet<double>> triplets;
+    Index num_derived = 0;
+    if (!untyped.empty()) {
+        const auto facets = d.facet_form.size();
+        const auto offsets = d.facet_offset.size();
+        const auto point_count = d.points.size();
+        bool done = false;
+        for (int radius = 3; radius <= 8 && !done; ++radius) {
+            // Start over at each radius (a failed attempt may have added some facets).
+            d.facet_form.resize(facets);
+            d.facet_offset.resize(offsets);
+            d.points.resize(point_count);
+            d.statistics.subdivided_facets = 0;
+            triplets.clear();
+            num_derived = 0;
+            done = d.subdivide(topology, untyped, radius, triplets, num_derived);
+        }
+        LIMSURF_CHECK(done, UnsupportedError,
+                      "exact volume: could not isolate the irregular elements (internal error)");
+    }
+    d.derived.resize(num_derived, d.num_vertices);
+    d.derived.setFromTriplets(triplets.begin(), triplets.end());
+}
+
+EnclosedVolume::~EnclosedVolume() = default;
+EnclosedVolume::EnclosedVolume(EnclosedVolume&&) noexcept = default;
+EnclosedVolume& EnclosedVolume::operator=(EnclosedVolume&&) noexcept = default;
+
+double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
+    LIMSURF_CHECK(X.rows() == num_vertices, InputError, "exact volume: ", X.rows(), " points for ", num_vertices,
+                  " vertices");
+    LIMSURF_CHECK(X.allFinite(), InputError, "exact volume: the control points have a non-finite coordinate");
+    // About the mean control point: the sum is translation invariant for a closed surface, and
+    // small coordinates keep the facets' contributions from cancelling.
+    const Eigen::RowVector3d o = X.colwise().mean();
+    const Points Xc = X.rowwise() - o;
+    const Points Y = derived * Xc;
+    const Index V = num_vertices;
+    const auto point = [&](Index i) { return i < V ? Xc.row(i) : Y.row(i - V); };
+    const auto num_facets = static_cast<Index>(facet_form.size());
+    unsigned threads = options.num_threads > 0 ? static_cast<unsigned>(options.num_threads)
+                                               : std::max(1U, std::thread::hardware_concurrency());
+    threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<Index>(1, num_facets / 4096)));
+    std::vector<double> sums(threads, 0.0);
+    std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> grads(gradient != nullptr ? threads : 0);
+    const auto work = [&](unsigned w) {
+        const Index begin = num_facets * static_cast<Index>(w) / static_cast<Index>(threads);
+        const Index end = num_facets * static_cast<Index>(w + 1) / static_cast<Index>(threads);
+        std::vector<double> p;
+        std::vector<double> g;
+        double sum = 0.0;
+        if (gradient != nullptr) {
+            grads[w].setZero(V + Y.rows(), 3);
+        }
+        for (Index f = begin; f < end; ++f) {
+            const VolumeForm& form = forms[facet_form[at(f)]];
+            const Index offset = facet_offset[at(f)];
+            p.resize(3 * at(form.size));
+            for (int a = 0; a < form.size; ++a) {
+                const auto x = point(points[at(offset + a)]);
+                p[3 * at(a)] = x(0);
+                p[3 * at(a) + 1] = x(1);
+                p[3 * at(a) + 2] = x(2);
+            }
+            if (gradient == nullptr) {
+                sum += form.evaluate(p.data(), nullptr);
+                continue;
+            }
+            g.assign(p.size(), 0.0);
+            sum += form.evaluate(p.data(), g.data());
+            for (int a = 0; a < form.size; ++a) {
+                grads[w].row(points[at(offset + a)]) +=
+                    Eigen::RowVector3d(g[3 * at(a)], g[3 * at(a) + 1], g[3 * at(a) + 2]);
+            }
+        }
+        sums[w] = sum;
+    };
+    if (threads == 1) {
+        work(0);
+    } else {
+        std::vector<std::thread> pool;
+        for (unsigned w = 0; w < threads; ++w) {
+            pool.emplace_back(work, w);
+        }
+        for (auto& t : pool) {
+            t.join();
+        }
+    }
+    double volume = 0.0;
+    for (const double s : sums) {
+        volume += s;
+    }
+    if (gradient != nullptr) {
+        Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> total = grads[0];
+        for (unsigned w = 1; w < threads; ++w) {
+            total += grads[w];
+        }
+        *gradient = total.topRows(V);
+        if (Y.rows() > 0) {
+            *gradient += derived.transpose() * Points(total.bottomRows(Y.rows()));
+        }
+    }
+    return volume;
+}
+
+double EnclosedVolume::volume(const Points& X) const {
+    return impl_->evaluate(X, nullptr);
+}
+
+Points EnclosedVolume::gradient(const Points& X) const {
+    Points g;
+    impl_->evaluate(X, &g);
+    return g;
+}
+
+double EnclosedVolume::volume_and_gradient(const Points& X, Points& gradient) const {
+    return impl_->evaluate(X, &gradient);
+}
+
+Index EnclosedVolume::num_vertices() const noexcept {
+    return impl_->num_vertices;
+}
+
+SchemeKind EnclosedVolume::scheme() const noexcept {
+    return impl_->scheme;
+}
+
+const VolumeStatistics& EnclosedVolume::statistics() const noexcept {
+    return impl_->statistics;
+}
+
+double exact_volume(const ControlMesh& mesh, SchemeKind scheme) {
+    return EnclosedVolume(mesh.topology(), scheme).volume(mesh.positions());
+}
+
+double polyhedral_volume(const Topology& topology, const Points& X) {
+    LIMSURF_CHECK(X.rows() == topology.num_vertices(), InputError, "polyhedral volume: ", X.rows(), " points for ",
+                  topology.num_vertices(), " vertices");
+    const Eigen::RowVector3d o = X.rows() > 0 ? Eigen::RowVector3d(X.colwise().mean()) : Eigen::RowVector3d::Zero();
+    double sum = 0.0;
+    for (Index f = 0; f < topology.num_faces(); ++f) {
+        const auto v = topology.face_vertices(f);
+        const Eigen::Vector3d a = (X.row(v[0]) - o).transpose();
+        for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+            const Eigen::Vector3d b = (X.row(v[k]) - o).transpose();
+            const Eigen::Vector3d c = (X.row(v[k + 1]) - o).transpose();
+            sum += a.dot(b.cross(c));
+        }
+    }
+    return sum / 6.0;
+}
+
+}  // namespace limsurf
