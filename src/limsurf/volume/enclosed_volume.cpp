@@ -13,8 +13,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <span>
 #include <thread>
 #include <unordered_map>
+
+#include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
 #include "limsurf/refine/refine.h"
@@ -186,6 +189,39 @@ std::vector<char> trusted_children(const Topology& parent, const Level& level, S
     return out;
 }
 
+/// Facets found by one worker: their types and concatenated points, and the elements that are not facets.
+struct Classified {
+    std::vector<int> types;
+    std::vector<Index> points;
+    std::vector<Index> untyped;
+};
+
+/// Workers for @p items items: the requested number (0: hardware concurrency), at most one per 4096 items.
+unsigned worker_count(int requested, Index items) {
+    const unsigned wanted =
+        requested > 0 ? static_cast<unsigned>(requested) : std::max(1U, std::thread::hardware_concurrency());
+    return std::max(1U, std::min<unsigned>(wanted, static_cast<unsigned>(items / 4096)));
+}
+
+/// Runs work(0..threads-1), on threads when there is more than one.
+template <class Work>
+void run_parallel(unsigned threads, Work&& work) {
+    if (threads == 1) {
+        work(0U);
+        return;
+    }
+    std::vector<std::thread> pool;
+    for (unsigned w = 0; w < threads; ++w) {
+        pool.emplace_back(work, w);
+    }
+    for (auto& t : pool) {
+        t.join();
+    }
+}
+
+/// Points in row-major order (x, y, z of a point adjacent in memory).
+using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 /// A sparse combination of control points.
 using Combination = std::map<Index, double>;
 
@@ -202,6 +238,8 @@ struct EnclosedVolume::Impl {
     std::vector<Index> facet_offset{0};     ///< per facet + 1: offsets into points
     std::vector<Index> points;              ///< < V: control vertex; >= V: derived point - V
     SparseMatrix derived;                   ///< D × V
+    int last_type = -1;                     ///< add_facet's cache of form_index
+    std::uint32_t last_form = 0;
 
     std::uint32_t form_index(int type) {
         const auto it = form_of_type.find(type);
@@ -220,8 +258,12 @@ struct EnclosedVolume::Impl {
         return static_cast<std::uint32_t>(forms.size() - 1);
     }
 
-    void add_facet(int type, const std::vector<Index>& facet_points) {
-        facet_form.push_back(form_index(type));
+    void add_facet(int type, std::span<const Index> facet_points) {
+        if (type != last_type) {
+            last_type = type;
+            last_form = form_index(type);
+        }
+        facet_form.push_back(last_form);
         points.insert(points.end(), facet_points.begin(), facet_points.end());
         facet_offset.push_back(static_cast<Index>(points.size()));
     }
@@ -313,7 +355,7 @@ bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>
         for (const Index v : p.ring) {
             facet_points.push_back(V + derive(p.level, v));
         }
-        add_facet(p.type, facet_points);
+        add_facet(p.type, std::span<const Index>(facet_points));
         ++statistics.subdivided_facets;
     }
     for (std::size_t d = 0; d < combinations.size(); ++d) {
@@ -333,14 +375,40 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
     d.scheme = scheme;
     d.num_vertices = topology.num_vertices();
     d.options = volume_options;
-    std::vector<Index> untyped;
-    for (Index e = 0; e < num_elements(topology, scheme); ++e) {
-        if (const auto ring = detail::typed_facet(topology, scheme, e)) {
-            d.add_facet(ring->type, ring->points);
-            ++d.statistics.direct_facets;
-        } else {
-            untyped.push_back(e);
+    // Classify the elements in parallel (read-only walks), then append their facets in order.
+    const Index count = num_elements(topology, scheme);
+    const unsigned threads = worker_count(volume_options.num_threads, count);
+    std::vector<Classified> parts(threads);
+    run_parallel(threads, [&](unsigned w) {
+        Classified& part = parts[w];
+        const Index begin = count * static_cast<Index>(w) / static_cast<Index>(threads);
+        const Index end = count * static_cast<Index>(w + 1) / static_cast<Index>(threads);
+        for (Index e = begin; e < end; ++e) {
+            if (const auto ring = detail::typed_facet(topology, scheme, e)) {
+                part.types.push_back(ring->type);
+                part.points.insert(part.points.end(), ring->points.begin(), ring->points.end());
+            } else {
+                part.untyped.push_back(e);
+            }
         }
+    });
+    std::size_t total_points = 0;
+    for (const Classified& part : parts) {
+        total_points += part.points.size();
+    }
+    d.points.reserve(total_points);
+    d.facet_form.reserve(static_cast<std::size_t>(count));
+    d.facet_offset.reserve(static_cast<std::size_t>(count) + 1);
+    std::vector<Index> untyped;
+    for (const Classified& part : parts) {
+        std::size_t offset = 0;
+        for (const int type : part.types) {
+            const auto m = static_cast<std::size_t>(detail::facet_ring_size(scheme, type));
+            d.add_facet(type, std::span<const Index>(part.points).subspan(offset, m));
+            offset += m;
+        }
+        d.statistics.direct_facets += static_cast<Index>(part.types.size());
+        untyped.insert(untyped.end(), part.untyped.begin(), part.untyped.end());
     }
     d.statistics.subdivided_elements = static_cast<Index>(untyped.size());
     std::vector<Eigen::Triplet<double>> triplets;
@@ -379,15 +447,18 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
     // small coordinates keep the facets' contributions from cancelling.
     const Eigen::RowVector3d o = X.colwise().mean();
     const Points Xc = X.rowwise() - o;
-    const Points Y = derived * Xc;
+    // Control points and derived points in one row-major table: a facet reads 3 adjacent doubles per point.
     const Index V = num_vertices;
-    const auto point = [&](Index i) { return i < V ? Xc.row(i) : Y.row(i - V); };
+    const Index D = static_cast<Index>(derived.rows());
+    RowPoints all(V + D, 3);
+    all.topRows(V) = Xc;
+    if (D > 0) {
+        all.bottomRows(D) = derived * Xc;
+    }
     const auto num_facets = static_cast<Index>(facet_form.size());
-    unsigned threads = options.num_threads > 0 ? static_cast<unsigned>(options.num_threads)
-                                               : std::max(1U, std::thread::hardware_concurrency());
-    threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<Index>(1, num_facets / 4096)));
+    const unsigned threads = worker_count(options.num_threads, num_facets);
     std::vector<double> sums(threads, 0.0);
-    std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> grads(gradient != nullptr ? threads : 0);
+    std::vector<RowPoints> grads(gradient != nullptr ? threads : 0);
     const auto work = [&](unsigned w) {
         const Index begin = num_facets * static_cast<Index>(w) / static_cast<Index>(threads);
         const Index end = num_facets * static_cast<Index>(w + 1) / static_cast<Index>(threads);
@@ -395,17 +466,17 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
         std::vector<double> g;
         double sum = 0.0;
         if (gradient != nullptr) {
-            grads[w].setZero(V + Y.rows(), 3);
+            grads[w].setZero(V + D, 3);
         }
         for (Index f = begin; f < end; ++f) {
             const VolumeForm& form = forms[facet_form[at(f)]];
             const Index offset = facet_offset[at(f)];
             p.resize(3 * at(form.size));
             for (int a = 0; a < form.size; ++a) {
-                const auto x = point(points[at(offset + a)]);
-                p[3 * at(a)] = x(0);
-                p[3 * at(a) + 1] = x(1);
-                p[3 * at(a) + 2] = x(2);
+                const double* x = all.data() + 3 * at(points[at(offset + a)]);
+                p[3 * at(a)] = x[0];
+                p[3 * at(a) + 1] = x[1];
+                p[3 * at(a) + 2] = x[2];
             }
             if (gradient == nullptr) {
                 sum += form.evaluate(p.data(), nullptr);
@@ -420,29 +491,19 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
         }
         sums[w] = sum;
     };
-    if (threads == 1) {
-        work(0);
-    } else {
-        std::vector<std::thread> pool;
-        for (unsigned w = 0; w < threads; ++w) {
-            pool.emplace_back(work, w);
-        }
-        for (auto& t : pool) {
-            t.join();
-        }
-    }
+    run_parallel(threads, work);
     double volume = 0.0;
     for (const double s : sums) {
         volume += s;
     }
     if (gradient != nullptr) {
-        Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> total = grads[0];
+        RowPoints total = grads[0];
         for (unsigned w = 1; w < threads; ++w) {
             total += grads[w];
         }
         *gradient = total.topRows(V);
-        if (Y.rows() > 0) {
-            *gradient += derived.transpose() * Points(total.bottomRows(Y.rows()));
+        if (D > 0) {
+            *gradient += derived.transpose() * Points(total.bottomRows(D));
         }
     }
     return volume;

@@ -1,6 +1,7 @@
 // Canonical facet one-rings (facet_ring.h).
 #include "limsurf/volume/facet_ring.h"
 
+#include <array>
 #include <cstddef>
 #include <span>
 
@@ -11,34 +12,39 @@ std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
 }
 
-/// Vertices of face f rotated to start at its corner k.
-std::vector<Index> rotated(const Topology& t, Index f, Index k) {
+/// Vertices of face f rotated to start at its corner k, into a fixed-size array (the caller
+/// has checked the degree).
+template <std::size_t N>
+std::array<Index, N> rotated(const Topology& t, Index f, Index k) {
     const auto verts = t.face_vertices(f);
-    const auto n = verts.size();
-    std::vector<Index> out(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        out[i] = verts[(at(k) + i) % n];
+    std::array<Index, N> out{};
+    for (std::size_t i = 0; i < N; ++i) {
+        out[i] = verts[(at(k) + i) % N];
     }
     return out;
 }
 
-/// The face across edge {a, b} that runs b -> a, rotated to start at a: [a, ..., b].
-/// Empty when there is none (a boundary edge).
-std::vector<Index> across(const Topology& t, Index a, Index b) {
+/// The face across edge {a, b} that runs b -> a, rotated to start at a: [a, ..., b]; false
+/// when there is none or it does not have N corners.
+template <std::size_t N>
+bool across(const Topology& t, Index a, Index b, std::array<Index, N>& out) {
     const Index e = t.find_edge(a, b);
     if (e == invalid_index) {
-        return {};
+        return false;
     }
     for (const Index f : t.edge_faces(e)) {
         const auto verts = t.face_vertices(f);
-        const auto n = verts.size();
-        for (std::size_t k = 0; k < n; ++k) {
-            if (verts[k] == b && verts[(k + 1) % n] == a) {
-                return rotated(t, f, static_cast<Index>((k + 1) % n));
+        if (verts.size() != N) {
+            continue;
+        }
+        for (std::size_t k = 0; k < N; ++k) {
+            if (verts[k] == b && verts[(k + 1) % N] == a) {
+                out = rotated<N>(t, f, static_cast<Index>((k + 1) % N));
+                return true;
             }
         }
     }
-    return {};
+    return false;
 }
 
 /// Interior vertex whose faces all have @p degree, with valence @p valence (any when 0).
@@ -54,29 +60,28 @@ bool is_uniform_vertex(const Topology& t, Index v, Index degree, Index valence) 
     return true;
 }
 
-/// Position of face f in the one-ring of v, or -1.
-int fan_index(const Topology& t, Index v, Index f) {
+/// Position of face f in the one-ring of v (0 when absent: the callers pass a face of v).
+std::size_t fan_index(const Topology& t, Index v, Index f) {
     const auto faces = t.vertex_faces(v);
     for (std::size_t i = 0; i < faces.size(); ++i) {
         if (faces[i] == f) {
-            return static_cast<int>(i);
+            return i;
         }
     }
-    return -1;
+    return 0;
 }
 
-/// Faces around c0 counter-clockwise starting with f, each rotated to start at c0.
-std::vector<std::vector<Index>> fan_from(const Topology& t, Index c0, Index f) {
+/// Calls visit(face, corner) for the faces around c0 counter-clockwise, starting with f.
+template <class Visit>
+void for_fan(const Topology& t, Index c0, Index f, Visit&& visit) {
     const auto faces = t.vertex_faces(c0);
     const auto corners = t.vertex_face_corners(c0);
-    const int start = fan_index(t, c0, f);
-    std::vector<std::vector<Index>> fan;
+    const std::size_t start = fan_index(t, c0, f);
     const auto n = faces.size();
     for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t j = (at(start) + i) % n;
-        fan.push_back(rotated(t, faces[j], corners[j]));
+        const std::size_t j = (start + i) % n;
+        visit(faces[j], corners[j]);
     }
-    return fan;
 }
 
 /// The irregular corner of face f (or -1 when all are regular), -2 when more than one
@@ -104,26 +109,27 @@ std::optional<FacetRing> catmull_clark_facet(const Topology& t, Index f, int anc
     if (irregular == -2) {
         return std::nullopt;
     }
-    const Index k0 = irregular >= 0 ? irregular : anchor;
-    const std::vector<Index> c = rotated(t, f, k0);
-    const auto fan = fan_from(t, c[0], f);
-    const auto n = fan.size();
-    FacetRing ring{static_cast<int>(n), {c[0]}};
-    for (const auto& face : fan) {
-        ring.points.push_back(face[1]);  // e_i
-        ring.points.push_back(face[2]);  // d_i
-    }
-    const Index d_last = fan[n - 1][2];
-    const Index d_1 = fan[1][2];
-    const auto g1 = across(t, d_last, c[1]);
-    const auto g2 = across(t, c[1], c[2]);
-    const auto g4 = across(t, c[2], c[3]);
-    const auto g5 = across(t, c[3], d_1);
-    if (g1.size() != 4 || g2.size() != 4 || g4.size() != 4 || g5.size() != 4) {
+    const auto c = rotated<4>(t, f, irregular >= 0 ? irregular : anchor);
+    FacetRing ring{static_cast<int>(t.valence(c[0])), {}};
+    ring.points.reserve(at(2 * ring.type + 8));
+    ring.points.push_back(c[0]);
+    for_fan(t, c[0], f, [&](Index face, Index corner) {
+        const auto q = rotated<4>(t, face, corner);  // [c0, e_i, d_i, e_i+1]
+        ring.points.push_back(q[1]);
+        ring.points.push_back(q[2]);
+    });
+    const Index d_last = ring.points[at(2 * ring.type)];
+    const Index d_1 = ring.points[4];
+    std::array<Index, 4> g1{};
+    std::array<Index, 4> g2{};
+    std::array<Index, 4> g3{};
+    std::array<Index, 4> g4{};
+    std::array<Index, 4> g5{};
+    if (!across(t, d_last, c[1], g1) || !across(t, c[1], c[2], g2) || !across(t, c[2], c[3], g4) ||
+        !across(t, c[3], d_1, g5) || !across(t, g2[2], c[2], g3)) {
         return std::nullopt;
     }
-    const auto g3 = across(t, g2[2], c[2]);
-    if (g3.size() != 4 || g1[2] != g2[1] || g3[2] != g4[1] || g4[2] != g5[1]) {
+    if (g1[2] != g2[1] || g3[2] != g4[1] || g4[2] != g5[1]) {
         return std::nullopt;
     }
     for (const Index p : {g1[1], g1[2], g2[2], g3[1], g3[2], g4[2], g5[2]}) {
@@ -140,29 +146,19 @@ std::optional<FacetRing> loop_facet(const Topology& t, Index f, int anchor) {
     if (irregular == -2) {
         return std::nullopt;
     }
-    const Index k0 = irregular >= 0 ? irregular : anchor;
-    const std::vector<Index> c = rotated(t, f, k0);
-    const auto fan = fan_from(t, c[0], f);
-    const auto n = fan.size();
-    FacetRing ring{static_cast<int>(n), {c[0]}};
-    for (const auto& face : fan) {
-        ring.points.push_back(face[1]);  // r_i
-    }
-    const auto fy = across(t, fan[n - 1][1], c[1]);  // [r_{n-1}, y, c1]
-    if (fy.size() != 3) {
-        return std::nullopt;
-    }
-    const auto fz = across(t, fy[1], c[1]);  // [y, z, c1]
-    const auto fx = across(t, c[1], c[2]);   // [c1, x, c2]
-    if (fz.size() != 3 || fx.size() != 3) {
-        return std::nullopt;
-    }
-    const auto fu = across(t, fx[1], c[2]);  // [x, u, c2]
-    if (fu.size() != 3) {
-        return std::nullopt;
-    }
-    const auto fw = across(t, fu[1], c[2]);  // [u, w, c2]
-    if (fw.size() != 3) {
+    const auto c = rotated<3>(t, f, irregular >= 0 ? irregular : anchor);
+    FacetRing ring{static_cast<int>(t.valence(c[0])), {}};
+    ring.points.reserve(at(ring.type + 6));
+    ring.points.push_back(c[0]);
+    for_fan(t, c[0], f, [&](Index face, Index corner) { ring.points.push_back(rotated<3>(t, face, corner)[1]); });
+    std::array<Index, 3> fy{};
+    std::array<Index, 3> fz{};
+    std::array<Index, 3> fx{};
+    std::array<Index, 3> fu{};
+    std::array<Index, 3> fw{};
+    // [r_{n-1}, y, c1], [y, z, c1], [c1, x, c2], [x, u, c2], [u, w, c2]
+    if (!across(t, ring.points.back(), c[1], fy) || !across(t, fy[1], c[1], fz) || !across(t, c[1], c[2], fx) ||
+        !across(t, fx[1], c[2], fu) || !across(t, fu[1], c[2], fw)) {
         return std::nullopt;
     }
     for (const Index p : {fy[1], fz[1], fx[1], fu[1], fw[1]}) {
@@ -186,11 +182,16 @@ std::optional<FacetRing> doo_sabin_facet(const Topology& t, Index v, int anchor)
         }
     }
     const int start = irregular >= 0 ? irregular : anchor;
-    const auto fan = fan_from(t, v, faces[at(start)]);
-    FacetRing ring{irregular >= 0 ? static_cast<int>(t.face_degree(faces[at(irregular)])) : 4, {v}};
-    for (const auto& face : fan) {
-        ring.points.insert(ring.points.end(), face.begin() + 1, face.end() - 1);
-    }
+    FacetRing ring{irregular >= 0 ? static_cast<int>(t.face_degree(faces[at(start)])) : 4, {v}};
+    ring.points.reserve(at(ring.type + 5));
+    for_fan(t, v, faces[at(start)], [&](Index face, Index corner) {
+        // The face's vertices after v except the last (the next face's first).
+        const auto verts = t.face_vertices(face);
+        const auto n = verts.size();
+        for (std::size_t i = 1; i + 1 < n; ++i) {
+            ring.points.push_back(verts[(at(corner) + i) % n]);
+        }
+    });
     return ring;
 }
 
