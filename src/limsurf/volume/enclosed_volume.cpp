@@ -189,11 +189,18 @@ std::vector<char> trusted_children(const Topology& parent, const Level& level, S
     return out;
 }
 
-/// Facets found by one worker: their types and concatenated points, and the elements that are not facets.
-struct Classified {
-    std::vector<int> types;
-    std::vector<Index> points;
-    std::vector<Index> untyped;
+/// Facets, each with its form and its points: a block per classifying worker, one for the
+/// facets of subdivided elements.
+struct FacetBlock {
+    std::vector<std::uint32_t> form;  ///< per facet: index into Impl::forms (its type while classifying)
+    std::vector<Index> offset{0};     ///< per facet + 1: offsets into points
+    std::vector<Index> points;        ///< < V: control vertex; >= V: derived point V + d
+    [[nodiscard]] Index size() const { return static_cast<Index>(form.size()); }
+    void add(std::uint32_t f, std::span<const Index> facet_points) {
+        form.push_back(f);
+        points.insert(points.end(), facet_points.begin(), facet_points.end());
+        offset.push_back(static_cast<Index>(points.size()));
+    }
 };
 
 /// Workers for @p items items: the requested number (0: hardware concurrency), at most one per 4096 items.
@@ -234,11 +241,9 @@ struct EnclosedVolume::Impl {
     VolumeStatistics statistics;
     std::vector<VolumeForm> forms;
     std::map<int, std::size_t> form_of_type;
-    std::vector<std::uint32_t> facet_form;  ///< per facet: index into forms
-    std::vector<Index> facet_offset{0};     ///< per facet + 1: offsets into points
-    std::vector<Index> points;              ///< < V: control vertex; >= V: derived point - V
-    SparseMatrix derived;                   ///< D × V
-    int last_type = -1;                     ///< add_facet's cache of form_index
+    std::vector<FacetBlock> blocks;
+    SparseMatrix derived;  ///< D × V
+    int last_type = -1;    ///< cached_form_index's cache
     std::uint32_t last_form = 0;
 
     std::uint32_t form_index(int type) {
@@ -258,25 +263,24 @@ struct EnclosedVolume::Impl {
         return static_cast<std::uint32_t>(forms.size() - 1);
     }
 
-    void add_facet(int type, std::span<const Index> facet_points) {
+    std::uint32_t cached_form_index(int type) {
         if (type != last_type) {
             last_type = type;
             last_form = form_index(type);
         }
-        facet_form.push_back(last_form);
-        points.insert(points.end(), facet_points.begin(), facet_points.end());
-        facet_offset.push_back(static_cast<Index>(points.size()));
+        return last_form;
     }
 
-    /// Refines the region around @p elements; false when the region was too small.
-    bool subdivide(const Topology& t, const std::vector<Index>& elements, int radius,
+    /// Refines the region around @p elements into @p block; false when the region was too small.
+    bool subdivide(const Topology& t, const std::vector<Index>& elements, int radius, FacetBlock& block,
                    std::vector<Eigen::Triplet<double>>& triplets, Index& num_derived);
 
     double evaluate(const Points& X, Points* gradient) const;
 };
 
 bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>& elements, int radius,
-                                     std::vector<Eigen::Triplet<double>>& triplets, Index& num_derived) {
+                                     FacetBlock& block, std::vector<Eigen::Triplet<double>>& triplets,
+                                     Index& num_derived) {
     const Region region = make_region(t, scheme, elements, radius);
     const Topology& t0 = region.topology;
     const Level level1 = refine(t0, scheme);
@@ -355,7 +359,7 @@ bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>
         for (const Index v : p.ring) {
             facet_points.push_back(V + derive(p.level, v));
         }
-        add_facet(p.type, std::span<const Index>(facet_points));
+        block.add(cached_form_index(p.type), std::span<const Index>(facet_points));
         ++statistics.subdivided_facets;
     }
     for (std::size_t d = 0; d < combinations.size(); ++d) {
@@ -378,55 +382,44 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
     // Classify the elements in parallel (read-only walks), then append their facets in order.
     const Index count = num_elements(topology, scheme);
     const unsigned threads = worker_count(volume_options.num_threads, count);
-    std::vector<Classified> parts(threads);
+    d.blocks.resize(threads);
+    std::vector<std::vector<Index>> untyped_parts(threads);
     run_parallel(threads, [&](unsigned w) {
-        Classified& part = parts[w];
+        FacetBlock& block = d.blocks[w];
         const Index begin = count * static_cast<Index>(w) / static_cast<Index>(threads);
         const Index end = count * static_cast<Index>(w + 1) / static_cast<Index>(threads);
         for (Index e = begin; e < end; ++e) {
             if (const auto ring = detail::typed_facet(topology, scheme, e)) {
-                part.types.push_back(ring->type);
-                part.points.insert(part.points.end(), ring->points.begin(), ring->points.end());
+                block.add(static_cast<std::uint32_t>(ring->type), ring->points);
             } else {
-                part.untyped.push_back(e);
+                untyped_parts[w].push_back(e);
             }
         }
     });
-    std::size_t total_points = 0;
-    for (const Classified& part : parts) {
-        total_points += part.points.size();
-    }
-    d.points.reserve(total_points);
-    d.facet_form.reserve(static_cast<std::size_t>(count));
-    d.facet_offset.reserve(static_cast<std::size_t>(count) + 1);
+    // Types to forms (loading or generating each form once).
     std::vector<Index> untyped;
-    for (const Classified& part : parts) {
-        std::size_t offset = 0;
-        for (const int type : part.types) {
-            const auto m = static_cast<std::size_t>(detail::facet_ring_size(scheme, type));
-            d.add_facet(type, std::span<const Index>(part.points).subspan(offset, m));
-            offset += m;
+    for (unsigned w = 0; w < threads; ++w) {
+        for (std::uint32_t& form : d.blocks[w].form) {
+            form = d.cached_form_index(static_cast<int>(form));
         }
-        d.statistics.direct_facets += static_cast<Index>(part.types.size());
-        untyped.insert(untyped.end(), part.untyped.begin(), part.untyped.end());
+        d.statistics.direct_facets += d.blocks[w].size();
+        untyped.insert(untyped.end(), untyped_parts[w].begin(), untyped_parts[w].end());
     }
     d.statistics.subdivided_elements = static_cast<Index>(untyped.size());
     std::vector<Eigen::Triplet<double>> triplets;
     Index num_derived = 0;
     if (!untyped.empty()) {
-        const auto facets = d.facet_form.size();
-        const auto offsets = d.facet_offset.size();
-        const auto point_count = d.points.size();
         bool done = false;
         for (int radius = 3; radius <= 8 && !done; ++radius) {
             // Start over at each radius (a failed attempt may have added some facets).
-            d.facet_form.resize(facets);
-            d.facet_offset.resize(offsets);
-            d.points.resize(point_count);
+            FacetBlock block;
             d.statistics.subdivided_facets = 0;
             triplets.clear();
             num_derived = 0;
-            done = d.subdivide(topology, untyped, radius, triplets, num_derived);
+            done = d.subdivide(topology, untyped, radius, block, triplets, num_derived);
+            if (done) {
+                d.blocks.push_back(std::move(block));
+            }
         }
         LIMSURF_CHECK(done, UnsupportedError,
                       "exact volume: could not isolate the irregular elements (internal error)");
@@ -444,66 +437,71 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
                   " vertices");
     LIMSURF_CHECK(X.allFinite(), InputError, "exact volume: the control points have a non-finite coordinate");
     // About the mean control point: the sum is translation invariant for a closed surface, and
-    // small coordinates keep the facets' contributions from cancelling.
+    // small coordinates keep the facets' contributions from cancelling. Control and derived points
+    // go into one row-major table, so that a facet reads 3 adjacent doubles per point.
     const Eigen::RowVector3d o = X.colwise().mean();
-    const Points Xc = X.rowwise() - o;
-    // Control points and derived points in one row-major table: a facet reads 3 adjacent doubles per point.
     const Index V = num_vertices;
-    const Index D = static_cast<Index>(derived.rows());
+    const auto D = static_cast<Index>(derived.rows());
     RowPoints all(V + D, 3);
-    all.topRows(V) = Xc;
+    all.topRows(V) = X.rowwise() - o;
     if (D > 0) {
-        all.bottomRows(D) = derived * Xc;
+        all.bottomRows(D) = (derived * X).rowwise() - o;
     }
-    const auto num_facets = static_cast<Index>(facet_form.size());
-    const unsigned threads = worker_count(options.num_threads, num_facets);
+    const unsigned threads = worker_count(options.num_threads, V);
     std::vector<double> sums(threads, 0.0);
     std::vector<RowPoints> grads(gradient != nullptr ? threads : 0);
-    const auto work = [&](unsigned w) {
-        const Index begin = num_facets * static_cast<Index>(w) / static_cast<Index>(threads);
-        const Index end = num_facets * static_cast<Index>(w + 1) / static_cast<Index>(threads);
-        std::vector<double> p;
-        std::vector<double> g;
-        double sum = 0.0;
-        if (gradient != nullptr) {
-            grads[w].setZero(V + D, 3);
-        }
-        for (Index f = begin; f < end; ++f) {
-            const VolumeForm& form = forms[facet_form[at(f)]];
-            const Index offset = facet_offset[at(f)];
-            p.resize(3 * at(form.size));
-            for (int a = 0; a < form.size; ++a) {
-                const double* x = all.data() + 3 * at(points[at(offset + a)]);
-                p[3 * at(a)] = x[0];
-                p[3 * at(a) + 1] = x[1];
-                p[3 * at(a) + 2] = x[2];
+    for (RowPoints& g : grads) {
+        g.setZero(V + D, 3);
+    }
+    const double* table = all.data();
+    for (const FacetBlock& block : blocks) {
+        const Index n = block.size();
+        const unsigned workers = std::min(threads, worker_count(options.num_threads, n));
+        run_parallel(workers, [&](unsigned w) {
+            const Index begin = n * static_cast<Index>(w) / static_cast<Index>(workers);
+            const Index end = n * static_cast<Index>(w + 1) / static_cast<Index>(workers);
+            std::vector<double> p;
+            std::vector<double> g;
+            double sum = 0.0;
+            for (Index f = begin; f < end; ++f) {
+                const VolumeForm& form = forms[block.form[at(f)]];
+                const Index* facet = block.points.data() + block.offset[at(f)];
+                const auto m = at(form.size);
+                p.resize(3 * m);
+                for (std::size_t a = 0; a < m; ++a) {
+                    const double* q = table + 3 * at(facet[a]);
+                    p[3 * a] = q[0];
+                    p[3 * a + 1] = q[1];
+                    p[3 * a + 2] = q[2];
+                }
+                if (gradient == nullptr) {
+                    sum += form.evaluate(p.data(), nullptr);
+                    continue;
+                }
+                g.assign(p.size(), 0.0);
+                sum += form.evaluate(p.data(), g.data());
+                double* out = grads[w].data();
+                for (std::size_t a = 0; a < m; ++a) {
+                    double* row = out + 3 * at(facet[a]);
+                    row[0] += g[3 * a];
+                    row[1] += g[3 * a + 1];
+                    row[2] += g[3 * a + 2];
+                }
             }
-            if (gradient == nullptr) {
-                sum += form.evaluate(p.data(), nullptr);
-                continue;
-            }
-            g.assign(p.size(), 0.0);
-            sum += form.evaluate(p.data(), g.data());
-            for (int a = 0; a < form.size; ++a) {
-                grads[w].row(points[at(offset + a)]) +=
-                    Eigen::RowVector3d(g[3 * at(a)], g[3 * at(a) + 1], g[3 * at(a) + 2]);
-            }
-        }
-        sums[w] = sum;
-    };
-    run_parallel(threads, work);
+            sums[w] += sum;
+        });
+    }
     double volume = 0.0;
     for (const double s : sums) {
         volume += s;
     }
     if (gradient != nullptr) {
-        RowPoints total = grads[0];
         for (unsigned w = 1; w < threads; ++w) {
-            total += grads[w];
+            grads[0] += grads[w];
         }
-        *gradient = total.topRows(V);
+        *gradient = grads[0].topRows(V);
         if (D > 0) {
-            *gradient += derived.transpose() * Points(total.bottomRows(D));
+            *gradient += derived.transpose() * Points(grads[0].bottomRows(D));
         }
     }
     return volume;

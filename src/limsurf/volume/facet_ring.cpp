@@ -24,29 +24,6 @@ std::array<Index, N> rotated(const Topology& t, Index f, Index k) {
     return out;
 }
 
-/// The face across edge {a, b} that runs b -> a, rotated to start at a: [a, ..., b]; false
-/// when there is none or it does not have N corners.
-template <std::size_t N>
-bool across(const Topology& t, Index a, Index b, std::array<Index, N>& out) {
-    const Index e = t.find_edge(a, b);
-    if (e == invalid_index) {
-        return false;
-    }
-    for (const Index f : t.edge_faces(e)) {
-        const auto verts = t.face_vertices(f);
-        if (verts.size() != N) {
-            continue;
-        }
-        for (std::size_t k = 0; k < N; ++k) {
-            if (verts[k] == b && verts[(k + 1) % N] == a) {
-                out = rotated<N>(t, f, static_cast<Index>((k + 1) % N));
-                return true;
-            }
-        }
-    }
-    return false;
-}
-
 /// Interior vertex whose faces all have @p degree, with valence @p valence (any when 0).
 bool is_uniform_vertex(const Topology& t, Index v, Index degree, Index valence) {
     if (t.is_boundary_vertex(v) || (valence != 0 && t.valence(v) != valence)) {
@@ -101,6 +78,18 @@ int irregular_corner(const Topology& t, Index f, Index degree, Index regular_val
     return found;
 }
 
+/// The faces (of degree D) around corner c counter-clockwise from f, each rotated to start at c;
+/// false when c has not exactly @p Count faces.
+template <std::size_t D, std::size_t Count>
+bool regular_fan(const Topology& t, Index c, Index f, std::array<std::array<Index, D>, Count>& fan) {
+    if (t.vertex_faces(c).size() != Count) {
+        return false;
+    }
+    std::size_t i = 0;
+    for_fan(t, c, f, [&](Index face, Index corner) { fan[i++] = rotated<D>(t, face, corner); });
+    return true;
+}
+
 std::optional<FacetRing> catmull_clark_facet(const Topology& t, Index f, int anchor) {
     if (t.face_degree(f) != 4) {
         return std::nullopt;
@@ -118,21 +107,15 @@ std::optional<FacetRing> catmull_clark_facet(const Topology& t, Index f, int anc
         ring.points.push_back(q[1]);
         ring.points.push_back(q[2]);
     });
-    const Index d_last = ring.points[at(2 * ring.type)];
-    const Index d_1 = ring.points[4];
-    std::array<Index, 4> g1{};
-    std::array<Index, 4> g2{};
-    std::array<Index, 4> g3{};
-    std::array<Index, 4> g4{};
-    std::array<Index, 4> g5{};
-    if (!across(t, d_last, c[1], g1) || !across(t, c[1], c[2], g2) || !across(t, c[2], c[3], g4) ||
-        !across(t, c[3], d_1, g5) || !across(t, g2[2], c[2], g3)) {
+    // The fans of the regular corners c1, c2, c3 from f: c1: f, [c1 c0 e d], [c1 d o1 o2], [c1 o2 o3 c2];
+    // c2: f, [c2 c1 o2 o3], [c2 o3 o4 o5], [c2 o5 o6 c3]; c3: f, [c3 c2 o5 o6], [c3 o6 o7 d1], [c3 d1 e c0].
+    std::array<std::array<Index, 4>, 4> f1{};
+    std::array<std::array<Index, 4>, 4> f2{};
+    std::array<std::array<Index, 4>, 4> f3{};
+    if (!regular_fan(t, c[1], f, f1) || !regular_fan(t, c[2], f, f2) || !regular_fan(t, c[3], f, f3)) {
         return std::nullopt;
     }
-    if (g1[2] != g2[1] || g3[2] != g4[1] || g4[2] != g5[1]) {
-        return std::nullopt;
-    }
-    for (const Index p : {g1[1], g1[2], g2[2], g3[1], g3[2], g4[2], g5[2]}) {
+    for (const Index p : {f1[2][2], f1[2][3], f1[3][2], f2[2][2], f2[2][3], f2[3][2], f3[2][2]}) {
         ring.points.push_back(p);
     }
     return ring;
@@ -151,17 +134,14 @@ std::optional<FacetRing> loop_facet(const Topology& t, Index f, int anchor) {
     ring.points.reserve(at(ring.type + 6));
     ring.points.push_back(c[0]);
     for_fan(t, c[0], f, [&](Index face, Index corner) { ring.points.push_back(rotated<3>(t, face, corner)[1]); });
-    std::array<Index, 3> fy{};
-    std::array<Index, 3> fz{};
-    std::array<Index, 3> fx{};
-    std::array<Index, 3> fu{};
-    std::array<Index, 3> fw{};
-    // [r_{n-1}, y, c1], [y, z, c1], [c1, x, c2], [x, u, c2], [u, w, c2]
-    if (!across(t, ring.points.back(), c[1], fy) || !across(t, fy[1], c[1], fz) || !across(t, c[1], c[2], fx) ||
-        !across(t, fx[1], c[2], fu) || !across(t, fu[1], c[2], fw)) {
+    // The fans of c1 and c2 from f: c1: f, [c1 c0 r], [c1 r y], [c1 y z], [c1 z x], [c1 x c2];
+    // c2: f, [c2 c1 x], [c2 x u], [c2 u w], [c2 w r2], [c2 r2 c0]. Outer points y, z, x, u, w.
+    std::array<std::array<Index, 3>, 6> f1{};
+    std::array<std::array<Index, 3>, 6> f2{};
+    if (!regular_fan(t, c[1], f, f1) || !regular_fan(t, c[2], f, f2)) {
         return std::nullopt;
     }
-    for (const Index p : {fy[1], fz[1], fx[1], fu[1], fw[1]}) {
+    for (const Index p : {f1[2][2], f1[3][2], f1[4][2], f2[2][2], f2[3][2]}) {
         ring.points.push_back(p);
     }
     return ring;
