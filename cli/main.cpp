@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     add_subdivide_command(app, status);
     add_eval_command(app, status);
     add_measure_command(app, status);
+    add_volume_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -42,6 +42,16 @@ echo "   the Doo-Sabin cube, whose exact volume is 6241/9920 (volume-trilinear-f
     python3 -c 'import json,sys; d=json.load(sys.stdin); print("   volume %.15f  exact %.15f  difference %.1e" % (d["volume"], 6241/9920, abs(d["volume"] - 6241/9920)))'
 echo
 
+echo "== limsurf volume: exact enclosed volumes by trilinear forms (volume-trilinear-forms paper)"
+"$limsurf" volume data/meshes/cube.obj --scheme doo-sabin --json |
+    python3 -c 'import json,sys; d=json.load(sys.stdin); print("   Doo-Sabin cube %.16f  published 6241/9920 = %.16f  difference %.1e" % (d["volume"], 6241/9920, abs(d["volume"] - 6241/9920)))'
+python3 -c 'import math; h=math.sqrt(2/3); r=1/math.sqrt(3); print("v %r 0 0\nv %r 0.5 0\nv %r -0.5 0\nv 0 0 %r\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4" % (r, -r/2, -r/2, h))' > "$out/regular_tetrahedron.obj"
+"$limsurf" volume "$out/regular_tetrahedron.obj" --scheme loop --json |
+    python3 -c 'import json,sys,math; from fractions import Fraction; d=json.load(sys.stdin); e=float(Fraction(44192429513855101, 6865302375425894400))/math.sqrt(2); print("   Loop regular tetrahedron %.16f  published %.16f  difference %.1e" % (d["volume"], e, abs(d["volume"] - e)))'
+echo "   the genus-2 mesh under Catmull-Clark, with the polyhedral volumes of levels 0..4 and the moments:"
+"$limsurf" volume data/meshes/genus2.obj --scheme catmull-clark --levels 4 --moments
+echo
+
 echo "== a broken file is refused with the file, line and element named"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 1 2 4\nf 2 1 5\nf 1 2 5\n' > "$out/broken.obj"
 if "$limsurf" convert "$out/broken.obj" "$out/broken.ply"; then

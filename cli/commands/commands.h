@@ -15,5 +15,6 @@ void add_convert_command(CLI::App& app, CommandStatus& status);
 void add_subdivide_command(CLI::App& app, CommandStatus& status);
 void add_eval_command(CLI::App& app, CommandStatus& status);
 void add_measure_command(CLI::App& app, CommandStatus& status);
+void add_volume_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

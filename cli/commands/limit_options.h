@@ -1,4 +1,4 @@
-// Options shared by the commands that evaluate the limit surface (eval, measure):
+// Options shared by the commands that evaluate the limit surface (eval, measure, volume):
 // the scheme and its rules, taken from the command line, else the file's hints.
 #pragma once
 
@@ -75,15 +75,20 @@ T choose_rule(const std::string& flag, const std::map<std::string, T>& names, co
     return flag.empty() ? hint.value_or(fallback) : names.at(flag);
 }
 
-/// The limit basis of @p mesh under the chosen scheme and rules.
-inline LimitBasis make_limit_basis(const ControlMesh& mesh, const LimitSchemeOptions& options) {
+/// The rules chosen on the command line, else the file's hints, else the defaults.
+inline SchemeOptions scheme_rules(const ControlMesh& mesh, const LimitSchemeOptions& options) {
     const SchemeHints& hints = mesh.hints();
     const SchemeOptions defaults;
     SchemeOptions rules;
     rules.boundary = choose_rule(options.boundary, boundary_names(), hints.boundary, defaults.boundary);
     rules.creasing = choose_rule(options.creasing, creasing_names(), hints.creasing, defaults.creasing);
     rules.triangles = choose_rule(options.triangles, triangle_names(), hints.triangles, defaults.triangles);
-    return LimitBasis(mesh.topology(), limit_schemes().at(options.scheme), rules);
+    return rules;
+}
+
+/// The limit basis of @p mesh under the chosen scheme and rules.
+inline LimitBasis make_limit_basis(const ControlMesh& mesh, const LimitSchemeOptions& options) {
+    return LimitBasis(mesh.topology(), limit_schemes().at(options.scheme), scheme_rules(mesh, options));
 }
 
 }  // namespace limsurf::cli

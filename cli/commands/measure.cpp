@@ -1,5 +1,5 @@
 // limsurf measure MESH --scheme S [--degree D] [--tiles K] [--json]: area, enclosed
-// volume, centroids of the limit surface by quadrature, each with an error estimate.
+// volume, centroids and the solid's inertia tensor by quadrature, each with an error estimate.
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -41,6 +41,7 @@ int run_measure(const MeasureOptions& options) {
         nlohmann::json errors{{"area", r.error.area}, {"surface_centroid", r.error.surface_centroid}};
         errors["volume"] = r.closed ? nlohmann::json(r.error.volume) : nlohmann::json(nullptr);
         errors["centroid"] = r.closed ? nlohmann::json(r.error.centroid) : nlohmann::json(nullptr);
+        errors["inertia"] = r.closed ? nlohmann::json(r.error.inertia) : nlohmann::json(nullptr);
         nlohmann::json out{
             {"closed", r.closed},
             {"area", r.value.area},
@@ -51,6 +52,11 @@ int run_measure(const MeasureOptions& options) {
             {"reference", {{"degree", r.finer.degree}, {"tiles", r.finer.subdivide_near_extraordinary}}}};
         out["volume"] = r.closed ? nlohmann::json(r.value.volume) : nlohmann::json(nullptr);
         out["centroid"] = r.closed ? vector_json(r.value.centroid) : nlohmann::json(nullptr);
+        const Eigen::Matrix3d& I = r.value.inertia;
+        out["inertia"] =
+            r.closed
+                ? nlohmann::json{{I(0, 0), I(0, 1), I(0, 2)}, {I(1, 0), I(1, 1), I(1, 2)}, {I(2, 0), I(2, 1), I(2, 2)}}
+                : nlohmann::json(nullptr);
         std::cout << out.dump(2) << '\n';
         return exit_ok;
     }
@@ -65,6 +71,14 @@ int run_measure(const MeasureOptions& options) {
         std::cout << std::setprecision(15) << "volume            " << r.value.volume << "  (error estimate "
                   << std::setprecision(2) << r.error.volume << ")\n"
                   << "centroid          " << vec(r.value.centroid) << "  (error estimate " << r.error.centroid << ")\n";
+        for (int row = 0; row < 3; ++row) {
+            std::cout << (row == 0 ? "inertia           " : "                  ") << std::setprecision(15)
+                      << vec(r.value.inertia.row(row).transpose());
+            if (row == 0) {
+                std::cout << "  (about the centroid; error estimate " << std::setprecision(2) << r.error.inertia << ")";
+            }
+            std::cout << '\n';
+        }
     } else {
         std::cout << "volume            not defined (the limit surface is not closed)\n";
     }

@@ -10,6 +10,10 @@
 //   enclosed volume  V = 1/3 ∫ x·n dA = 1/3 Σ w x·a      (divergence theorem, div x = 3)
 //   solid centroid   c_i = (1/V) ∫_solid x_i dV = (1/V) Σ w (x_i²/2) a_i   (div (x_i²/2 e_i) = x_i)
 //   surface centroid s = (1/A) Σ w x |a|
+//   inertia          I = ∫_solid (|r|² Id − r rᵀ) dV, r = x − c (unit density, about the centroid),
+//                    from the second moments ∫ x_i² dV = ⅓∫ x_i³ n_i dA (div (x_i³/3 e_i) = x_i²) and
+//                    ∫ x_i x_j dV = ¼∫ (x_i² x_j n_i + x_j² x_i n_j) dA (the mean of two divergence forms)
+//                    about the mean control point, moved to the centroid by the parallel-axis theorem
 // V and c are meaningful for closed surfaces only (V > 0 when outward oriented); V is
 // translation invariant only for a closed surface.
 //
@@ -40,6 +44,9 @@ namespace limsurf {
 /// @brief Centroid of the solid enclosed by a closed limit surface.
 /// @throws NumericalError when the enclosed volume is (nearly) zero
 [[nodiscard]] Eigen::Vector3d centroid(const LimitSampler& sampler, const Points& X);
+/// @brief Inertia tensor of the solid enclosed by a closed limit surface, about its centroid (unit density).
+/// @throws NumericalError when the enclosed volume is (nearly) zero
+[[nodiscard]] Eigen::Matrix3d inertia(const LimitSampler& sampler, const Points& X);
 /// @brief Area-weighted centroid of the surface. @throws NumericalError when the area is zero
 [[nodiscard]] Eigen::Vector3d surface_centroid(const LimitSampler& sampler, const Points& X);
 /// @brief ∂area/∂X, #V × 3 (row k: derivative with respect to control point k).
@@ -51,12 +58,13 @@ namespace limsurf {
 /// without a limit surface (holes). Volume and solid centroid are defined only then.
 [[nodiscard]] bool encloses_volume(const LimitBasis& basis);
 
-/// Area, volume and centroids in one pass.
+/// Area, volume, centroids and the solid's inertia tensor in one pass.
 struct SurfaceMeasures {
     double area = 0.0;
     double volume = 0.0;                                         ///< 0 when !closed
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();          ///< solid centroid; zero when !closed
     Eigen::Vector3d surface_centroid = Eigen::Vector3d::Zero();  ///< area-weighted
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< of the solid, about its centroid; zero when !closed
 };
 
 /// @brief All of SurfaceMeasures from one evaluation of the sampler.
@@ -70,6 +78,7 @@ struct MeasureErrors {
     double volume = 0.0;
     double centroid = 0.0;
     double surface_centroid = 0.0;
+    double inertia = 0.0;  ///< Frobenius norm of the difference
 };
 
 /// Measures with an error estimate.

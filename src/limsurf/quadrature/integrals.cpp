@@ -74,15 +74,19 @@ SurfaceMeasures measure(const LimitSampler& sampler, const Points& X, bool close
     // quadrature sums satisfy ∫ n dA = 0 and ∫ x_i n_i dA = V only approximately; taking o inside
     // the surface makes the discrete centroids exactly translation equivariant and keeps |x| small.
     const Vec3 o = X.rows() > 0 ? Vec3(X.colwise().mean().transpose()) : Vec3::Zero();
-    // 0: area, 1: 3V, 2-4: ∫ x_i²/2 n_i dA, 5-7: ∫ x dA (x relative to o)
-    const Eigen::Matrix<double, 8, 1> sums =
-        reduce<8>(sampler, X, [&o](double w, const Eigen::Matrix<double, 6, 3>& d) {
+    // 0: area, 1: 3V, 2-4: ∫ x_i²/2 n_i dA, 5-7: ∫ x dA, 8-10: ∫ x_i³/3 n_i dA,
+    // 11-13: ∫ (x_i² x_j n_i + x_j² x_i n_j)/4 dA for (i, j) = (0, 1), (0, 2), (1, 2)  (x relative to o)
+    const Eigen::Matrix<double, 14, 1> sums =
+        reduce<14>(sampler, X, [&o](double w, const Eigen::Matrix<double, 6, 3>& d) {
             const Vec3 x = d.row(0).transpose() - o;
             const Vec3 a = cross_uv(d);
             const double da = a.norm();
-            Eigen::Matrix<double, 8, 1> t;
-            t << da, x.dot(a), 0.5 * x.cwiseProduct(x).cwiseProduct(a), x * da;
-            return Eigen::Matrix<double, 8, 1>(w * t);
+            const Vec3 xx = x.cwiseProduct(x);
+            Eigen::Matrix<double, 14, 1> t;
+            t << da, x.dot(a), 0.5 * xx.cwiseProduct(a), x * da, xx.cwiseProduct(x).cwiseProduct(a) / 3.0,
+                0.25 * (xx(0) * x(1) * a(0) + xx(1) * x(0) * a(1)), 0.25 * (xx(0) * x(2) * a(0) + xx(2) * x(0) * a(2)),
+                0.25 * (xx(1) * x(2) * a(1) + xx(2) * x(1) * a(2));
+            return Eigen::Matrix<double, 14, 1>(w * t);
         });
     SurfaceMeasures m;
     m.area = sums(0);
@@ -92,13 +96,26 @@ SurfaceMeasures measure(const LimitSampler& sampler, const Points& X, bool close
         m.volume = sums(1) / 3.0;
         LIMSURF_CHECK(std::abs(m.volume) > 1e-14 * std::pow(m.area, 1.5), NumericalError,
                       "the enclosed volume is zero (", m.volume, "): the solid centroid is not defined");
-        m.centroid = o + sums.segment<3>(2) / m.volume;
+        const Vec3 c = sums.segment<3>(2) / m.volume;  // relative to o
+        m.centroid = o + c;
+        // Second moments about o, then about the centroid (parallel axes), then the inertia tensor.
+        Eigen::Matrix3d second;
+        second.diagonal() = sums.segment<3>(8);
+        second(0, 1) = second(1, 0) = sums(11);
+        second(0, 2) = second(2, 0) = sums(12);
+        second(1, 2) = second(2, 1) = sums(13);
+        const Eigen::Matrix3d central = second - m.volume * c * c.transpose();
+        m.inertia = central.trace() * Eigen::Matrix3d::Identity() - central;
     }
     return m;
 }
 
 Eigen::Vector3d centroid(const LimitSampler& sampler, const Points& X) {
     return measure(sampler, X, true).centroid;
+}
+
+Eigen::Matrix3d inertia(const LimitSampler& sampler, const Points& X) {
+    return measure(sampler, X, true).inertia;
 }
 
 Eigen::Vector3d surface_centroid(const LimitSampler& sampler, const Points& X) {
@@ -166,6 +183,7 @@ MeasureReport measure_with_error(const LimitBasis& basis, const Points& X, const
     report.error.volume = std::abs(report.value.volume - better.volume);
     report.error.centroid = (report.value.centroid - better.centroid).norm();
     report.error.surface_centroid = (report.value.surface_centroid - better.surface_centroid).norm();
+    report.error.inertia = (report.value.inertia - better.inertia).norm();
     return report;
 }
 
