@@ -43,9 +43,6 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/patchTableFactory.h>
@@ -54,6 +51,7 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include "bench_heap.h"
 #include "limsurf/io/obj.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/mesh/control_mesh.h"
@@ -366,31 +364,6 @@ void osd_evaluate(benchmark::State& state, const Mesh& mesh, DerivativeOrder ord
     report(state, mesh, sum);
 }
 
-// --- heap ---------------------------------------------------------------------------------
-
-void prefault_heap() {
-#ifdef __GLIBC__
-    double gib = 6.0;
-    if (const char* g = std::getenv("LIMSURF_BENCH_PREFAULT_GIB")) {
-        gib = std::strtod(g, nullptr);
-    }
-    if (!(gib > 0.0)) {
-        return;
-    }
-    mallopt(M_MMAP_MAX, 0);         // every block from the brk heap ...
-    mallopt(M_TRIM_THRESHOLD, -1);  // ... which is never given back
-    const auto bytes = static_cast<std::size_t>(gib * 1024.0 * 1024.0 * 1024.0);
-    auto* block = static_cast<volatile char*>(std::malloc(bytes));
-    if (block == nullptr) {
-        return;
-    }
-    for (std::size_t i = 0; i < bytes; i += 4096) {
-        block[i] = 1;
-    }
-    std::free(const_cast<char*>(block));
-#endif
-}
-
 // --- registration -----------------------------------------------------------------------
 
 void BM_limsurf_first_CCdense_d1(benchmark::State& s) {
@@ -485,7 +458,7 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
     }
-    prefault_heap();
+    limsurf::bench::prefault_heap(6.0);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     return 0;

@@ -4,10 +4,11 @@
 // facets, used with their control points directly, and the rest, which are refined
 // locally: the faces within a few rings of them are copied into a small Topology,
 // refined once or twice with the scheme's own step, and the descendants' facets take
-// their control points as rows of the composed subdivision matrices ("derived points",
-// combinations of control points). A child vertex is trusted only when its parent
-// element is interior to the copy and everything its stencil reads is trusted; when a
-// facet needs an untrusted point the copy is grown and built again.
+// their control points as rows of those steps ("derived points": level-1 points are rows
+// of the first step applied to the control points, level-2 points rows of the second
+// applied to level-1 points; both kept sparse and restricted to the rows facets need). A child vertex is trusted only
+// when its parent element is interior to the copy and everything its stencil reads is trusted; when a facet needs an
+// untrusted point the copy is grown and built again.
 #include "limsurf/volume/enclosed_volume.h"
 
 #include <algorithm>
@@ -229,9 +230,6 @@ void run_parallel(unsigned threads, Work&& work) {
 /// Points in row-major order (x, y, z of a point adjacent in memory).
 using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-/// A sparse combination of control points.
-using Combination = std::map<Index, double>;
-
 }  // namespace
 
 struct EnclosedVolume::Impl {
@@ -242,8 +240,11 @@ struct EnclosedVolume::Impl {
     std::vector<VolumeForm> forms;
     std::map<int, std::size_t> form_of_type;
     std::vector<FacetBlock> blocks;
-    SparseMatrix derived;  ///< D × V
-    int last_type = -1;    ///< cached_form_index's cache
+    /// The refined points facets need, as rows of the refinement steps of the local copy:
+    /// level-1 points = first_level · X (n1 × V), level-2 points = second_level · level-1 points.
+    SparseMatrix first_level;
+    SparseMatrix second_level;
+    int last_type = -1;  ///< cached_form_index's cache
     std::uint32_t last_form = 0;
 
     std::uint32_t form_index(int type) {
@@ -271,16 +272,15 @@ struct EnclosedVolume::Impl {
         return last_form;
     }
 
-    /// Refines the region around @p elements into @p block; false when the region was too small.
-    bool subdivide(const Topology& t, const std::vector<Index>& elements, int radius, FacetBlock& block,
-                   std::vector<Eigen::Triplet<double>>& triplets, Index& num_derived);
+    /// Refines the region around @p elements into @p block (and first_level, second_level); false
+    /// when the region was too small.
+    bool subdivide(const Topology& t, const std::vector<Index>& elements, int radius, FacetBlock& block);
 
     double evaluate(const Points& X, Points* gradient) const;
 };
 
 bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>& elements, int radius,
-                                     FacetBlock& block, std::vector<Eigen::Triplet<double>>& triplets,
-                                     Index& num_derived) {
+                                     FacetBlock& block) {
     const Region region = make_region(t, scheme, elements, radius);
     const Topology& t0 = region.topology;
     const Level level1 = refine(t0, scheme);
@@ -288,41 +288,10 @@ bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>
     const std::vector<char> trusted1 = trusted_children(t0, level1, scheme, trusted0);
     Level level2;
     std::vector<char> trusted2;
-    // Derived points: one per (level, local vertex), as combinations of control points.
-    std::map<std::pair<int, Index>, Index> derived_index;
-    std::vector<Combination> combinations;
-    const auto level1_combination = [&](Index c) {
-        Combination out;
-        for (SparseMatrix::InnerIterator it(level1.S0, c); it; ++it) {
-            out[region.global_vertex[at(static_cast<Index>(it.col()))]] += it.value();
-        }
-        return out;
-    };
-    const auto derive = [&](int level, Index vertex) {
-        const auto key = std::make_pair(level, vertex);
-        const auto it = derived_index.find(key);
-        if (it != derived_index.end()) {
-            return it->second;
-        }
-        Combination c;
-        if (level == 1) {
-            c = level1_combination(vertex);
-        } else {
-            for (SparseMatrix::InnerIterator it2(level2.S0, vertex); it2; ++it2) {
-                for (const auto& [g, w] : level1_combination(static_cast<Index>(it2.col()))) {
-                    c[g] += it2.value() * w;
-                }
-            }
-        }
-        const Index d = num_derived + static_cast<Index>(combinations.size());
-        combinations.push_back(std::move(c));
-        derived_index.emplace(key, d);
-        return d;
-    };
     struct Pending {
         int type;
         int level;
-        std::vector<Index> ring;
+        std::vector<Index> ring;  ///< vertices of level `level` of the copy
     };
     std::vector<Pending> pending;
     for (const Index e : region.local_element) {
@@ -353,21 +322,59 @@ bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>
             }
         }
     }
-    const auto V = num_vertices;
+    // The points the facets need, level by level: level-2 points read level-1 points.
+    std::vector<Index> id1(at(level1.topology.num_vertices()), invalid_index);
+    std::vector<Index> id2(at(level2.topology.num_vertices()), invalid_index);
+    Index n1 = 0;
+    Index n2 = 0;
     for (const Pending& p : pending) {
-        std::vector<Index> facet_points;
         for (const Index v : p.ring) {
-            facet_points.push_back(V + derive(p.level, v));
+            Index& id = p.level == 1 ? id1[at(v)] : id2[at(v)];
+            if (id == invalid_index) {
+                id = p.level == 1 ? n1++ : n2++;
+            }
+        }
+    }
+    std::vector<Index> rows2(at(n2));
+    for (Index v = 0; v < static_cast<Index>(id2.size()); ++v) {
+        if (id2[at(v)] != invalid_index) {
+            rows2[at(id2[at(v)])] = v;
+            for (SparseMatrix::InnerIterator it(level2.S0, v); it; ++it) {
+                Index& id = id1[at(static_cast<Index>(it.col()))];
+                if (id == invalid_index) {
+                    id = n1++;
+                }
+            }
+        }
+    }
+    std::vector<Eigen::Triplet<double>> triplets1;
+    for (Index v = 0; v < static_cast<Index>(id1.size()); ++v) {
+        if (id1[at(v)] != invalid_index) {
+            for (SparseMatrix::InnerIterator it(level1.S0, v); it; ++it) {
+                triplets1.emplace_back(id1[at(v)], region.global_vertex[at(static_cast<Index>(it.col()))], it.value());
+            }
+        }
+    }
+    std::vector<Eigen::Triplet<double>> triplets2;
+    for (Index r = 0; r < n2; ++r) {
+        for (SparseMatrix::InnerIterator it(level2.S0, rows2[at(r)]); it; ++it) {
+            triplets2.emplace_back(r, id1[at(static_cast<Index>(it.col()))], it.value());
+        }
+    }
+    first_level.resize(n1, num_vertices);
+    first_level.setFromTriplets(triplets1.begin(), triplets1.end());
+    second_level.resize(n2, n1);
+    second_level.setFromTriplets(triplets2.begin(), triplets2.end());
+    // Facet points: control vertices 0..V-1, then the level-1 points, then the level-2 points.
+    std::vector<Index> facet_points;
+    for (const Pending& p : pending) {
+        facet_points.clear();
+        for (const Index v : p.ring) {
+            facet_points.push_back(num_vertices + (p.level == 1 ? id1[at(v)] : n1 + id2[at(v)]));
         }
         block.add(cached_form_index(p.type), std::span<const Index>(facet_points));
         ++statistics.subdivided_facets;
     }
-    for (std::size_t d = 0; d < combinations.size(); ++d) {
-        for (const auto& [g, w] : combinations[d]) {
-            triplets.emplace_back(num_derived + static_cast<Index>(d), g, w);
-        }
-    }
-    num_derived += static_cast<Index>(combinations.size());
     return true;
 }
 
@@ -406,17 +413,13 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
         untyped.insert(untyped.end(), untyped_parts[w].begin(), untyped_parts[w].end());
     }
     d.statistics.subdivided_elements = static_cast<Index>(untyped.size());
-    std::vector<Eigen::Triplet<double>> triplets;
-    Index num_derived = 0;
     if (!untyped.empty()) {
         bool done = false;
         for (int radius = 3; radius <= 8 && !done; ++radius) {
             // Start over at each radius (a failed attempt may have added some facets).
             FacetBlock block;
             d.statistics.subdivided_facets = 0;
-            triplets.clear();
-            num_derived = 0;
-            done = d.subdivide(topology, untyped, radius, block, triplets, num_derived);
+            done = d.subdivide(topology, untyped, radius, block);
             if (done) {
                 d.blocks.push_back(std::move(block));
             }
@@ -424,8 +427,6 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
         LIMSURF_CHECK(done, UnsupportedError,
                       "exact volume: could not isolate the irregular elements (internal error)");
     }
-    d.derived.resize(num_derived, d.num_vertices);
-    d.derived.setFromTriplets(triplets.begin(), triplets.end());
 }
 
 EnclosedVolume::~EnclosedVolume() = default;
@@ -441,11 +442,17 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
     // go into one row-major table, so that a facet reads 3 adjacent doubles per point.
     const Eigen::RowVector3d o = X.colwise().mean();
     const Index V = num_vertices;
-    const auto D = static_cast<Index>(derived.rows());
+    const auto n1 = static_cast<Index>(first_level.rows());
+    const auto n2 = static_cast<Index>(second_level.rows());
+    const Index D = n1 + n2;
     RowPoints all(V + D, 3);
     all.topRows(V) = X.rowwise() - o;
-    if (D > 0) {
-        all.bottomRows(D) = (derived * X).rowwise() - o;
+    if (n1 > 0) {
+        // Refinement rows sum to 1: they commute with the shift by o.
+        all.middleRows(V, n1) = first_level * all.topRows(V);
+    }
+    if (n2 > 0) {
+        all.bottomRows(n2) = second_level * all.middleRows(V, n1);
     }
     const unsigned threads = worker_count(options.num_threads, V);
     std::vector<double> sums(threads, 0.0);
@@ -499,10 +506,14 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
         for (unsigned w = 1; w < threads; ++w) {
             grads[0] += grads[w];
         }
-        *gradient = grads[0].topRows(V);
-        if (D > 0) {
-            *gradient += derived.transpose() * Points(grads[0].bottomRows(D));
+        RowPoints& g = grads[0];
+        if (n2 > 0) {
+            g.middleRows(V, n1) += second_level.transpose() * g.bottomRows(n2);
         }
+        if (n1 > 0) {
+            g.topRows(V) += first_level.transpose() * g.middleRows(V, n1);
+        }
+        *gradient = g.topRows(V);
     }
     return volume;
 }
