@@ -153,30 +153,6 @@ void BM_Gradient(benchmark::State& state) {
     state.SetLabel(mesh_names[state.range(0)]);
 }
 
-double polyhedral(const Far::TopologyLevel& level, const limsurf::test::OsdPoint* points) {
-    double o[3] = {0.0, 0.0, 0.0};
-    const int nv = level.GetNumVertices();
-    for (int v = 0; v < nv; ++v) {
-        for (int c = 0; c < 3; ++c) {
-            o[c] += points[v].p[c] / nv;
-        }
-    }
-    double sum = 0.0;
-    const auto at = [&](int v, int c) { return points[v].p[c] - o[c]; };
-    for (int f = 0; f < level.GetNumFaces(); ++f) {
-        const auto fv = level.GetFaceVertices(f);
-        for (int k = 1; k + 1 < fv.size(); ++k) {
-            const int a = fv[0];
-            const int b = fv[k];
-            const int c = fv[k + 1];
-            sum += at(a, 0) * (at(b, 1) * at(c, 2) - at(b, 2) * at(c, 1)) -
-                   at(a, 1) * (at(b, 0) * at(c, 2) - at(b, 2) * at(c, 0)) +
-                   at(a, 2) * (at(b, 0) * at(c, 1) - at(b, 1) * at(c, 0));
-        }
-    }
-    return sum / 6.0;
-}
-
 /// Polyhedral volumes of levels 0..levels: OpenSubdiv (Catmull–Clark, Loop) or limsurf (Doo–Sabin).
 std::vector<double> subdivided_volumes(const Mesh& m, int levels) {
     std::vector<double> out;
@@ -203,7 +179,7 @@ std::vector<double> subdivided_volumes(const Mesh& m, int levels) {
     Far::PrimvarRefiner primvar(*refiner);
     limsurf::test::OsdPoint* src = points.data();
     for (int l = 0; l <= levels; ++l) {
-        out.push_back(polyhedral(refiner->GetLevel(l), src));
+        out.push_back(limsurf::test::polyhedral_volume(refiner->GetLevel(l), src));
         if (l < levels) {
             limsurf::test::OsdPoint* dst = src + refiner->GetLevel(l).GetNumVertices();
             primvar.Interpolate(l + 1, src, dst);

@@ -82,4 +82,30 @@ inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner
     return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(type, options)));
 }
 
+/// The volume enclosed by the faces of a refined level (each face fanned from its first corner), about
+/// the mean point: the polyhedral volume of Far's own refinement, for the volume tests and benchmark.
+inline double polyhedral_volume(const OpenSubdiv::Far::TopologyLevel& level, const OsdPoint* points) {
+    double o[3] = {0.0, 0.0, 0.0};
+    const int nv = level.GetNumVertices();
+    for (int v = 0; v < nv; ++v) {
+        for (int c = 0; c < 3; ++c) {
+            o[c] += points[v].p[c] / nv;
+        }
+    }
+    const auto at = [&](int v, int c) { return points[v].p[c] - o[c]; };
+    double sum = 0.0;
+    for (int f = 0; f < level.GetNumFaces(); ++f) {
+        const auto fv = level.GetFaceVertices(f);
+        for (int k = 1; k + 1 < fv.size(); ++k) {
+            const int a = fv[0];
+            const int b = fv[k];
+            const int c = fv[k + 1];
+            sum += at(a, 0) * (at(b, 1) * at(c, 2) - at(b, 2) * at(c, 1)) -
+                   at(a, 1) * (at(b, 0) * at(c, 2) - at(b, 2) * at(c, 0)) +
+                   at(a, 2) * (at(b, 0) * at(c, 1) - at(b, 1) * at(c, 0));
+        }
+    }
+    return sum / 6.0;
+}
+
 }  // namespace limsurf::test

@@ -21,29 +21,6 @@ namespace {
 
 namespace Far = OpenSubdiv::Far;
 
-/// Polyhedral volume of a face list (fans from each face's first corner), about the mean point.
-double polyhedral(const std::vector<std::vector<int>>& faces, const std::vector<test::OsdPoint>& points) {
-    double o[3] = {0, 0, 0};
-    for (const auto& p : points) {
-        for (int c = 0; c < 3; ++c) {
-            o[c] += p.p[c] / static_cast<double>(points.size());
-        }
-    }
-    double sum = 0.0;
-    const auto at = [&](int v, int c) { return points[static_cast<std::size_t>(v)].p[c] - o[c]; };
-    for (const auto& f : faces) {
-        for (std::size_t k = 1; k + 1 < f.size(); ++k) {
-            const int a = f[0];
-            const int b = f[k];
-            const int c = f[k + 1];
-            sum += at(a, 0) * (at(b, 1) * at(c, 2) - at(b, 2) * at(c, 1)) -
-                   at(a, 1) * (at(b, 0) * at(c, 2) - at(b, 2) * at(c, 0)) +
-                   at(a, 2) * (at(b, 0) * at(c, 1) - at(b, 1) * at(c, 0));
-        }
-    }
-    return sum / 6.0;
-}
-
 /// Polyhedral volumes of levels 0..levels refined by OpenSubdiv Far.
 std::vector<double> opensubdiv_volumes(const ControlMesh& mesh, SchemeKind scheme, int levels) {
     auto refiner = test::make_opensubdiv_refiner(mesh.topology(), scheme, SchemeOptions{});
@@ -60,12 +37,7 @@ std::vector<double> opensubdiv_volumes(const ControlMesh& mesh, SchemeKind schem
     test::OsdPoint* src = points.data();
     for (int level = 0; level <= levels; ++level) {
         const Far::TopologyLevel& l = refiner->GetLevel(level);
-        std::vector<std::vector<int>> faces;
-        for (int f = 0; f < l.GetNumFaces(); ++f) {
-            const auto fv = l.GetFaceVertices(f);
-            faces.emplace_back(fv.begin(), fv.end());
-        }
-        out.push_back(polyhedral(faces, std::vector<test::OsdPoint>(src, src + l.GetNumVertices())));
+        out.push_back(test::polyhedral_volume(l, src));
         if (level < levels) {
             test::OsdPoint* dst = src + l.GetNumVertices();
             primvar.Interpolate(level + 1, src, dst);
