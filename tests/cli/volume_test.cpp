@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,32 @@ TEST(CliVolume, MomentsOfASymmetricMeshAndAgreementWithTheExactVolume) {
     EXPECT_LT(moments.at("error_estimate").at("inertia").get<double>(), 1e-8 * inertia[0][0]);
 }
 
+TEST(CliVolume, ValencesBeyondTheTablesAreGeneratedWithANote) {
+    // A 14-gonal bipyramid: apexes of valence 14, beyond the shipped types 3..12.
+    const fs::path path = temp_dir() / "bipyramid14.obj";
+    std::ofstream out(path);
+    out.precision(17);
+    const int n = 14;
+    for (int i = 0; i < n; ++i) {
+        out << "v " << std::cos(2 * std::numbers::pi * i / n) << ' ' << std::sin(2 * std::numbers::pi * i / n)
+            << " 0\n";
+    }
+    out << "v 0 0 1\nv 0 0 -1\n";
+    for (int i = 0; i < n; ++i) {
+        const int j = (i + 1) % n;
+        out << "f " << i + 1 << ' ' << j + 1 << ' ' << n + 1 << "\nf " << j + 1 << ' ' << i + 1 << ' ' << n + 2 << '\n';
+    }
+    out.close();
+    const CliRun text = limsurf({"volume", path.string(), "--scheme", "loop", "--levels", "0"});
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.err.find("generating the volume forms of facet types 14"), std::string::npos) << text.err;
+    const CliRun json = limsurf({"volume", path.string(), "--scheme", "loop", "--json", "--levels", "0"});
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    const auto parsed = nlohmann::json::parse(json.out);
+    EXPECT_EQ(parsed.at("facets").at("generated_types"), nlohmann::json::array({14}));
+    EXPECT_GT(parsed.at("volume").get<double>(), 0.0);
+}
+
 TEST(CliVolume, OpenMeshAndCreasesAreRefusedNamingTheFile) {
     const std::string open = mesh("quad_grid");
     const CliRun run = limsurf({"volume", open, "--scheme", "catmull-clark"});
@@ -144,8 +171,8 @@ TEST(CliVolume, LoopOnQuadsNamesTheFace) {
 }
 
 TEST(CliVolume, UsageErrorsExitTwo) {
-    EXPECT_EQ(limsurf({"volume", mesh("cube")}).exit_code, 2);                                      // no --scheme
-    EXPECT_EQ(limsurf({"volume", mesh("cube"), "--scheme", "bilinear"}).exit_code, 2);              // not a limit scheme
+    EXPECT_EQ(limsurf({"volume", mesh("cube")}).exit_code, 2);                          // no --scheme
+    EXPECT_EQ(limsurf({"volume", mesh("cube"), "--scheme", "bilinear"}).exit_code, 2);  // not a limit scheme
     EXPECT_EQ(limsurf({"volume", mesh("cube"), "--scheme", "loop", "--levels", "9"}).exit_code, 2);  // out of range
 }
 
