@@ -4,11 +4,12 @@
 // facets, used with their control points directly, and the rest, which are refined
 // locally: the faces within a few rings of them are copied into a small Topology,
 // refined once or twice with the scheme's own step, and the descendants' facets take
-// their control points as rows of those steps ("derived points": level-1 points are rows
-// of the first step applied to the control points, level-2 points rows of the second
-// applied to level-1 points; both kept sparse and restricted to the rows facets need). A child vertex is trusted only
-// when its parent element is interior to the copy and everything its stencil reads is trusted; when a facet needs an
-// untrusted point the copy is grown and built again.
+// their control points as rows of those steps ("derived points": level-1 points are
+// rows of the first step applied to the control points, level-2 points rows of the
+// second applied to level-1 points; both kept sparse and restricted to the rows that
+// facets need). A child vertex is trusted only when its parent element is interior to
+// the copy and everything its stencil reads is trusted; when a facet needs an untrusted
+// point the copy is grown and built again.
 #include "limsurf/volume/enclosed_volume.h"
 
 #include <algorithm>
@@ -16,7 +17,6 @@
 #include <map>
 #include <span>
 #include <thread>
-#include <unordered_map>
 
 #include <Eigen/Geometry>
 
@@ -29,7 +29,6 @@
 namespace limsurf {
 namespace {
 
-using detail::FacetRing;
 using detail::VolumeForm;
 
 std::size_t at(Index i) {

@@ -39,8 +39,8 @@
 
 namespace limsurf::detail {
 
-/// cos(2π d / n) in the scalar type (specialised for each scalar; see volume_forms.cpp for
-/// double and tools/volume_forms/multiprecision.h for GMP rationals and floats).
+/// cos(2π d / n) in the scalar type (specialised per scalar: double below, GMP rationals and
+/// floats in tools/volume_forms/multiprecision.h).
 template <class Scalar>
 Scalar cos_two_pi(int d, int n);
 
