@@ -121,6 +121,26 @@ TEST(VolumeIdentity, TypesBeyondTheTablesAreGeneratedOnDemand) {
     }
 }
 
+TEST(VolumeIdentity, CoefficientsAreAvailableInTheDocumentedOrder) {
+    EXPECT_EQ(volume_form_coefficients(SchemeKind::CatmullClark, 4).size(), 560U);  // C(16, 3)
+    EXPECT_EQ(volume_form_coefficients(SchemeKind::Loop, 12).size(), 816U);         // C(18, 3)
+    EXPECT_EQ(volume_form_coefficients(SchemeKind::DooSabin, 14).size(), 969U);     // C(19, 3), generated
+    // The paper's Doo–Sabin Ŷ³₈,₇,₂ = 3324559/2891332800 is our c_{2,3,6} (docs/volume.md).
+    const std::vector<double> ds3 = volume_form_coefficients(SchemeKind::DooSabin, 3);
+    int index = 0;
+    for (int i = 0; i < 8; ++i) {
+        for (int j = i + 1; j < 8; ++j) {
+            for (int k = j + 1; k < 8; ++k, ++index) {
+                if (i == 2 && j == 3 && k == 6) {
+                    EXPECT_NEAR(ds3[static_cast<std::size_t>(index)], 3324559.0 / 2891332800.0, 1e-17);
+                }
+            }
+        }
+    }
+    EXPECT_THROW((void)volume_form_coefficients(SchemeKind::Bilinear, 4), UnsupportedError);
+    EXPECT_THROW((void)volume_form_coefficients(SchemeKind::Loop, 2), UnsupportedError);
+}
+
 TEST(VolumeIdentity, AffineMapsMultiplyTheVolumeByTheDeterminant) {
     Eigen::Matrix3d A;
     A << 1.2, 0.3, -0.1, 0.2, 0.9, 0.4, -0.3, 0.1, 1.1;

@@ -88,6 +88,13 @@ class EnclosedVolume {
     std::unique_ptr<Impl> impl_;
 };
 
+/// @brief The coefficients c_ijk of the volume form of facet type @p type: i < j < k in
+///   lexicographic order, C(m,3) of them (m = 2τ+8, τ+6, τ+5 for Catmull–Clark, Loop, Doo–Sabin),
+///   on the canonical numbering of the facet's points (docs/volume.md), so that
+///   vol(f) = Σ c_ijk det(p_i, p_j, p_k). Shipped for types 3..12, generated (double) otherwise.
+/// @throws UnsupportedError for another scheme or a type below 3
+[[nodiscard]] std::vector<double> volume_form_coefficients(SchemeKind scheme, int type);
+
 /// @brief Shorthand: EnclosedVolume(mesh.topology(), scheme).volume(mesh.positions()).
 /// @throws as EnclosedVolume
 [[nodiscard]] double exact_volume(const ControlMesh& mesh, SchemeKind scheme);

@@ -543,6 +543,13 @@ const VolumeStatistics& EnclosedVolume::statistics() const noexcept {
     return impl_->statistics;
 }
 
+std::vector<double> volume_form_coefficients(SchemeKind scheme, int type) {
+    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
+                  UnsupportedError, "no volume forms for the ", to_string(scheme), " scheme");
+    LIMSURF_CHECK(type >= 3, UnsupportedError, "facet type ", type, " (valences and face degrees start at 3)");
+    return detail::load_volume_form(scheme, type).coefficients;
+}
+
 double exact_volume(const ControlMesh& mesh, SchemeKind scheme) {
     return EnclosedVolume(mesh.topology(), scheme).volume(mesh.positions());
 }
