@@ -19,6 +19,7 @@ LAYERS = {
     "limit": {"core", "mesh", "scheme", "refine"},
     "quadrature": {"core", "mesh", "scheme", "refine", "limit"},
     "volume": {"core", "mesh", "scheme", "refine"},
+    "sec": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 

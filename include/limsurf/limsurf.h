@@ -30,3 +30,4 @@
 #include "limsurf/quadrature/rules.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/volume/enclosed_volume.h"
+#include "limsurf/sec/exterior_derivative.h"
