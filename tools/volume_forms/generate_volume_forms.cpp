@@ -73,6 +73,7 @@ void write_table(const std::string& path, const std::vector<Generated>& forms, i
            "// lexicographic order, on the canonical facet numbering of facet_ring.h (docs/volume.md).\n"
            "// Regular forms: exact rationals rounded to double. Irregular forms: 100-digit solutions\n"
            "// rounded to double; the comment gives each one's relative residual.\n"
+           "// clang-format off\n"
            "#include \"limsurf/volume/shipped_forms.h\"\n\nnamespace limsurf::detail {\nnamespace {\n\n";
     for (const Generated& g : forms) {
         out << "// " << identifier(g.scheme) << " type " << g.type << ": m = " << g.size << ", residual " << g.residual
@@ -89,7 +90,7 @@ void write_table(const std::string& path, const std::vector<Generated>& forms, i
             << g.type << "},\n";
     }
     out << "};\n\n}  // namespace\n\nstd::span<const ShippedForm> shipped_forms() {\n    return forms;\n}\n\n"
-           "}  // namespace limsurf::detail\n";
+           "}  // namespace limsurf::detail\n// clang-format on\n";
 }
 
 }  // namespace

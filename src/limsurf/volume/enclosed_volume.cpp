@@ -35,10 +35,6 @@ std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
 }
 
-Index num_elements(const Topology& t, SchemeKind scheme) {
-    return scheme == SchemeKind::DooSabin ? t.num_vertices() : t.num_faces();
-}
-
 void check_input(const Topology& topology, SchemeKind scheme, const SchemeOptions& options) {
     LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
                   UnsupportedError, "exact volume: no volume forms for the ", to_string(scheme),
@@ -386,7 +382,7 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
     d.num_vertices = topology.num_vertices();
     d.options = volume_options;
     // Classify the elements in parallel (read-only walks), then append their facets in order.
-    const Index count = num_elements(topology, scheme);
+    const Index count = detail::num_facet_elements(topology, scheme);
     const unsigned threads = worker_count(volume_options.num_threads, count);
     d.blocks.resize(threads);
     std::vector<std::vector<Index>> untyped_parts(threads);

@@ -181,6 +181,10 @@ int regular_facet_type(SchemeKind scheme) {
     return scheme == SchemeKind::Loop ? 6 : 4;
 }
 
+Index num_facet_elements(const Topology& topology, SchemeKind scheme) {
+    return scheme == SchemeKind::DooSabin ? topology.num_vertices() : topology.num_faces();
+}
+
 int facet_ring_size(SchemeKind scheme, int type) {
     switch (scheme) {
     case SchemeKind::CatmullClark:

@@ -45,6 +45,9 @@ struct FacetRing {
 /// m(τ): 2τ + 8 (Catmull–Clark), τ + 6 (Loop), τ + 5 (Doo–Sabin).
 [[nodiscard]] int facet_ring_size(SchemeKind scheme, int type);
 
+/// Number of elements that can be facets: faces (Catmull–Clark, Loop) or vertices (Doo–Sabin).
+[[nodiscard]] Index num_facet_elements(const Topology& topology, SchemeKind scheme);
+
 /// @brief The facet of @p element — a face for Catmull–Clark and Loop, a vertex for
 ///   Doo–Sabin — or nothing when the element is not a facet yet (more than one irregular
 ///   corner, a non-quad face, a boundary: it must be subdivided first).

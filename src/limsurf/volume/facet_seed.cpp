@@ -60,10 +60,6 @@ Topology seed_mesh(SchemeKind scheme, int type) {
     }
 }
 
-Index num_elements(const Topology& t, SchemeKind scheme) {
-    return scheme == SchemeKind::DooSabin ? t.num_vertices() : t.num_faces();
-}
-
 }  // namespace
 
 Topology reversed(const Topology& topology) {
@@ -115,7 +111,7 @@ FacetSeed make_facet_seed(SchemeKind scheme, int type) {
     seed.scheme = scheme;
     seed.parent = seed_mesh(scheme, type);
     seed.child = refine(seed.parent, scheme);
-    for (Index e = 0; e < num_elements(seed.parent, scheme); ++e) {
+    for (Index e = 0; e < num_facet_elements(seed.parent, scheme); ++e) {
         const auto ring = typed_facet(seed.parent, scheme, e);
         if (!ring || ring->type != type) {
             continue;

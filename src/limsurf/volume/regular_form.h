@@ -333,7 +333,7 @@ RegularForm<Scalar> solve_regular_form(SchemeKind scheme) {
     }
     // Calibration.
     const DegenerateMesh mesh = degenerate_mesh(scheme);
-    const Index elements = scheme == SchemeKind::DooSabin ? mesh.topology.num_vertices() : mesh.topology.num_faces();
+    const Index elements = num_facet_elements(mesh.topology, scheme);
     Scalar sum(0);
     for (Index e = 0; e < elements; ++e) {
         const auto ring = typed_facet(mesh.topology, scheme, e);

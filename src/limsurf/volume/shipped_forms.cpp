@@ -3,6 +3,7 @@
 // lexicographic order, on the canonical facet numbering of facet_ring.h (docs/volume.md).
 // Regular forms: exact rationals rounded to double. Irregular forms: 100-digit solutions
 // rounded to double; the comment gives each one's relative residual.
+// clang-format off
 #include "limsurf/volume/shipped_forms.h"
 
 namespace limsurf::detail {
@@ -4858,3 +4859,4 @@ std::span<const ShippedForm> shipped_forms() {
 }
 
 }  // namespace limsurf::detail
+// clang-format on
