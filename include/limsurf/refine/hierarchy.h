@@ -3,9 +3,12 @@
 // Level 0 is the control mesh's topology; level l (1 <= l <= L) is
 // step(l).topology, reached from level l−1 by step(l).S0. The accumulated
 // operator A^l = S0^{l−1} ··· S0^0 (#V_l × #V_0) maps control-vertex data
-// straight to level l; it is built on first request and cached.
+// straight to level l; it is built on first request and cached. With
+// RefineOptions::forms the same holds for 1- and 2-forms: A_k^l = S_k^{l−1} ··· S_k^0
+// (SEC Eq. 5).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -30,6 +33,9 @@ struct RefineOptions {
     SchemeOptions scheme_options;                    ///< boundary, creasing, triangle rule
     TunedWeights weights;                            ///< Catmull–Clark only; default = Catmull–Clark's own
     std::int64_t max_faces = std::int64_t{1} << 27;  ///< refuse when the finest level would exceed this
+    /// Also build the form operators S1, S2 of every step (form_subdivision.h; Loop and
+    /// Catmull–Clark): off by default, so plain subdivision pays nothing for them.
+    bool forms = false;
 };
 
 /// Element counts of one level, predicted before refining.
@@ -53,7 +59,8 @@ class Hierarchy {
     /// @brief Refines @p base options.levels times.
     /// @throws InputError when levels is out of range or the finest level would
     ///   exceed options.max_faces or 32-bit indices (checked before any work)
-    /// @throws UnsupportedError when the scheme cannot refine a face (e.g. Loop on a quad)
+    /// @throws UnsupportedError when the scheme cannot refine a face (e.g. Loop on a quad), or
+    ///   options.forms is set and form subdivision has no rules for the mesh (require_form_rules)
     Hierarchy(Topology base, const RefineOptions& options);
 
     Hierarchy(Hierarchy&&) noexcept = default;
@@ -73,6 +80,11 @@ class Hierarchy {
     /// Thread-safe. @throws InputError when out of range
     [[nodiscard]] const SparseMatrix& accumulated(int level) const;
 
+    /// A_k^level for k-forms: k = 0 is accumulated(level); k = 1 (#E_level × #E_0) and
+    /// k = 2 (#F_level × #F_0) need RefineOptions::forms. Built once, cached, thread-safe.
+    /// @throws InputError when out of range, k is not 0, 1, 2, or the forms were not built
+    [[nodiscard]] const SparseMatrix& accumulated_form(int k, int level) const;
+
     /// Per-vertex data (#V_0 × k, any k) carried to level @p level by successive
     /// S0 products (cheaper than forming A). @throws InputError on a row-count mismatch
     [[nodiscard]] Eigen::MatrixXd apply(int level, const Eigen::MatrixXd& data) const;
@@ -88,7 +100,7 @@ class Hierarchy {
     std::vector<Level> steps_;
     // Lazily built accumulated operators; the mutex lives on the heap so that
     // the hierarchy stays movable.
-    mutable std::vector<std::optional<SparseMatrix>> accumulated_;
+    mutable std::array<std::vector<std::optional<SparseMatrix>>, 3> accumulated_;  // [k][level]
     mutable std::unique_ptr<std::mutex> accumulated_mutex_ = std::make_unique<std::mutex>();
 };
 

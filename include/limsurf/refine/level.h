@@ -45,6 +45,10 @@ struct Level {
     Topology topology;      ///< the child topology, with sharpness carried to it
     SparseMatrix S0;        ///< #V_child × #V_parent; child values = S0 · parent values
     Provenance provenance;  ///< where each child vertex and face came from
+    /// Form subdivision (form_subdivision.h), empty (0 × 0) unless asked for:
+    /// #E_child × #E_parent and #F_child × #F_parent.
+    SparseMatrix S1;
+    SparseMatrix S2;
 
     Level() = default;
     /// Takes S0 over without copying it.
@@ -56,11 +60,15 @@ struct Level {
     // instead of copying it (a level's S0 holds millions of non-zeros).
     Level(Level&& other) noexcept : topology(std::move(other.topology)), provenance(std::move(other.provenance)) {
         S0.swap(other.S0);
+        S1.swap(other.S1);
+        S2.swap(other.S2);
     }
     Level& operator=(Level&& other) noexcept {
         topology = std::move(other.topology);
         S0.swap(other.S0);
         provenance = std::move(other.provenance);
+        S1.swap(other.S1);
+        S2.swap(other.S2);
         return *this;
     }
     Level(const Level&) = default;

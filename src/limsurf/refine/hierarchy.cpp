@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "limsurf/core/error.h"
+#include "limsurf/refine/form_subdivision.h"
 
 namespace limsurf {
 namespace {
@@ -74,9 +75,13 @@ Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(opt
     steps_.reserve(static_cast<std::size_t>(options.levels));
     for (int l = 0; l < options.levels; ++l) {
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;
-        steps_.push_back(refine(parent, options.scheme, options.scheme_options, options.weights));
+        steps_.push_back(options.forms
+                             ? refine_with_forms(parent, options.scheme, options.scheme_options, options.weights)
+                             : refine(parent, options.scheme, options.scheme_options, options.weights));
     }
-    accumulated_.resize(steps_.size() + 1);
+    for (auto& cache : accumulated_) {
+        cache.resize(steps_.size() + 1);
+    }
 }
 
 void Hierarchy::check_level(int level, int lowest) const {
@@ -95,23 +100,34 @@ const Level& Hierarchy::step(int level) const {
 }
 
 const SparseMatrix& Hierarchy::accumulated(int level) const {
+    return accumulated_form(0, level);
+}
+
+const SparseMatrix& Hierarchy::accumulated_form(int k, int level) const {
     check_level(level, 0);
+    LIMSURF_CHECK(k >= 0 && k <= 2, InputError, "form degree must be 0, 1 or 2, got ", k);
+    LIMSURF_CHECK(k == 0 || options_.forms || level == 0, InputError, "the ", k,
+                  "-form operators need a hierarchy built with RefineOptions::forms");
     const std::lock_guard<std::mutex> lock(*accumulated_mutex_);
+    auto& cache = accumulated_[static_cast<std::size_t>(k)];
+    const Index base_size = k == 0 ? base_.num_vertices() : k == 1 ? base_.num_edges() : base_.num_faces();
     // Build every missing level up to the requested one, each from the previous.
     for (int l = 0; l <= level; ++l) {
-        auto& slot = accumulated_[static_cast<std::size_t>(l)];
+        auto& slot = cache[static_cast<std::size_t>(l)];
         if (slot) {
             continue;
         }
         if (l == 0) {
-            SparseMatrix identity(base_.num_vertices(), base_.num_vertices());
+            SparseMatrix identity(base_size, base_size);
             identity.setIdentity();
             slot = std::move(identity);
         } else {
-            slot = SparseMatrix(step(l).S0 * *accumulated_[static_cast<std::size_t>(l) - 1]);
+            const Level& s = step(l);
+            const SparseMatrix& S = k == 0 ? s.S0 : k == 1 ? s.S1 : s.S2;
+            slot = SparseMatrix(S * *cache[static_cast<std::size_t>(l) - 1]);
         }
     }
-    return *accumulated_[static_cast<std::size_t>(level)];
+    return *cache[static_cast<std::size_t>(level)];
 }
 
 Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {

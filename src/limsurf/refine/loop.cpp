@@ -1,10 +1,9 @@
 // Loop refinement with OpenSubdiv's boundary and crease rules (docs/schemes.md).
-#include <cmath>
 #include <cstddef>
-#include <numbers>
 #include <vector>
 
 #include "limsurf/detail/refine_face_split.h"
+#include "limsurf/refine/loop_weights.h"
 #include "limsurf/refine/refine.h"
 
 namespace limsurf {
@@ -39,16 +38,8 @@ Level refine_loop(const Topology& parent, const SchemeOptions& options) {
     // Vertex points: Loop's weights, β = (5/8 − (3/8 + cos(2π/n)/4)²)/n per neighbour.
     const auto smooth = [](Index, detail::VertexMask& mask) {
         const auto n = mask.edges.size();
-        double edge_weight = 0.0625;
-        double vertex_weight = 0.625;
-        if (n != 6) {
-            const double nd = static_cast<double>(n);
-            const double cos_theta = std::cos(2.0 * std::numbers::pi / nd);
-            const double beta = 0.25 * cos_theta + 0.375;
-            edge_weight = (0.625 - beta * beta) / nd;
-            vertex_weight = 1.0 - edge_weight * nd;
-        }
-        mask.vertex = vertex_weight;
+        const double edge_weight = detail::loop_neighbour_weight(n);
+        mask.vertex = 1.0 - edge_weight * static_cast<double>(n);
         for (auto& x : mask.edges) {
             x = edge_weight;
         }
