@@ -1,0 +1,218 @@
+// Polygonal (Alexa–Wardetzky) and subdivision (SEC Eq. 12, 16) inner products (inner_products.h).
+#include "limsurf/sec/inner_products.h"
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "limsurf/core/error.h"
+#include "limsurf/limit/limit_basis.h"
+#include "limsurf/refine/form_subdivision.h"
+
+namespace limsurf {
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+/// The per-face pieces of the polygonal inner products.
+struct FaceGeometry {
+    double area = 0.0;         ///< |a_f|
+    Eigen::MatrixXd one_form;  ///< n × n: B Bᵀ / |a_f| + λ_f P_f (local edges, counter-clockwise)
+};
+
+/// An orthonormal pair spanning the plane orthogonal to unit vector n.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> tangent_basis(const Eigen::Vector3d& n) {
+    const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d t1 = n.cross(helper).normalized();
+    return {t1, n.cross(t1)};
+}
+
+FaceGeometry face_geometry(const Topology& t, const Points& X, Index f) {
+    const auto verts = t.face_vertices(f);
+    const auto n = static_cast<Eigen::Index>(verts.size());
+    Eigen::MatrixXd P(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        P.row(i) = X.row(verts[static_cast<std::size_t>(i)]);
+    }
+    const Eigen::RowVector3d centroid = P.colwise().mean();
+    Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
+    Eigen::MatrixXd B(n, 3);
+    Eigen::MatrixXd E(n, 3);
+    double scale = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::RowVector3d a = P.row(i);
+        const Eigen::RowVector3d b = P.row((i + 1) % n);
+        vector_area += 0.5 * a.transpose().cross(b.transpose());
+        B.row(i) = 0.5 * (a + b) - centroid;
+        E.row(i) = b - a;
+        scale = std::max(scale, E.row(i).squaredNorm());
+    }
+    FaceGeometry g;
+    g.area = vector_area.norm();
+    LIMSURF_CHECK(std::isfinite(g.area) && g.area > 1e-14 * scale, NumericalError, "face ", f,
+                  " has zero area (or a non-finite vertex): the inner products need non-degenerate faces");
+    const Eigen::Vector3d normal = vector_area / g.area;
+    const auto [t1, t2] = tangent_basis(normal);
+    Eigen::MatrixXd E2(n, 2);  // the edges flattened onto the face's plane, in 2D coordinates
+    E2.col(0) = E * t1;
+    E2.col(1) = E * t2;
+    const Eigen::Matrix2d gram = E2.transpose() * E2;
+    // The projector onto ker(E2ᵀ): the circulation part that the consistency term cannot see.
+    const Eigen::MatrixXd kernel_projector = Eigen::MatrixXd::Identity(n, n) - E2 * gram.inverse() * E2.transpose();
+    const Eigen::MatrixXd consistency = B * B.transpose() / g.area;
+    const double lambda = consistency.trace() / 2.0;
+    g.one_form = consistency + lambda * kernel_projector;
+    return g;
+}
+
+SparseMatrix from_triplets(Index size, const Triplets& entries) {
+    SparseMatrix m(size, size);
+    m.setFromTriplets(entries.begin(), entries.end());
+    return m;
+}
+
+/// M ← Sᵀ M S (one level of Eq. 10), keeping the result symmetric to the last bit.
+SparseMatrix pull_back(const SparseMatrix& S, const SparseMatrix& M) {
+    const SparseMatrix MS = M * S;
+    SparseMatrix result = SparseMatrix(S.transpose()) * MS;
+    const SparseMatrix transposed = result.transpose();
+    return SparseMatrix(0.5 * (result + transposed));
+}
+
+}  // namespace
+
+InnerProducts polygonal_inner_products(const Topology& topology, const Points& X) {
+    LIMSURF_CHECK(X.rows() == topology.num_vertices(), InputError, "positions have ", X.rows(),
+                  " rows but the mesh has ", topology.num_vertices(), " vertices");
+    Triplets m0, m1, m2;
+    m0.reserve(static_cast<std::size_t>(topology.num_corners()));
+    m1.reserve(static_cast<std::size_t>(topology.num_corners()) * 4);
+    m2.reserve(static_cast<std::size_t>(topology.num_faces()));
+    for (Index f = 0; f < topology.num_faces(); ++f) {
+        const FaceGeometry g = face_geometry(topology, X, f);
+        const auto verts = topology.face_vertices(f);
+        const auto edges = topology.face_edges(f);
+        const auto signs = topology.face_edge_signs(f);
+        const double share = g.area / static_cast<double>(verts.size());
+        for (const Index v : verts) {
+            m0.emplace_back(v, v, share);
+        }
+        for (std::size_t i = 0; i < edges.size(); ++i) {
+            for (std::size_t j = 0; j < edges.size(); ++j) {
+                const double sign = static_cast<double>(signs[i] * signs[j]);
+                m1.emplace_back(edges[i], edges[j],
+                                sign * g.one_form(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+            }
+        }
+        m2.emplace_back(f, f, 1.0 / g.area);
+    }
+    return {from_triplets(topology.num_vertices(), m0), from_triplets(topology.num_edges(), m1),
+            from_triplets(topology.num_faces(), m2)};
+}
+
+const char* to_string(InnerProductMethod method) noexcept {
+    switch (method) {
+    case InnerProductMethod::Dec:
+        return "dec";
+    case InnerProductMethod::DecSnap:
+        return "decsnap";
+    case InnerProductMethod::Sec:
+        return "sec";
+    case InnerProductMethod::SecSnap:
+        return "secsnap";
+    }
+    return "?";
+}
+
+InnerProductMethod parse_inner_product_method(const std::string& name) {
+    for (const auto method :
+         {InnerProductMethod::Dec, InnerProductMethod::DecSnap, InnerProductMethod::Sec, InnerProductMethod::SecSnap}) {
+        if (name == to_string(method)) {
+            return method;
+        }
+    }
+    throw InputError(detail::concat("unknown inner-product method '", name, "' (dec, decsnap, sec, secsnap)"));
+}
+
+SparseMatrix galerkin_mass_matrix(const LimitSampler& sampler, const Points& X) {
+    LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "positions have ", X.rows(),
+                  " rows but the sampler's basis has ", sampler.num_vertices(), " vertices");
+    Triplets entries;
+    for (Index s = 0; s < sampler.num_samples(); ++s) {
+        const Eigen::Matrix<double, 6, 3> d = sampler.evaluate(X, s);
+        const double dA = sampler.weight(s) * d.row(1).cross(d.row(2)).norm();
+        const auto verts = sampler.vertices(s);
+        const auto phi = sampler.limit_weights(s).row(0);
+        for (std::size_t i = 0; i < verts.size(); ++i) {
+            for (std::size_t j = 0; j < verts.size(); ++j) {
+                entries.emplace_back(verts[i], verts[j],
+                                     dA * phi(static_cast<Eigen::Index>(i)) * phi(static_cast<Eigen::Index>(j)));
+            }
+        }
+    }
+    return from_triplets(sampler.num_vertices(), entries);
+}
+
+SparseMatrix lumped(const SparseMatrix& M) {
+    const Eigen::VectorXd sums = M * Eigen::VectorXd::Ones(M.cols());
+    SparseMatrix D(M.rows(), M.cols());
+    D.reserve(Eigen::VectorXi::Ones(M.rows()));
+    for (Eigen::Index i = 0; i < M.rows(); ++i) {
+        D.insert(i, i) = sums(i);
+    }
+    D.makeCompressed();
+    return D;
+}
+
+InnerProducts pulled_back_inner_products(const Hierarchy& hierarchy, int level, const Points& XL) {
+    InnerProducts m = polygonal_inner_products(hierarchy.topology(level), XL);
+    // Eq. 10 applied level by level from the finest down: each product is with one step's sparse
+    // S_k, so no accumulated (denser) A_k^L is ever formed.
+    for (int l = level; l >= 1; --l) {
+        const Level& step = hierarchy.step(l);
+        LIMSURF_CHECK(step.S1.size() != 0, InputError,
+                      "the subdivision inner products need a hierarchy built with RefineOptions::forms");
+        m.M0 = pull_back(step.S0, m.M0);
+        m.M1 = pull_back(step.S1, m.M1);
+        m.M2 = pull_back(step.S2, m.M2);
+    }
+    return m;
+}
+
+InnerProducts control_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                     const InnerProductOptions& options, const SchemeOptions& scheme_options) {
+    LIMSURF_CHECK(X0.rows() == topology.num_vertices(), InputError, "positions have ", X0.rows(),
+                  " rows but the mesh has ", topology.num_vertices(), " vertices");
+    const bool snap = options.method == InnerProductMethod::DecSnap || options.method == InnerProductMethod::SecSnap;
+    const bool subdivide = options.method == InnerProductMethod::Sec || options.method == InnerProductMethod::SecSnap;
+    InnerProducts m;
+    if (subdivide) {
+        LIMSURF_CHECK(options.level >= 0 && options.level <= 8, InputError, "the SEC level must be in [0, 8], got ",
+                      options.level);
+        require_form_rules(topology, scheme, scheme_options);
+        RefineOptions refine;
+        refine.scheme = scheme;
+        refine.levels = options.level;
+        refine.scheme_options = scheme_options;
+        refine.forms = true;
+        const Hierarchy hierarchy(topology, refine);
+        Points XL = hierarchy.positions(options.level, X0);
+        if (snap) {
+            XL = LimitBasis(hierarchy.topology(options.level), scheme, scheme_options).vertex_limit_matrix() * XL;
+        }
+        m = pulled_back_inner_products(hierarchy, options.level, XL);
+    } else {
+        const Points X = snap ? Points(LimitBasis(topology, scheme, scheme_options).vertex_limit_matrix() * X0) : X0;
+        m = polygonal_inner_products(topology, X);
+    }
+    if (options.lumped) {
+        m.M0 = lumped(m.M0);
+        m.M2 = lumped(m.M2);
+    }
+    return m;
+}
+
+}  // namespace limsurf
