@@ -54,3 +54,28 @@ endif()
 # CGAL (a test and benchmark peer) warns about Debug builds at the end of the
 # top-level configuration; our Debug and sanitizer builds are deliberate.
 set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
+
+# SuiteSparse's CHOLMOD for the sparse Cholesky factorisations of the sec layer (Poisson, inverse
+# inner products). Optional: without it Eigen's SimplicialLDLT is used (same results, slower on
+# large meshes). scripts/setup.sh installs libsuitesparse-dev.
+option(LIMSURF_WITH_CHOLMOD "Use CHOLMOD (SuiteSparse) for sparse Cholesky when installed" ON)
+if(LIMSURF_WITH_CHOLMOD)
+    find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
+    find_library(CHOLMOD_LIBRARY cholmod)
+endif()
+add_feature_info(cholmod CHOLMOD_LIBRARY "CHOLMOD sparse Cholesky for the sec layer (libsuitesparse-dev)")
+
+# muParser: right-hand sides from formulas in the CLI (limsurf poisson --rhs).
+if(LIMSURF_BUILD_CLI)
+    find_path(MUPARSER_INCLUDE_DIR muParser.h PATH_SUFFIXES muParser)
+    find_library(MUPARSER_LIBRARY muparser)
+    if(NOT MUPARSER_INCLUDE_DIR OR NOT MUPARSER_LIBRARY)
+        message(FATAL_ERROR "muParser not found: install libmuparser-dev (scripts/setup.sh), or configure with "
+                            "-DLIMSURF_BUILD_CLI=OFF")
+    endif()
+    add_library(limsurf_muparser INTERFACE IMPORTED)
+    target_include_directories(limsurf_muparser SYSTEM INTERFACE ${MUPARSER_INCLUDE_DIR})
+    target_link_libraries(limsurf_muparser INTERFACE ${MUPARSER_LIBRARY})
+    add_library(limsurf::muparser ALIAS limsurf_muparser)
+    add_feature_info(muparser MUPARSER_LIBRARY "formula right-hand sides in the CLI (libmuparser-dev)")
+endif()

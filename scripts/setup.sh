@@ -8,10 +8,10 @@ set -euo pipefail
 packages=(
     # toolchain
     cmake g++ make pkg-config
-    # library
-    libeigen3-dev
-    # command-line tool
-    libcli11-dev nlohmann-json3-dev
+    # library (SuiteSparse: CHOLMOD for the sec layer's sparse Cholesky)
+    libeigen3-dev libsuitesparse-dev
+    # command-line tool (muParser: formula right-hand sides of limsurf poisson)
+    libcli11-dev nlohmann-json3-dev libmuparser-dev
     # volume-form generator and its tests: exact rationals (GMP through Boost.Multiprecision)
     libgmp-dev
     # tests and benchmarks

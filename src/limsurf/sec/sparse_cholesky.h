@@ -1,0 +1,48 @@
+// One sparse symmetric positive-definite solver for the sec layer: CHOLMOD (SuiteSparse,
+// supernodal) when limsurf is built with it, Eigen's SimplicialLDLT otherwise. Both are used
+// through Eigen's wrappers, on column-major copies.
+#pragma once
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#ifdef LIMSURF_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+#include "limsurf/core/error.h"
+#include "limsurf/core/types.h"
+
+namespace limsurf::detail {
+
+class SparseCholesky {
+  public:
+    using ColMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
+    /// @throws NumericalError (naming @p what) when @p A is not positive definite
+    SparseCholesky(const SparseMatrix& A, const char* what) : A_(A) {
+        solver_.compute(A_);
+        LIMSURF_CHECK(solver_.info() == Eigen::Success, NumericalError, "the Cholesky factorisation of ", what,
+                      " failed: the matrix is not positive definite (degenerate geometry?)");
+    }
+    [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+        Eigen::VectorXd x = solver_.solve(b);
+        return x;
+    }
+    static const char* name() noexcept {
+#ifdef LIMSURF_HAVE_CHOLMOD
+        return "cholmod";
+#else
+        return "eigen-simplicial-ldlt";
+#endif
+    }
+
+  private:
+    ColMatrix A_;
+#ifdef LIMSURF_HAVE_CHOLMOD
+    Eigen::CholmodDecomposition<ColMatrix, Eigen::Lower> solver_;
+#else
+    Eigen::SimplicialLDLT<ColMatrix> solver_;
+#endif
+};
+
+}  // namespace limsurf::detail

@@ -1,0 +1,135 @@
+// Operators of SEC Table 1 and the Poisson solve.
+// Identities: the dual operators are the primal ones conjugated by M1⁻¹; the Laplacian kills
+// constants; the Poisson solution satisfies its system and, on closed meshes, has mean zero.
+// Published (shape of SEC §3.4, operator error): on a closed Catmull–Clark mesh with extraordinary
+// vertices, Poisson solutions with DEC, DECsnap and SEC at levels 1..3 against SEC at a deeper
+// level: the SEC error falls by about 4 per level, SEC at level 3 is far below DEC, and DECsnap lies
+// between DEC and SEC level 3.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include "limsurf/core/error.h"
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/sec/operators.h"
+#include "support/mesh_zoo.h"
+
+namespace limsurf {
+namespace {
+
+Eigen::MatrixXd dense(const SparseMatrix& m) {
+    return Eigen::MatrixXd(m);
+}
+
+InnerProductOptions method(InnerProductMethod m, int level = 3) {
+    InnerProductOptions o;
+    o.method = m;
+    o.level = level;
+    return o;
+}
+
+TEST(Operators, DualOperatorsAreThePrimalOnesConjugatedByM1) {
+    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
+    const Topology& t = built.mesh.topology();
+    const Operators ops(t, control_inner_products(t, built.mesh.positions(), SchemeKind::CatmullClark,
+                                                  method(InnerProductMethod::Sec, 2)));
+    const Eigen::MatrixXd M1 = dense(ops.inner_products().M1);
+    const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(t.num_edges(), 0.0, 7.0).array().cos();
+    // dual Hodge–Laplacian = M1⁻¹ (primal Hodge–Laplacian) M1⁻¹
+    const Eigen::VectorXd M1inv_w = M1.ldlt().solve(w);
+    const Eigen::VectorXd expected = M1.ldlt().solve(ops.hodge_laplacian_1(M1inv_w));
+    EXPECT_LE((ops.dual_hodge_laplacian_1(w) - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
+    // dual Laplacian −d1 M1⁻¹ d1ᵀ, dual divergence −d1 M1⁻¹
+    const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(t.num_faces(), -1.0, 1.0);
+    const Eigen::VectorXd dual_lap = -dense(ops.d1()) * M1.ldlt().solve(dense(ops.d1()).transpose() * u);
+    EXPECT_LE((ops.dual_laplacian(u) - dual_lap).cwiseAbs().maxCoeff(), 1e-10 * dual_lap.cwiseAbs().maxCoeff());
+    // Primal: the Laplacian is d0ᵀ M1 d0 and kills constants; curl ∘ gradient = 0.
+    EXPECT_LE((ops.laplacian() * Eigen::VectorXd::Ones(t.num_vertices())).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_EQ(SparseMatrix((ops.curl() * ops.gradient()).pruned()).nonZeros(), 0);
+    EXPECT_LE((dense(ops.laplacian()) - dense(ops.d0()).transpose() * M1 * dense(ops.d0())).cwiseAbs().maxCoeff(),
+              1e-12);
+}
+
+TEST(Poisson, ClosedMeshSolutionSatisfiesTheSystemWithMeanZero) {
+    const BuildResult built = read_mesh(test::find_bundled("quad_valence_5").path);
+    const Topology& t = built.mesh.topology();
+    const Points& X = built.mesh.positions();
+    const Operators ops(t, control_inner_products(t, X, SchemeKind::CatmullClark, method(InnerProductMethod::Sec)));
+    PoissonProblem problem;
+    problem.f = (X.col(0).array() * 2.0).sin() + 0.3;  // not mean-zero: the solve removes the mean
+    const PoissonSolution s = solve_poisson(t, ops, problem);
+    EXPECT_LE(s.residual, 1e-12);
+    EXPECT_NEAR(s.mean_removed, 0.3, 0.3);
+    const Eigen::VectorXd mass = ops.inner_products().M0 * Eigen::VectorXd::Ones(t.num_vertices());
+    EXPECT_NEAR(mass.dot(s.u), 0.0, 1e-12);
+    const Eigen::VectorXd b = ops.inner_products().M0 * (problem.f.array() - s.mean_removed).matrix();
+    EXPECT_LE((ops.laplacian() * s.u - b).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(Poisson, OpenMeshKeepsTheDirichletValues) {
+    const BuildResult built = read_mesh(test::find_bundled("disk_ev5_quads").path);
+    const Topology& t = built.mesh.topology();
+    const Points& X = built.mesh.positions();
+    const Operators ops(t, control_inner_products(t, X, SchemeKind::CatmullClark, method(InnerProductMethod::Dec)));
+    // DEC (Alexa–Wardetzky) is linearly precise in the plane: u = 2x − y + 1 with f = 0 exactly.
+    PoissonProblem problem;
+    problem.f = Eigen::VectorXd::Zero(t.num_vertices());
+    const Eigen::VectorXd linear = 2.0 * X.col(0) - X.col(1) + Eigen::VectorXd::Ones(t.num_vertices());
+    problem.boundary_values = linear;
+    const PoissonSolution s = solve_poisson(t, ops, problem);
+    EXPECT_LE((s.u - linear).cwiseAbs().maxCoeff(), 1e-12);
+    problem.boundary_values.reset();
+    EXPECT_THROW((void)solve_poisson(t, ops, problem), InputError);
+}
+
+/// The L² norm of a vertex function in the metric M0.
+double l2(const SparseMatrix& M0, const Eigen::VectorXd& u) {
+    return std::sqrt(u.dot(M0 * u));
+}
+
+TEST(PoissonStudy, OperatorErrorHasThePapersShape) {
+    // SEC §3.4, operator error: the same control mesh (genus 2, valences 3 and 5), the inner products
+    // changed. Reference: SEC at level 5 (the paper uses 7; levels ≤ 3 differ from it ≥ 16× more than
+    // level 5 does from 7). Measured: DEC 0.21, DECsnap 0.15, SEC 0.039, 0.0093, 0.0022 — ratios
+    // 4.2 per level as in the paper; DEC/SEC₃ = 95 here (paper, car model: 103; studies/sec_operator_error
+    // has more meshes), so 50 is asserted.
+    const int reference_level = 5;
+    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
+    const Topology& t = built.mesh.topology();
+    const Points& X = built.mesh.positions();
+    PoissonProblem problem;
+    problem.f = (3.0 * X.col(0)).array().sin() * (2.0 * X.col(1)).array().cos() + X.col(2).array();
+    const auto solve = [&](InnerProductMethod m, int level) {
+        const Operators ops(t, control_inner_products(t, X, SchemeKind::CatmullClark, method(m, level)));
+        return solve_poisson(t, ops, problem).u;
+    };
+    const InnerProducts reference_m =
+        control_inner_products(t, X, SchemeKind::CatmullClark, method(InnerProductMethod::Sec, reference_level));
+    const Eigen::VectorXd reference = solve(InnerProductMethod::Sec, reference_level);
+    const double norm = l2(reference_m.M0, reference);
+    const auto error = [&](const Eigen::VectorXd& u) { return l2(reference_m.M0, u - reference) / norm; };
+    const double dec = error(solve(InnerProductMethod::Dec, 0));
+    const double decsnap = error(solve(InnerProductMethod::DecSnap, 0));
+    std::vector<double> sec;
+    for (int level = 1; level <= 3; ++level) {
+        sec.push_back(error(solve(InnerProductMethod::Sec, level)));
+    }
+    RecordProperty("dec", std::to_string(dec));
+    RecordProperty("decsnap", std::to_string(decsnap));
+    for (std::size_t i = 0; i < sec.size(); ++i) {
+        RecordProperty("sec_level_" + std::to_string(i + 1), std::to_string(sec[i]));
+    }
+    for (std::size_t i = 1; i < sec.size(); ++i) {
+        EXPECT_GT(sec[i - 1] / sec[i], 3.0) << "level " << i + 1;
+        EXPECT_LT(sec[i - 1] / sec[i], 6.0) << "level " << i + 1;
+    }
+    EXPECT_GT(dec / sec[2], 50.0);
+    EXPECT_LT(decsnap, dec);
+    EXPECT_GT(decsnap, sec[2]);
+}
+
+}  // namespace
+}  // namespace limsurf
