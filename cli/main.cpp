@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     add_eval_command(app, status);
     add_measure_command(app, status);
     add_volume_command(app, status);
+    add_poisson_command(app, status);
 
     return run_guarded([&]() -> int {
         try {
