@@ -52,6 +52,15 @@ echo "   the genus-2 mesh under Catmull-Clark, with the polyhedral volumes of le
 "$limsurf" volume data/meshes/genus2.obj --scheme catmull-clark --levels 4 --moments
 echo
 
+echo "== limsurf poisson: Subdivision Exterior Calculus vs DEC (SEC paper, section 3.4)"
+echo "   -Δu = z on the Loop limit surface of sphere_tris (42 unknowns); difference from DEC on the 5-times subdivided mesh:"
+for method in dec decsnap sec; do
+    "$limsurf" poisson data/meshes/sphere_tris.obj --scheme loop --method "$method" --rhs z --reference-level 5 --json |
+        python3 -c 'import json,sys; d=json.load(sys.stdin); print("   %-8s relative L2 %.2e  Linf %.2e  (residual %.0e, %s)" % (d["method"] + (" L=%d" % d["level"] if d["method"] == "sec" else ""), d["reference"]["l2_relative"], d["reference"]["linf_relative"], d["residual"], d["solver"]))'
+done
+"$limsurf" poisson data/meshes/genus2.obj --scheme catmull-clark --rhs 'sin(pi*x)*sin(pi*y)' -o "$out/genus2_poisson.vtk"
+echo
+
 echo "== a broken file is refused with the file, line and element named"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 1 2 4\nf 2 1 5\nf 1 2 5\n' > "$out/broken.obj"
 if "$limsurf" convert "$out/broken.obj" "$out/broken.ply"; then
