@@ -101,6 +101,7 @@ class FormAssembler {
     Index parent_edges_, parent_faces_, child_edges_, child_faces_;
     std::vector<Eigen::Triplet<double, Index>> s1_, s2_;
     std::vector<std::uint8_t> edge_seen_, face_seen_;
+    std::vector<FormRow::Entry> merged_;
 };
 
 /// The even child of spoke i of @p fan (the fine edge v → edge point), in that direction, read

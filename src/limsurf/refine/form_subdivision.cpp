@@ -2,6 +2,7 @@
 // catmull_clark_forms.cpp).
 #include "limsurf/refine/form_subdivision.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -66,8 +67,19 @@ FormAssembler::FormAssembler(const Topology& parent, const Topology& child)
 
 void FormAssembler::set_edge_row(DirectedEdge fine, const FormRow& row) {
     ++edge_seen_[static_cast<std::size_t>(fine.edge)];
-    for (const auto& entry : row.entries()) {
-        s1_.emplace_back(fine.edge, entry.col, fine.sign * entry.weight);
+    // A rule names the same coarse edge several times (spokes, diagonals, circulations): merge
+    // them here, so that the triplet list (and its sort) is a few times shorter.
+    merged_.assign(row.entries().begin(), row.entries().end());
+    std::sort(merged_.begin(), merged_.end(), [](const auto& a, const auto& b) { return a.col < b.col; });
+    for (std::size_t i = 0; i < merged_.size();) {
+        double sum = 0.0;
+        const Index col = merged_[i].col;
+        for (; i < merged_.size() && merged_[i].col == col; ++i) {
+            sum += merged_[i].weight;
+        }
+        if (sum != 0.0) {
+            s1_.emplace_back(fine.edge, col, fine.sign * sum);
+        }
     }
 }
 
