@@ -153,6 +153,10 @@ int run_poisson(const PoissonCommandOptions& options) {
         problem.f = *file_values;
     } else {
         problem.f = evaluate_formula("--rhs", options.rhs, mesh.positions());
+        // Integrate f where the inner products live (level L for sec), not at the control points.
+        problem.load = load_vector(
+            t, mesh.positions(), scheme, ip, [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); },
+            rules);
     }
     if (t.has_boundary()) {
         problem.boundary_values = evaluate_formula("--boundary-value", options.boundary_value, mesh.positions());

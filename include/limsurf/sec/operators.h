@@ -12,6 +12,7 @@
 //           Hodge–Laplace M1⁻¹ d1ᵀ M2 d1 M1⁻¹ + d0 M0⁻¹ d0ᵀ.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -70,7 +71,10 @@ class Operators {
 /// A Poisson problem −Δu = f on the surface: f as values at the vertices (integrated with M0),
 /// and on open meshes Dirichlet values at the boundary vertices.
 struct PoissonProblem {
-    Eigen::VectorXd f;  ///< #V pointwise right-hand side
+    Eigen::VectorXd f;  ///< #V pointwise right-hand side (used when load is empty: b = M0 f)
+    /// #V integrated right-hand side b_i = ∫ f φ_i dA, e.g. from load_vector(); takes precedence
+    /// over f (which then only serves as values for reports).
+    std::optional<Eigen::VectorXd> load;
     /// #V values of which only the boundary vertices' are used (required on open meshes).
     std::optional<Eigen::VectorXd> boundary_values;
 };
@@ -89,6 +93,18 @@ struct PoissonSolution {
 ///   NumericalError when the factorisation fails or the solution is not finite
 [[nodiscard]] PoissonSolution solve_poisson(const Topology& topology, const Operators& operators,
                                             const PoissonProblem& problem);
+
+/// @brief The load vector b_i = ∫ f φ_i dA of a function given at points, consistent with the
+///   inner products of @p options: DEC and DECsnap use M0 f at the control (or limit) positions;
+///   SEC and SECsnap integrate at level L, b = (A_0^L)ᵀ lumped(M_0^L) f(X^L), which represents f
+///   to O(h_L²) instead of the O(h_0²) of sampling it at the control vertices (SEC Eq. 11 applied to
+///   the right-hand side).
+/// @param f called with the #V_L × 3 positions where f is needed; returns one value per row
+/// @throws as control_inner_products; InputError when f returns the wrong size or a non-finite value
+[[nodiscard]] Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                          const InnerProductOptions& options,
+                                          const std::function<Eigen::VectorXd(const Points&)>& f,
+                                          const SchemeOptions& scheme_options = {});
 
 /// The sparse Cholesky back end in use: "cholmod" when limsurf was built with SuiteSparse.
 [[nodiscard]] const char* sparse_cholesky_name() noexcept;

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
+#include "limsurf/limit/limit_basis.h"
+#include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
 #include "limsurf/sec/sparse_cholesky.h"
 
@@ -84,6 +86,32 @@ Eigen::VectorXd Operators::dual_hodge_laplacian_1(const Eigen::VectorXd& w) cons
     return curl_part + d0_ * solve_inner_product(0, d0_.transpose() * w);
 }
 
+Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
+                            const InnerProductOptions& options, const std::function<Eigen::VectorXd(const Points&)>& f,
+                            const SchemeOptions& scheme_options) {
+    const bool snap = options.method == InnerProductMethod::DecSnap || options.method == InnerProductMethod::SecSnap;
+    const bool subdivide = options.method == InnerProductMethod::Sec || options.method == InnerProductMethod::SecSnap;
+    const int level = subdivide ? options.level : 0;
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = level;
+    refine.scheme_options = scheme_options;
+    const Hierarchy h(topology, refine);
+    Points XL = h.positions(level, X0);
+    if (snap) {
+        XL = LimitBasis(h.topology(level), scheme, scheme_options).vertex_limit_matrix() * XL;
+    }
+    const Eigen::VectorXd values = f(XL);
+    LIMSURF_CHECK(values.size() == XL.rows() && values.allFinite(), InputError,
+                  "the right-hand side must give one finite value per point (", XL.rows(), ")");
+    InnerProducts fine = polygonal_inner_products(h.topology(level), XL);
+    const Eigen::VectorXd fine_load = lumped(fine.M0) * values;
+    if (!subdivide) {  // DEC: the (unlumped) M0 of the control mesh itself
+        return fine.M0 * values;
+    }
+    return h.accumulated(level).transpose() * fine_load;
+}
+
 const char* sparse_cholesky_name() noexcept {
     return detail::SparseCholesky::name();
 }
@@ -119,7 +147,9 @@ PoissonSolution solve_poisson(const Topology& topology, const Operators& operato
     LIMSURF_CHECK(problem.f.allFinite(), InputError, "the right-hand side has a non-finite value");
     const SparseMatrix& M0 = operators.inner_products().M0;
     const SparseMatrix L = operators.laplacian();
-    Eigen::VectorXd b = M0 * problem.f;
+    LIMSURF_CHECK(!problem.load || problem.load->size() == V, InputError, "the load vector has ",
+                  problem.load ? problem.load->size() : 0, " values but the mesh has ", V, " vertices");
+    Eigen::VectorXd b = problem.load ? *problem.load : Eigen::VectorXd(M0 * problem.f);
     PoissonSolution out;
     out.solver = sparse_cholesky_name();
     Eigen::VectorXd u = Eigen::VectorXd::Zero(V);
@@ -130,7 +160,7 @@ PoissonSolution solve_poisson(const Topology& topology, const Operators& operato
                       topology.num_components());
         // Compatibility: ∫ f = 0 on a closed surface; remove the M0-mean of f.
         const Eigen::VectorXd mass = M0 * Eigen::VectorXd::Ones(V);
-        out.mean_removed = mass.dot(problem.f) / mass.sum();
+        out.mean_removed = b.sum() / mass.sum();
         b -= out.mean_removed * mass;
         for (Index v = 1; v < V; ++v) {  // pin vertex 0: b ⊥ 1, so row 0 then holds as well
             free.push_back(v);
