@@ -148,24 +148,25 @@ int run_poisson(const PoissonCommandOptions& options) {
 
     PoissonProblem problem;
     std::optional<Eigen::VectorXd> file_values;
-    if (!options.rhs_file.empty()) {
-        file_values = read_values(options.rhs_file, t.num_vertices());
-        problem.f = *file_values;
-    } else {
-        problem.f = evaluate_formula("--rhs", options.rhs, mesh.positions());
-        // Integrate f where the inner products live (level L for sec), not at the control points.
-        problem.load = load_vector(
-            t, mesh.positions(), scheme, ip, [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); },
-            rules);
+    std::unique_ptr<Operators> ops;
+    try {
+        // Refuse what the scheme or the form rules cannot do before evaluating anything.
+        ops = std::make_unique<Operators>(t, control_inner_products(t, mesh.positions(), scheme, ip, rules));
+        if (!options.rhs_file.empty()) {
+            file_values = read_values(options.rhs_file, t.num_vertices());
+            problem.f = *file_values;
+        } else {
+            problem.f = evaluate_formula("--rhs", options.rhs, mesh.positions());
+            // Integrate f where the inner products live (level L for sec), not at the control points.
+            problem.load = load_vector(
+                t, mesh.positions(), scheme, ip,
+                [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); }, rules);
+        }
+    } catch (const UnsupportedError& e) {
+        throw UnsupportedError(options.input + ": " + e.what());
     }
     if (t.has_boundary()) {
         problem.boundary_values = evaluate_formula("--boundary-value", options.boundary_value, mesh.positions());
-    }
-    std::unique_ptr<Operators> ops;
-    try {
-        ops = std::make_unique<Operators>(t, control_inner_products(t, mesh.positions(), scheme, ip, rules));
-    } catch (const UnsupportedError& e) {
-        throw UnsupportedError(options.input + ": " + e.what());
     }
     const PoissonSolution solution = solve_poisson(t, *ops, problem);
     std::optional<ReferenceComparison> reference;

@@ -85,6 +85,22 @@ TEST(Poisson, OpenMeshKeepsTheDirichletValues) {
     EXPECT_THROW((void)solve_poisson(t, ops, problem), InputError);
 }
 
+TEST(Poisson, LoadVectorOfOneIsTheAreaOfLevelL) {
+    // Σ_i ∫ 1·φ_i dA = area: with SEC the load is integrated on level L, so its sum is 1ᵀ M0^SEC 1.
+    const BuildResult built = read_mesh(test::find_bundled("tri_valence_7").path);
+    const Topology& t = built.mesh.topology();
+    const Points& X = built.mesh.positions();
+    const InnerProductOptions o = method(InnerProductMethod::Sec, 2);
+    const Eigen::VectorXd b =
+        load_vector(t, X, SchemeKind::Loop, o, [](const Points& P) { return Eigen::VectorXd::Ones(P.rows()).eval(); });
+    const SparseMatrix M0 = control_inner_products(t, X, SchemeKind::Loop, o).M0;
+    EXPECT_NEAR(b.sum(), Eigen::VectorXd::Ones(t.num_vertices()).dot(M0 * Eigen::VectorXd::Ones(t.num_vertices())),
+                1e-12);
+    EXPECT_THROW((void)load_vector(t, X, SchemeKind::Loop, o,
+                                   [](const Points& P) { return Eigen::VectorXd::Ones(P.rows() - 1).eval(); }),
+                 InputError);
+}
+
 /// The L² norm of a vertex function in the metric M0.
 double l2(const SparseMatrix& M0, const Eigen::VectorXd& u) {
     return std::sqrt(u.dot(M0 * u));
