@@ -23,7 +23,8 @@ inline void prefault_heap(double default_gib) {
         return;
     }
     mallopt(M_MMAP_MAX, 0);         // every block from the brk heap ...
-    mallopt(M_TRIM_THRESHOLD, -1);  // ... which is never given back
+    mallopt(M_TRIM_THRESHOLD, -1);  // ... which is never given back ...
+    mallopt(M_ARENA_MAX, 1);        // ... and which worker threads share (no fresh per-thread arenas)
     const auto bytes = static_cast<std::size_t>(gib * 1024.0 * 1024.0 * 1024.0);
     auto* block = static_cast<volatile char*>(std::malloc(bytes));
     if (block == nullptr) {

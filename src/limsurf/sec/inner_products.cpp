@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -74,12 +75,16 @@ SparseMatrix from_triplets(Index size, const Triplets& entries) {
     return m;
 }
 
-/// M ← Sᵀ M S (one level of Eq. 10), keeping the result symmetric to the last bit.
+/// M ← Sᵀ M S (one level of Eq. 10).
 SparseMatrix pull_back(const SparseMatrix& S, const SparseMatrix& M) {
     const SparseMatrix MS = M * S;
-    SparseMatrix result = SparseMatrix(S.transpose()) * MS;
-    const SparseMatrix transposed = result.transpose();
-    return SparseMatrix(0.5 * (result + transposed));
+    return SparseMatrix(SparseMatrix(S.transpose()) * MS);
+}
+
+/// (M + Mᵀ)/2: the products leave round-off asymmetry; removed once, on the small control matrix.
+SparseMatrix symmetrized(const SparseMatrix& M) {
+    const SparseMatrix transposed = M.transpose();
+    return SparseMatrix(0.5 * (M + transposed));
 }
 
 }  // namespace
@@ -168,17 +173,25 @@ SparseMatrix lumped(const SparseMatrix& M) {
 }
 
 InnerProducts pulled_back_inner_products(const Hierarchy& hierarchy, int level, const Points& XL) {
+    for (int l = level; l >= 1; --l) {
+        LIMSURF_CHECK(hierarchy.step(l).S1.size() != 0, InputError,
+                      "the subdivision inner products need a hierarchy built with RefineOptions::forms");
+    }
     InnerProducts m = polygonal_inner_products(hierarchy.topology(level), XL);
     // Eq. 10 applied level by level from the finest down: each product is with one step's sparse
-    // S_k, so no accumulated (denser) A_k^L is ever formed.
-    for (int l = level; l >= 1; --l) {
-        const Level& step = hierarchy.step(l);
-        LIMSURF_CHECK(step.S1.size() != 0, InputError,
-                      "the subdivision inner products need a hierarchy built with RefineOptions::forms");
-        m.M0 = pull_back(step.S0, m.M0);
-        m.M1 = pull_back(step.S1, m.M1);
-        m.M2 = pull_back(step.S2, m.M2);
-    }
+    // S_k, so no accumulated (denser) A_k^L is ever formed. M1 (the largest) on its own thread,
+    // M0 and M2 on this one.
+    const auto chain = [&](SparseMatrix& M, int k) {
+        for (int l = level; l >= 1; --l) {
+            const Level& step = hierarchy.step(l);
+            M = pull_back(k == 0 ? step.S0 : k == 1 ? step.S1 : step.S2, M);
+        }
+        M = symmetrized(M);
+    };
+    std::future<void> one_forms = std::async(std::launch::async, [&] { chain(m.M1, 1); });
+    chain(m.M0, 0);
+    chain(m.M2, 2);
+    one_forms.get();
     return m;
 }
 
