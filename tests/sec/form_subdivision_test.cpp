@@ -148,9 +148,11 @@ TEST_P(FormCommutation, CarvedAtRandom) {
     const BuildResult built = read_mesh(test::find_bundled(GetParam().name).path);
     const Topology& t = built.mesh.topology();
     std::mt19937 random(12345);
-    std::bernoulli_distribution drop(0.3);
     int checked = 0;
-    for (int attempt = 0; attempt < 12 && checked < 3; ++attempt) {
+    for (int attempt = 0; attempt < 40 && checked < 3; ++attempt) {
+        // Heavy carvings first (many boundary configurations, often pinched and skipped), then
+        // lighter ones, which large meshes need to stay manifold.
+        std::bernoulli_distribution drop(attempt < 8 ? 0.3 : attempt < 20 ? 0.1 : 0.03);
         std::vector<bool> keep(static_cast<std::size_t>(t.num_faces()));
         for (std::size_t f = 0; f < keep.size(); ++f) {
             keep[f] = !drop(random);
@@ -165,6 +167,7 @@ TEST_P(FormCommutation, CarvedAtRandom) {
         check_levels(*carved, GetParam().scheme, BoundaryInterpolation::EdgeOnly,
                      GetParam().name + " carved " + std::to_string(attempt));
     }
+    EXPECT_GT(checked, 0) << "no carving of " << GetParam().name << " was a manifold";
 }
 
 INSTANTIATE_TEST_SUITE_P(Sec, FormCommutation, ::testing::ValuesIn(cases()),

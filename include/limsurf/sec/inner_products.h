@@ -48,6 +48,15 @@ enum class InnerProductMethod {
     SecSnap,  ///< Eq. 16: as Sec, with the level-L vertices moved to their limit positions
 };
 
+/// True for Sec and SecSnap (inner products from level L, Eq. 12).
+[[nodiscard]] constexpr bool uses_subdivision(InnerProductMethod m) noexcept {
+    return m == InnerProductMethod::Sec || m == InnerProductMethod::SecSnap;
+}
+/// True for DecSnap and SecSnap (vertices moved to their limit positions).
+[[nodiscard]] constexpr bool uses_limit_positions(InnerProductMethod m) noexcept {
+    return m == InnerProductMethod::DecSnap || m == InnerProductMethod::SecSnap;
+}
+
 /// @brief "dec", "decsnap", "sec", "secsnap".
 [[nodiscard]] const char* to_string(InnerProductMethod method) noexcept;
 /// @throws InputError naming the accepted values
@@ -75,6 +84,10 @@ struct InnerProductOptions {
 ///   converges to as L grows (SEC §3.2).
 /// @throws InputError when X does not have sampler.num_vertices() rows
 [[nodiscard]] SparseMatrix galerkin_mass_matrix(const LimitSampler& sampler, const Points& X);
+
+/// @brief The diagonal of the polygonal M0: Σ |a_f| / n_f over the faces at each vertex (#V).
+/// @throws as polygonal_inner_products
+[[nodiscard]] Eigen::VectorXd polygonal_vertex_masses(const Topology& topology, const Points& X);
 
 /// @brief diag(M 1) of a square matrix (mass lumping).
 [[nodiscard]] SparseMatrix lumped(const SparseMatrix& M);

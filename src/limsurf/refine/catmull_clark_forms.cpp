@@ -75,17 +75,7 @@ class CatmullClarkForms {
     void boundary_even_children(const VertexFan& fan) {
         const Index k = fan.num_faces();
         const double kd = static_cast<double>(k);
-        const bool corner = options_.boundary == BoundaryInterpolation::EdgeAndCorner && k == 1;
-        for (const Index j : {Index{0}, k}) {  // the boundary edges: the cubic B-spline curve's rule
-            row_.clear();
-            if (corner) {
-                row_.add(fan.spoke(j), 0.5);
-            } else {
-                row_.add(fan.spoke(j), 0.375);
-                row_.add(fan.spoke(k - j), -0.125);
-            }
-            out_.set_edge_row(even_child(child_, fan, j), row_);
-        }
+        boundary_edge_children(child_, fan, options_.boundary, row_, out_);
         for (Index j = 1; j < k; ++j) {
             row_.clear();
             edge_point_part(fan, j);

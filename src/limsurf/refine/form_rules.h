@@ -15,6 +15,7 @@
 
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/topology.h"
+#include "limsurf/scheme/scheme.h"
 
 namespace limsurf::detail {
 
@@ -107,5 +108,11 @@ class FormAssembler {
 /// The even child of spoke i of @p fan (the fine edge v → edge point), in that direction, read
 /// off the child face of the fan face at v (child face 4f + corner for both splits).
 [[nodiscard]] DirectedEdge even_child(const Topology& child, const VertexFan& fan, Index i);
+
+/// The two children v → edge point of the boundary edges at a boundary vertex (spokes 0 and k),
+/// the same for Loop and Catmull–Clark: the cubic B-spline curve's 1-form rule
+/// 3/8 (v→w) − 1/8 (v→w'), or ½ (v→w) at a one-face corner kept fixed (EdgeAndCorner).
+void boundary_edge_children(const Topology& child, const VertexFan& fan, BoundaryInterpolation boundary, FormRow& row,
+                            FormAssembler& out);
 
 }  // namespace limsurf::detail

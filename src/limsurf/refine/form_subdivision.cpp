@@ -132,6 +132,22 @@ DirectedEdge even_child(const Topology& child, const VertexFan& fan, Index i) {
     return face_edge(child, 4 * fan.face(f) + fan.corner(f), 0);
 }
 
+void boundary_edge_children(const Topology& child, const VertexFan& fan, BoundaryInterpolation boundary, FormRow& row,
+                            FormAssembler& out) {
+    const Index k = fan.num_faces();
+    const bool corner = boundary == BoundaryInterpolation::EdgeAndCorner && k == 1;
+    for (const Index j : {Index{0}, k}) {
+        row.clear();
+        if (corner) {
+            row.add(fan.spoke(j), 0.5);
+        } else {
+            row.add(fan.spoke(j), 0.375);
+            row.add(fan.spoke(k - j), -0.125);
+        }
+        out.set_edge_row(even_child(child, fan, j), row);
+    }
+}
+
 }  // namespace detail
 
 namespace {

@@ -131,7 +131,7 @@ class LoopForms {
             }
             return;
         }
-        boundary_children(fan);
+        boundary_edge_children(child_, fan, options_.boundary, row_, out_);
         for (Index j = 1; j < k; ++j) {
             row_.clear();
             row_.add(fan.spoke(j), 0.375);
@@ -142,23 +142,6 @@ class LoopForms {
             const std::vector<double> c = boundary_even_circulations(k, j);
             for (Index i = 0; i < k; ++i) {
                 row_.add_circulation(parent_, fan.face(i), c[static_cast<std::size_t>(i)]);
-            }
-            out_.set_edge_row(even_child(child_, fan, j), row_);
-        }
-    }
-
-    // The two children v → edge point of the boundary edges at v: the cubic B-spline curve's
-    // 1-form rule, or half the edge at a fixed corner.
-    void boundary_children(const VertexFan& fan) {
-        const Index k = fan.num_faces();
-        const bool corner = options_.boundary == BoundaryInterpolation::EdgeAndCorner && k == 1;
-        for (const Index j : {Index{0}, k}) {
-            row_.clear();
-            if (corner) {
-                row_.add(fan.spoke(j), 0.5);
-            } else {
-                row_.add(fan.spoke(j), 0.375);
-                row_.add(fan.spoke(k - j), -0.125);
             }
             out_.set_edge_row(even_child(child_, fan, j), row_);
         }

@@ -31,6 +31,24 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> tangent_basis(const Eigen::Vector3d&
     return {t1, n.cross(t1)};
 }
 
+/// The vector area ½ Σ x_i × x_{i+1} of face f. @throws NumericalError when it is (numerically)
+/// zero against the face's edge lengths, or not finite
+Eigen::Vector3d checked_vector_area(const Topology& t, const Points& X, Index f) {
+    const auto verts = t.face_vertices(f);
+    Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
+    double scale = 0.0;
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+        const Eigen::Vector3d a = X.row(verts[i]);
+        const Eigen::Vector3d b = X.row(verts[(i + 1) % verts.size()]);
+        vector_area += 0.5 * a.cross(b);
+        scale = std::max(scale, (b - a).squaredNorm());
+    }
+    const double area = vector_area.norm();
+    LIMSURF_CHECK(std::isfinite(area) && area > 1e-14 * scale, NumericalError, "face ", f,
+                  " has zero area (or a non-finite vertex): the inner products need non-degenerate faces");
+    return vector_area;
+}
+
 FaceGeometry face_geometry(const Topology& t, const Points& X, Index f) {
     const auto verts = t.face_vertices(f);
     const auto n = static_cast<Eigen::Index>(verts.size());
@@ -39,22 +57,17 @@ FaceGeometry face_geometry(const Topology& t, const Points& X, Index f) {
         P.row(i) = X.row(verts[static_cast<std::size_t>(i)]);
     }
     const Eigen::RowVector3d centroid = P.colwise().mean();
-    Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
     Eigen::MatrixXd B(n, 3);
     Eigen::MatrixXd E(n, 3);
-    double scale = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) {
         const Eigen::RowVector3d a = P.row(i);
         const Eigen::RowVector3d b = P.row((i + 1) % n);
-        vector_area += 0.5 * a.transpose().cross(b.transpose());
         B.row(i) = 0.5 * (a + b) - centroid;
         E.row(i) = b - a;
-        scale = std::max(scale, E.row(i).squaredNorm());
     }
+    const Eigen::Vector3d vector_area = checked_vector_area(t, X, f);
     FaceGeometry g;
     g.area = vector_area.norm();
-    LIMSURF_CHECK(std::isfinite(g.area) && g.area > 1e-14 * scale, NumericalError, "face ", f,
-                  " has zero area (or a non-finite vertex): the inner products need non-degenerate faces");
     const Eigen::Vector3d normal = vector_area / g.area;
     const auto [t1, t2] = tangent_basis(normal);
     Eigen::MatrixXd E2(n, 2);  // the edges flattened onto the face's plane, in 2D coordinates
@@ -116,6 +129,19 @@ InnerProducts polygonal_inner_products(const Topology& topology, const Points& X
     }
     return {from_triplets(topology.num_vertices(), m0), from_triplets(topology.num_edges(), m1),
             from_triplets(topology.num_faces(), m2)};
+}
+
+Eigen::VectorXd polygonal_vertex_masses(const Topology& topology, const Points& X) {
+    LIMSURF_CHECK(X.rows() == topology.num_vertices(), InputError, "positions have ", X.rows(),
+                  " rows but the mesh has ", topology.num_vertices(), " vertices");
+    Eigen::VectorXd masses = Eigen::VectorXd::Zero(topology.num_vertices());
+    for (Index f = 0; f < topology.num_faces(); ++f) {
+        const double share = checked_vector_area(topology, X, f).norm() / static_cast<double>(topology.face_degree(f));
+        for (const Index v : topology.face_vertices(f)) {
+            masses(v) += share;
+        }
+    }
+    return masses;
 }
 
 const char* to_string(InnerProductMethod method) noexcept {
@@ -199,8 +225,8 @@ InnerProducts control_inner_products(const Topology& topology, const Points& X0,
                                      const InnerProductOptions& options, const SchemeOptions& scheme_options) {
     LIMSURF_CHECK(X0.rows() == topology.num_vertices(), InputError, "positions have ", X0.rows(),
                   " rows but the mesh has ", topology.num_vertices(), " vertices");
-    const bool snap = options.method == InnerProductMethod::DecSnap || options.method == InnerProductMethod::SecSnap;
-    const bool subdivide = options.method == InnerProductMethod::Sec || options.method == InnerProductMethod::SecSnap;
+    const bool snap = uses_limit_positions(options.method);
+    const bool subdivide = uses_subdivision(options.method);
     InnerProducts m;
     if (subdivide) {
         LIMSURF_CHECK(options.level >= 0 && options.level <= 8, InputError, "the SEC level must be in [0, 8], got ",

@@ -89,27 +89,26 @@ Eigen::VectorXd Operators::dual_hodge_laplacian_1(const Eigen::VectorXd& w) cons
 Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
                             const InnerProductOptions& options, const std::function<Eigen::VectorXd(const Points&)>& f,
                             const SchemeOptions& scheme_options) {
-    const bool snap = options.method == InnerProductMethod::DecSnap || options.method == InnerProductMethod::SecSnap;
-    const bool subdivide = options.method == InnerProductMethod::Sec || options.method == InnerProductMethod::SecSnap;
-    const int level = subdivide ? options.level : 0;
+    const int level = uses_subdivision(options.method) ? options.level : 0;
     RefineOptions refine;
     refine.scheme = scheme;
     refine.levels = level;
     refine.scheme_options = scheme_options;
     const Hierarchy h(topology, refine);
     Points XL = h.positions(level, X0);
-    if (snap) {
+    if (uses_limit_positions(options.method)) {
         XL = LimitBasis(h.topology(level), scheme, scheme_options).vertex_limit_matrix() * XL;
     }
     const Eigen::VectorXd values = f(XL);
     LIMSURF_CHECK(values.size() == XL.rows() && values.allFinite(), InputError,
                   "the right-hand side must give one finite value per point (", XL.rows(), ")");
-    InnerProducts fine = polygonal_inner_products(h.topology(level), XL);
-    const Eigen::VectorXd fine_load = lumped(fine.M0) * values;
-    if (!subdivide) {  // DEC: the (unlumped) M0 of the control mesh itself
-        return fine.M0 * values;
+    // The polygonal M0 is diagonal (already lumped): the load on level L, carried back by S0ᵀ
+    // step by step (A_0^L is never formed).
+    Eigen::VectorXd load = polygonal_vertex_masses(h.topology(level), XL).cwiseProduct(values);
+    for (int l = level; l >= 1; --l) {
+        load = h.step(l).S0.transpose() * load;
     }
-    return h.accumulated(level).transpose() * fine_load;
+    return load;
 }
 
 const char* sparse_cholesky_name() noexcept {
