@@ -22,6 +22,7 @@
 #include "limsurf/refine/refine.h"
 #include "limsurf/sec/exterior_derivative.h"
 #include "support/mesh_zoo.h"
+#include "support/shapes.h"
 
 namespace limsurf {
 namespace {
@@ -55,36 +56,6 @@ Residuals step_residuals(const Topology& parent, const Level& level, const Level
     r.col_sum = (cols.array() - 1.0).abs().maxCoeff();
     r.s0_change = max_abs(SparseMatrix(level.S0 - plain.S0));
     return r;
-}
-
-/// The faces of @p t kept by @p keep, vertices renumbered; nullopt when the result is not a
-/// manifold (a vertex pinched between two fans) or empty.
-std::optional<Topology> carve(const Topology& t, const std::vector<bool>& keep) {
-    std::vector<Index> renumber(static_cast<std::size_t>(t.num_vertices()), invalid_index);
-    std::vector<std::vector<Index>> faces;
-    Index used = 0;
-    for (Index f = 0; f < t.num_faces(); ++f) {
-        if (!keep[static_cast<std::size_t>(f)]) {
-            continue;
-        }
-        std::vector<Index> face;
-        for (const Index v : t.face_vertices(f)) {
-            auto& slot = renumber[static_cast<std::size_t>(v)];
-            if (slot == invalid_index) {
-                slot = used++;
-            }
-            face.push_back(slot);
-        }
-        faces.push_back(face);
-    }
-    if (faces.empty()) {
-        return std::nullopt;
-    }
-    try {
-        return Topology::from_polygons(used, faces);
-    } catch (const TopologyError&) {
-        return std::nullopt;
-    }
 }
 
 struct Case {
@@ -157,14 +128,14 @@ TEST_P(FormCommutation, CarvedAtRandom) {
         for (std::size_t f = 0; f < keep.size(); ++f) {
             keep[f] = !drop(random);
         }
-        const std::optional<Topology> carved = carve(t, keep);
+        const auto carved = test::carve(t, keep);
         if (!carved) {
             continue;
         }
         ++checked;
-        check_levels(*carved, GetParam().scheme, BoundaryInterpolation::EdgeAndCorner,
+        check_levels(carved->topology, GetParam().scheme, BoundaryInterpolation::EdgeAndCorner,
                      GetParam().name + " carved " + std::to_string(attempt));
-        check_levels(*carved, GetParam().scheme, BoundaryInterpolation::EdgeOnly,
+        check_levels(carved->topology, GetParam().scheme, BoundaryInterpolation::EdgeOnly,
                      GetParam().name + " carved " + std::to_string(attempt));
     }
     EXPECT_GT(checked, 0) << "no carving of " << GetParam().name << " was a manifold";
@@ -196,11 +167,11 @@ TEST(FormCommutationFans, BoundaryFansOfEveryWidth) {
             for (Index i = 0; i < k; ++i) {
                 keep[static_cast<std::size_t>(fan[static_cast<std::size_t>(i)])] = true;
             }
-            const std::optional<Topology> carved = carve(t, keep);
+            const auto carved = test::carve(t, keep);
             ASSERT_TRUE(carved.has_value()) << name << " k = " << k;
-            const std::set<Index> fans = check_levels(*carved, scheme, BoundaryInterpolation::EdgeOnly,
+            const std::set<Index> fans = check_levels(carved->topology, scheme, BoundaryInterpolation::EdgeOnly,
                                                       std::string(name) + " fan " + std::to_string(k));
-            check_levels(*carved, scheme, BoundaryInterpolation::EdgeAndCorner,
+            check_levels(carved->topology, scheme, BoundaryInterpolation::EdgeAndCorner,
                          std::string(name) + " fan " + std::to_string(k));
             if (k < 8) {
                 EXPECT_TRUE(fans.count(k)) << name << " k = " << k;

@@ -1,5 +1,7 @@
 #include "support/shapes.h"
 
+#include "limsurf/core/error.h"
+
 namespace limsurf::test {
 
 std::vector<std::vector<Index>> cube_faces() {
@@ -44,6 +46,35 @@ std::vector<std::vector<Index>> torus_faces(Index n, Index m) {
         }
     }
     return faces;
+}
+
+std::optional<Carving> carve(const Topology& t, const std::vector<bool>& keep) {
+    std::vector<Index> renumber(static_cast<std::size_t>(t.num_vertices()), invalid_index);
+    std::vector<Index> original;
+    std::vector<std::vector<Index>> faces;
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        if (!keep[static_cast<std::size_t>(f)]) {
+            continue;
+        }
+        std::vector<Index> face;
+        for (const Index v : t.face_vertices(f)) {
+            auto& slot = renumber[static_cast<std::size_t>(v)];
+            if (slot == invalid_index) {
+                slot = static_cast<Index>(original.size());
+                original.push_back(v);
+            }
+            face.push_back(slot);
+        }
+        faces.push_back(face);
+    }
+    if (faces.empty()) {
+        return std::nullopt;
+    }
+    try {
+        return Carving{Topology::from_polygons(static_cast<Index>(original.size()), faces), original};
+    } catch (const TopologyError&) {
+        return std::nullopt;
+    }
 }
 
 }  // namespace limsurf::test

@@ -2,6 +2,7 @@
 // properties without touching the file system.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "limsurf/core/types.h"
@@ -19,5 +20,15 @@ namespace limsurf::test {
 
 /// An n×m quad torus (both directions wrap), genus 1.
 [[nodiscard]] std::vector<std::vector<Index>> torus_faces(Index n, Index m);
+
+/// A sub-mesh: the faces of a mesh that were kept, vertices renumbered in order of first use.
+struct Carving {
+    Topology topology;
+    std::vector<Index> original_vertex;  ///< new vertex id -> vertex id in the carved mesh
+};
+
+/// The faces of @p t with keep[f] set; nullopt when the result is empty or not a manifold (a
+/// vertex pinched between two fans).
+[[nodiscard]] std::optional<Carving> carve(const Topology& t, const std::vector<bool>& keep);
 
 }  // namespace limsurf::test

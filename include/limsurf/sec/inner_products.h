@@ -62,15 +62,27 @@ enum class InnerProductMethod {
 /// @throws InputError naming the accepted values
 [[nodiscard]] InnerProductMethod parse_inner_product_method(const std::string& name);
 
+/// How Sec and SecSnap are assembled; both give the same matrices up to rounding.
+enum class SecAssembly {
+    Auto,       ///< Patches; Hierarchy should a face's ring not be refinable on its own
+    Patches,    ///< per control face from shared ring stencils (docs/sec.md "Assembly"); fast
+    Hierarchy,  ///< refine the whole mesh with forms and pull back level by level (Eq. 10); the reference
+};
+
 struct InnerProductOptions {
     InnerProductMethod method = InnerProductMethod::Sec;
     int level = 3;        ///< L for Sec and SecSnap (0 <= L <= 8)
     bool lumped = false;  ///< replace M0 and M2 by diag(M 1) (SEC §3.5); M1 is kept
+    int num_threads = 0;  ///< threads for Sec and SecSnap (0: hardware concurrency)
+    SecAssembly assembly = SecAssembly::Auto;
 };
 
 /// @brief The inner products on the control mesh (@p topology, @p X0) under @p scheme.
 /// @throws as polygonal_inner_products, require_form_rules (Sec, SecSnap), and limit
-///   evaluation (DecSnap, SecSnap); InputError when options.level is out of range
+///   evaluation (DecSnap, SecSnap); InputError when options.level is out of range;
+///   UnsupportedError under SecAssembly::Patches when a face's ring cannot be refined on its own
+///   (not expected; Auto then uses Hierarchy), naming the face; NumericalError naming the control face when a level-L
+///   face inside it has zero area
 [[nodiscard]] InnerProducts control_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
                                                    const InnerProductOptions& options = {},
                                                    const SchemeOptions& scheme_options = {});

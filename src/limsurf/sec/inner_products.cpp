@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <future>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,74 +13,55 @@
 #include "limsurf/core/error.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/refine/form_subdivision.h"
+#include "limsurf/sec/patch_inner_products.h"
+#include "limsurf/sec/polygon_element.h"
 
 namespace limsurf {
 namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
-/// The per-face pieces of the polygonal inner products.
-struct FaceGeometry {
-    double area = 0.0;         ///< |a_f|
-    Eigen::MatrixXd one_form;  ///< n × n: B Bᵀ / |a_f| + λ_f P_f (local edges, counter-clockwise)
-};
-
-/// An orthonormal pair spanning the plane orthogonal to unit vector n.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> tangent_basis(const Eigen::Vector3d& n) {
-    const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-    const Eigen::Vector3d t1 = n.cross(helper).normalized();
-    return {t1, n.cross(t1)};
+/// Corners of face f (n × 3, counter-clockwise).
+template <int N>
+Eigen::Matrix<double, N, 3> face_corners(const Topology& t, const Points& X, Index f) {
+    const auto verts = t.face_vertices(f);
+    Eigen::Matrix<double, N, 3> P(static_cast<Eigen::Index>(verts.size()), 3);
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+        P.row(static_cast<Eigen::Index>(i)) = X.row(verts[i]);
+    }
+    return P;
 }
 
-/// The vector area ½ Σ x_i × x_{i+1} of face f. @throws NumericalError when it is (numerically)
-/// zero against the face's edge lengths, or not finite
-Eigen::Vector3d checked_vector_area(const Topology& t, const Points& X, Index f) {
-    const auto verts = t.face_vertices(f);
-    Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
-    double scale = 0.0;
-    for (std::size_t i = 0; i < verts.size(); ++i) {
-        const Eigen::Vector3d a = X.row(verts[i]);
-        const Eigen::Vector3d b = X.row(verts[(i + 1) % verts.size()]);
-        vector_area += 0.5 * a.cross(b);
-        scale = std::max(scale, (b - a).squaredNorm());
-    }
-    const double area = vector_area.norm();
-    LIMSURF_CHECK(std::isfinite(area) && area > 1e-14 * scale, NumericalError, "face ", f,
+/// The vector area of face f. @throws NumericalError when it is (numerically) zero against the
+/// face's edge lengths, or not finite
+template <int N>
+Eigen::Vector3d checked_vector_area(const Eigen::Matrix<double, N, 3>& P, Index f) {
+    const Eigen::Vector3d vector_area = detail::polygon_vector_area<N>(P);
+    LIMSURF_CHECK(!detail::polygon_is_degenerate<N>(P, vector_area.norm()), NumericalError, "face ", f,
                   " has zero area (or a non-finite vertex): the inner products need non-degenerate faces");
     return vector_area;
 }
 
-FaceGeometry face_geometry(const Topology& t, const Points& X, Index f) {
+/// Appends face f's contributions to the three triplet lists.
+template <int N>
+void add_face(const Topology& t, const Points& X, Index f, Triplets& m0, Triplets& m1, Triplets& m2) {
+    const auto P = face_corners<N>(t, X, f);
+    const auto g = detail::polygon_element<N>(P, checked_vector_area<N>(P, f));
     const auto verts = t.face_vertices(f);
-    const auto n = static_cast<Eigen::Index>(verts.size());
-    Eigen::MatrixXd P(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        P.row(i) = X.row(verts[static_cast<std::size_t>(i)]);
+    const auto edges = t.face_edges(f);
+    const auto signs = t.face_edge_signs(f);
+    const double share = g.area / static_cast<double>(verts.size());
+    for (const Index v : verts) {
+        m0.emplace_back(v, v, share);
     }
-    const Eigen::RowVector3d centroid = P.colwise().mean();
-    Eigen::MatrixXd B(n, 3);
-    Eigen::MatrixXd E(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const Eigen::RowVector3d a = P.row(i);
-        const Eigen::RowVector3d b = P.row((i + 1) % n);
-        B.row(i) = 0.5 * (a + b) - centroid;
-        E.row(i) = b - a;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        for (std::size_t j = 0; j < edges.size(); ++j) {
+            const double sign = static_cast<double>(signs[i] * signs[j]);
+            m1.emplace_back(edges[i], edges[j],
+                            sign * g.one_form(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+        }
     }
-    const Eigen::Vector3d vector_area = checked_vector_area(t, X, f);
-    FaceGeometry g;
-    g.area = vector_area.norm();
-    const Eigen::Vector3d normal = vector_area / g.area;
-    const auto [t1, t2] = tangent_basis(normal);
-    Eigen::MatrixXd E2(n, 2);  // the edges flattened onto the face's plane, in 2D coordinates
-    E2.col(0) = E * t1;
-    E2.col(1) = E * t2;
-    const Eigen::Matrix2d gram = E2.transpose() * E2;
-    // The projector onto ker(E2ᵀ): the circulation part that the consistency term cannot see.
-    const Eigen::MatrixXd kernel_projector = Eigen::MatrixXd::Identity(n, n) - E2 * gram.inverse() * E2.transpose();
-    const Eigen::MatrixXd consistency = B * B.transpose() / g.area;
-    const double lambda = consistency.trace() / 2.0;
-    g.one_form = consistency + lambda * kernel_projector;
-    return g;
+    m2.emplace_back(f, f, 1.0 / g.area);
 }
 
 SparseMatrix from_triplets(Index size, const Triplets& entries) {
@@ -110,22 +92,17 @@ InnerProducts polygonal_inner_products(const Topology& topology, const Points& X
     m1.reserve(static_cast<std::size_t>(topology.num_corners()) * 4);
     m2.reserve(static_cast<std::size_t>(topology.num_faces()));
     for (Index f = 0; f < topology.num_faces(); ++f) {
-        const FaceGeometry g = face_geometry(topology, X, f);
-        const auto verts = topology.face_vertices(f);
-        const auto edges = topology.face_edges(f);
-        const auto signs = topology.face_edge_signs(f);
-        const double share = g.area / static_cast<double>(verts.size());
-        for (const Index v : verts) {
-            m0.emplace_back(v, v, share);
+        // Fixed sizes for triangles and quads keep the (millions of) refined faces off the heap.
+        switch (topology.face_degree(f)) {
+        case 3:
+            add_face<3>(topology, X, f, m0, m1, m2);
+            break;
+        case 4:
+            add_face<4>(topology, X, f, m0, m1, m2);
+            break;
+        default:
+            add_face<Eigen::Dynamic>(topology, X, f, m0, m1, m2);
         }
-        for (std::size_t i = 0; i < edges.size(); ++i) {
-            for (std::size_t j = 0; j < edges.size(); ++j) {
-                const double sign = static_cast<double>(signs[i] * signs[j]);
-                m1.emplace_back(edges[i], edges[j],
-                                sign * g.one_form(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
-            }
-        }
-        m2.emplace_back(f, f, 1.0 / g.area);
     }
     return {from_triplets(topology.num_vertices(), m0), from_triplets(topology.num_edges(), m1),
             from_triplets(topology.num_faces(), m2)};
@@ -136,7 +113,8 @@ Eigen::VectorXd polygonal_vertex_masses(const Topology& topology, const Points& 
                   " rows but the mesh has ", topology.num_vertices(), " vertices");
     Eigen::VectorXd masses = Eigen::VectorXd::Zero(topology.num_vertices());
     for (Index f = 0; f < topology.num_faces(); ++f) {
-        const double share = checked_vector_area(topology, X, f).norm() / static_cast<double>(topology.face_degree(f));
+        const auto P = face_corners<Eigen::Dynamic>(topology, X, f);
+        const double share = checked_vector_area<Eigen::Dynamic>(P, f).norm() / static_cast<double>(P.rows());
         for (const Index v : topology.face_vertices(f)) {
             masses(v) += share;
         }
@@ -221,6 +199,27 @@ InnerProducts pulled_back_inner_products(const Hierarchy& hierarchy, int level, 
     return m;
 }
 
+namespace {
+
+/// Sec and SecSnap from the whole hierarchy (the reference path; used where the patch assembly
+/// cannot be, and at level 0).
+InnerProducts hierarchy_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                       const InnerProductOptions& options, const SchemeOptions& scheme_options) {
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = options.level;
+    refine.scheme_options = scheme_options;
+    refine.forms = true;
+    const Hierarchy hierarchy(topology, refine);
+    Points XL = hierarchy.positions(options.level, X0);
+    if (uses_limit_positions(options.method)) {
+        XL = LimitBasis(hierarchy.topology(options.level), scheme, scheme_options).vertex_limit_matrix() * XL;
+    }
+    return pulled_back_inner_products(hierarchy, options.level, XL);
+}
+
+}  // namespace
+
 InnerProducts control_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
                                      const InnerProductOptions& options, const SchemeOptions& scheme_options) {
     LIMSURF_CHECK(X0.rows() == topology.num_vertices(), InputError, "positions have ", X0.rows(),
@@ -232,17 +231,17 @@ InnerProducts control_inner_products(const Topology& topology, const Points& X0,
         LIMSURF_CHECK(options.level >= 0 && options.level <= 8, InputError, "the SEC level must be in [0, 8], got ",
                       options.level);
         require_form_rules(topology, scheme, scheme_options);
-        RefineOptions refine;
-        refine.scheme = scheme;
-        refine.levels = options.level;
-        refine.scheme_options = scheme_options;
-        refine.forms = true;
-        const Hierarchy hierarchy(topology, refine);
-        Points XL = hierarchy.positions(options.level, X0);
-        if (snap) {
-            XL = LimitBasis(hierarchy.topology(options.level), scheme, scheme_options).vertex_limit_matrix() * XL;
+        std::optional<InnerProducts> patched;
+        if (options.level >= 1 && options.assembly != SecAssembly::Hierarchy) {
+            patched = detail::patch_inner_products(topology, X0, scheme, scheme_options, options.level, snap,
+                                                   options.num_threads, options.assembly == SecAssembly::Patches);
         }
-        m = pulled_back_inner_products(hierarchy, options.level, XL);
+        if (!patched) {
+            patched = hierarchy_inner_products(topology, X0, scheme, options, scheme_options);
+        }
+        m.M0.swap(patched->M0);  // Eigen 3.4's SparseMatrix does not move: swap instead of copying
+        m.M1.swap(patched->M1);
+        m.M2.swap(patched->M2);
     } else {
         const Points X = snap ? Points(LimitBasis(topology, scheme, scheme_options).vertex_limit_matrix() * X0) : X0;
         m = polygonal_inner_products(topology, X);

@@ -1,0 +1,174 @@
+// The patch assembly of the subdivision inner products (SecAssembly::Patches: per control face,
+// from ring stencils refined on their own) against the reference assembly from the whole
+// hierarchy (SecAssembly::Hierarchy: Eq. 10 level by level). Both compute SEC Eq. 12 / 16 by
+// different routes — different refinements, different summation orders — so they must agree to
+// rounding on every mesh form subdivision supports, closed and open, both boundary rules,
+// Sec and SecSnap, and on random carvings (many boundary configurations).
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "limsurf/core/error.h"
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/sec/inner_products.h"
+#include "support/mesh_zoo.h"
+#include "support/shapes.h"
+
+namespace limsurf {
+namespace {
+
+InnerProducts assembled(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
+                        SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0) {
+    InnerProductOptions options;
+    options.method = method;
+    options.level = level;
+    options.assembly = assembly;
+    options.num_threads = threads;
+    SchemeOptions scheme_options;
+    scheme_options.boundary = boundary;
+    return control_inner_products(t, X, scheme, options, scheme_options);
+}
+
+/// max |P − H| / max |H| over the three matrices (and the same sparsity is not required: an
+/// entry that one assembly stores as an exact zero counts as a difference of zero).
+double relative_difference(const InnerProducts& p, const InnerProducts& h) {
+    double worst = 0.0;
+    for (const auto& [a, b] : {std::pair{&p.M0, &h.M0}, std::pair{&p.M1, &h.M1}, std::pair{&p.M2, &h.M2}}) {
+        const SparseMatrix diff = *a - *b;
+        const double scale = SparseMatrix(b->cwiseAbs()).coeffs().maxCoeff();
+        worst = std::max(worst, SparseMatrix(diff.cwiseAbs()).coeffs().maxCoeff() / scale);
+    }
+    return worst;
+}
+
+struct Case {
+    std::string name;
+    SchemeKind scheme;
+};
+
+std::vector<Case> cases() {
+    std::vector<Case> out;
+    for (const auto& mesh : test::triangle_meshes()) {
+        out.push_back({mesh.name, SchemeKind::Loop});
+    }
+    for (const auto& mesh : test::quad_meshes()) {
+        if (mesh.name != "cube_creases") {  // creases: no form rules
+            out.push_back({mesh.name, SchemeKind::CatmullClark});
+        }
+    }
+    return out;
+}
+
+class PatchAssembly : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PatchAssembly, EqualsTheHierarchyAssembly) {
+    const BuildResult built = read_mesh(test::find_bundled(GetParam().name).path);
+    const Topology& t = built.mesh.topology();
+    const Points& X = built.mesh.positions();
+    for (const auto boundary : {BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly}) {
+        for (const auto method : {InnerProductMethod::Sec, InnerProductMethod::SecSnap}) {
+            for (const int level : {1, 2}) {
+                const auto patches = assembled(t, X, GetParam().scheme, method, level, SecAssembly::Patches, boundary);
+                const auto reference =
+                    assembled(t, X, GetParam().scheme, method, level, SecAssembly::Hierarchy, boundary);
+                EXPECT_LE(relative_difference(patches, reference), 1e-13)
+                    << to_string(method) << " L=" << level << " boundary " << static_cast<int>(boundary);
+                if (t.is_closed()) {
+                    break;  // the boundary rule changes nothing
+                }
+            }
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Sec, PatchAssembly, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& param) { return param.param.name; });
+
+TEST(PatchAssemblyAtLevel3, EqualsTheHierarchyAssembly) {
+    for (const Case& c : {Case{"genus2", SchemeKind::CatmullClark}, Case{"icosahedron", SchemeKind::Loop},
+                          Case{"disk_ev5_quads", SchemeKind::CatmullClark}}) {
+        const BuildResult built = read_mesh(test::find_bundled(c.name).path);
+        const auto& t = built.mesh.topology();
+        const auto& X = built.mesh.positions();
+        const auto patches = assembled(t, X, c.scheme, InnerProductMethod::Sec, 3, SecAssembly::Patches,
+                                       BoundaryInterpolation::EdgeAndCorner);
+        const auto reference = assembled(t, X, c.scheme, InnerProductMethod::Sec, 3, SecAssembly::Hierarchy,
+                                         BoundaryInterpolation::EdgeAndCorner);
+        EXPECT_LE(relative_difference(patches, reference), 1e-13) << c.name;
+    }
+}
+
+TEST(PatchAssemblyOnCarvings, EqualsTheHierarchyAssembly) {
+    // Random sub-meshes: boundary vertices with every fan size, ears, several loops.
+    std::mt19937 rng(7);
+    int checked = 0;
+    for (const Case& c : {Case{"quad_valence_8", SchemeKind::CatmullClark}, Case{"tri_valence_7", SchemeKind::Loop},
+                          Case{"genus2", SchemeKind::CatmullClark}}) {
+        const BuildResult built = read_mesh(test::find_bundled(c.name).path);
+        const Topology& t = built.mesh.topology();
+        for (int attempt = 0; attempt < 6; ++attempt) {
+            std::bernoulli_distribution kept(attempt < 3 ? 0.8 : 0.93);
+            std::vector<bool> keep(static_cast<std::size_t>(t.num_faces()));
+            std::generate(keep.begin(), keep.end(), [&] { return kept(rng); });
+            const auto carved = test::carve(t, keep);
+            if (!carved) {
+                continue;
+            }
+            Points X(static_cast<Eigen::Index>(carved->original_vertex.size()), 3);
+            for (std::size_t v = 0; v < carved->original_vertex.size(); ++v) {
+                X.row(static_cast<Eigen::Index>(v)) = built.mesh.positions().row(carved->original_vertex[v]);
+            }
+            for (const auto boundary : {BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly}) {
+                const auto reference = assembled(carved->topology, X, c.scheme, InnerProductMethod::Sec, 2,
+                                                 SecAssembly::Hierarchy, boundary);
+                const auto patches = assembled(carved->topology, X, c.scheme, InnerProductMethod::Sec, 2,
+                                               SecAssembly::Patches, boundary);
+                EXPECT_LE(relative_difference(patches, reference), 1e-13) << c.name << " carving " << attempt;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GE(checked, 12);
+}
+
+TEST(PatchAssembly, IsTheSameOnAnyNumberOfThreads) {
+    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
+    const auto& t = built.mesh.topology();
+    const auto& X = built.mesh.positions();
+    const auto one = assembled(t, X, SchemeKind::CatmullClark, InnerProductMethod::Sec, 2, SecAssembly::Patches,
+                               BoundaryInterpolation::EdgeAndCorner, 1);
+    const auto three = assembled(t, X, SchemeKind::CatmullClark, InnerProductMethod::Sec, 2, SecAssembly::Patches,
+                                 BoundaryInterpolation::EdgeAndCorner, 3);
+    EXPECT_EQ(relative_difference(one, three), 0.0);
+    for (const SparseMatrix* M : {&one.M0, &one.M1, &one.M2}) {
+        EXPECT_EQ(SparseMatrix(*M - SparseMatrix(M->transpose())).coeffs().cwiseAbs().maxCoeff(), 0.0)
+            << "exactly symmetric";
+    }
+}
+
+TEST(PatchAssembly, NamesTheControlFaceAroundADegenerateRefinedFace) {
+    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
+    const auto& t = built.mesh.topology();
+    Points X = built.mesh.positions();
+    // Collapse face 5 and its ring to one point: every level-2 face inside face 5 has zero area.
+    for (const Index c : t.face_vertices(5)) {
+        for (const Index h : t.vertex_faces(c)) {
+            for (const Index v : t.face_vertices(h)) {
+                X.row(v) = X.row(t.face_vertices(5)[0]);
+            }
+        }
+    }
+    try {
+        (void)assembled(t, X, SchemeKind::CatmullClark, InnerProductMethod::Sec, 2, SecAssembly::Patches,
+                        BoundaryInterpolation::EdgeAndCorner);
+        FAIL() << "no error";
+    } catch (const NumericalError& e) {
+        EXPECT_NE(std::string(e.what()).find("inside control face "), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace limsurf
