@@ -1,13 +1,15 @@
 // Subdivision Exterior Calculus: assembling the inner products M0, M1, M2 of a ~10k-face control
-// mesh with SEC at level 3 (Eq. 12: refine with forms, polygonal M_k on level 3, pull back level
-// by level), against polygonal DEC on the same control mesh and DEC assembled directly on the
-// level-3 mesh; the sparse factorisation and solve of the Poisson problem. No peer library has
-// SEC inner products; the DEC assemblies are the yardsticks the issue names.
+// mesh with SEC at level 3 (Eq. 12), against polygonal DEC on the same control mesh and DEC
+// assembled directly on the level-3 mesh; the sparse factorisation and solve of the Poisson
+// problem. No peer library has SEC inner products; the DEC assemblies are the yardsticks the
+// issue names.
 //
-//   dec_control   polygonal_inner_products(control mesh)
-//   dec_level3    polygonal_inner_products(level-3 mesh), positions precomputed
-//   sec_level3    control_inner_products(Sec, L = 3), everything included (refinement with forms)
-//   poisson       solve_poisson with the SEC operators (factorisation + solve)
+//   DecControl         polygonal_inner_products(control mesh)
+//   DecLevel3          polygonal_inner_products(level-3 mesh), positions precomputed
+//   SecLevel3          control_inner_products(Sec, L = 3), the default patch assembly, everything
+//                      included; second argument: threads
+//   SecLevel3Hierarchy the same by SecAssembly::Hierarchy (refine with forms, pull back level by level)
+//   PoissonSec         solve_poisson with the SEC operators (factorisation + solve)
 //   counters: nonzeros of the assembled M1, peak resident memory (VmHWM, MiB) after the run
 //
 // Meshes: genus2 refined 4 times by Catmull–Clark (12 800 quads, valences 3 and 5);
@@ -94,11 +96,13 @@ void BM_DecLevel3(benchmark::State& state) {
     label(state, m);
 }
 
-void BM_SecLevel3(benchmark::State& state) {
+void sec_level3(benchmark::State& state, limsurf::SecAssembly assembly, int threads) {
     const Mesh& m = mesh(static_cast<int>(state.range(0)));
     limsurf::InnerProductOptions options;
     options.method = limsurf::InnerProductMethod::Sec;
     options.level = 3;
+    options.assembly = assembly;
+    options.num_threads = threads;
     limsurf::InnerProducts ip;
     for (auto _ : state) {
         ip = limsurf::control_inner_products(m.topology, m.X, m.scheme, options);
@@ -107,6 +111,14 @@ void BM_SecLevel3(benchmark::State& state) {
     state.counters["M1_nonzeros"] = static_cast<double>(ip.M1.nonZeros());
     state.counters["peak_MiB"] = peak_mib();
     label(state, m);
+}
+
+void BM_SecLevel3(benchmark::State& state) {
+    sec_level3(state, limsurf::SecAssembly::Patches, static_cast<int>(state.range(1)));
+}
+
+void BM_SecLevel3Hierarchy(benchmark::State& state) {
+    sec_level3(state, limsurf::SecAssembly::Hierarchy, 0);
 }
 
 void BM_PoissonSec(benchmark::State& state) {
@@ -125,14 +137,21 @@ void BM_PoissonSec(benchmark::State& state) {
 
 BENCHMARK(BM_DecControl)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DecLevel3)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SecLevel3)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SecLevel3)
+    ->Args({0, 1})
+    ->Args({0, 2})
+    ->Args({1, 1})
+    ->Args({1, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_SecLevel3Hierarchy)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PoissonSec)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
 int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);
-    limsurf::bench::prefault_heap(3.5);  // SEC at level 3 peaks near 3 GiB
+    limsurf::bench::prefault_heap(3.5);  // the hierarchy route of SEC at level 3 peaks near 3 GiB
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     return 0;
