@@ -58,23 +58,7 @@ Residuals step_residuals(const Topology& parent, const Level& level, const Level
     return r;
 }
 
-struct Case {
-    std::string name;
-    SchemeKind scheme;
-};
-
-std::vector<Case> cases() {
-    std::vector<Case> out;
-    for (const auto& mesh : test::triangle_meshes()) {
-        out.push_back({mesh.name, SchemeKind::Loop});
-    }
-    for (const auto& mesh : test::quad_meshes()) {
-        if (mesh.name != "cube_creases") {
-            out.push_back({mesh.name, SchemeKind::CatmullClark});
-        }
-    }
-    return out;
-}
+using Case = test::SchemeCase;
 
 class FormCommutation : public ::testing::TestWithParam<Case> {};
 
@@ -141,7 +125,7 @@ TEST_P(FormCommutation, CarvedAtRandom) {
     EXPECT_GT(checked, 0) << "no carving of " << GetParam().name << " was a manifold";
 }
 
-INSTANTIATE_TEST_SUITE_P(Sec, FormCommutation, ::testing::ValuesIn(cases()),
+INSTANTIATE_TEST_SUITE_P(Sec, FormCommutation, ::testing::ValuesIn(test::form_subdivision_cases()),
                          [](const ::testing::TestParamInfo<Case>& param) {
                              return param.param.name + (param.param.scheme == SchemeKind::Loop ? "_loop" : "_cc");
                          });

@@ -44,23 +44,7 @@ double relative_difference(const InnerProducts& p, const InnerProducts& h) {
     return worst;
 }
 
-struct Case {
-    std::string name;
-    SchemeKind scheme;
-};
-
-std::vector<Case> cases() {
-    std::vector<Case> out;
-    for (const auto& mesh : test::triangle_meshes()) {
-        out.push_back({mesh.name, SchemeKind::Loop});
-    }
-    for (const auto& mesh : test::quad_meshes()) {
-        if (mesh.name != "cube_creases") {  // creases: no form rules
-            out.push_back({mesh.name, SchemeKind::CatmullClark});
-        }
-    }
-    return out;
-}
+using Case = test::SchemeCase;
 
 class PatchAssembly : public ::testing::TestWithParam<Case> {};
 
@@ -84,7 +68,7 @@ TEST_P(PatchAssembly, EqualsTheHierarchyAssembly) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Sec, PatchAssembly, ::testing::ValuesIn(cases()),
+INSTANTIATE_TEST_SUITE_P(Sec, PatchAssembly, ::testing::ValuesIn(test::form_subdivision_cases()),
                          [](const ::testing::TestParamInfo<Case>& param) { return param.param.name; });
 
 TEST(PatchAssemblyAtLevel3, EqualsTheHierarchyAssembly) {

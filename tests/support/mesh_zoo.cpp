@@ -179,4 +179,17 @@ void PrintTo(const BundledMesh& mesh, std::ostream* os) {
     *os << mesh.name;
 }
 
+std::vector<SchemeCase> form_subdivision_cases() {
+    std::vector<SchemeCase> out;
+    for (const auto& mesh : triangle_meshes()) {
+        out.push_back({mesh.name, SchemeKind::Loop});
+    }
+    for (const auto& mesh : quad_meshes()) {
+        if (mesh.name != "cube_creases") {
+            out.push_back({mesh.name, SchemeKind::CatmullClark});
+        }
+    }
+    return out;
+}
+
 }  // namespace limsurf::test

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "limsurf/scheme/scheme.h"
+
 namespace limsurf::test {
 
 struct BundledMesh {
@@ -50,6 +52,16 @@ struct BundledMesh {
 /// The bundled mesh called @p name.
 /// @throws std::runtime_error when there is none
 [[nodiscard]] const BundledMesh& find_bundled(std::string_view name);
+
+/// A bundled mesh with the scheme that refines it with form subdivision (SEC).
+struct SchemeCase {
+    std::string name;
+    SchemeKind scheme;
+};
+
+/// Every bundled triangle mesh under Loop and every quad mesh under Catmull–Clark, except those
+/// with creases (form subdivision has no crease rules).
+[[nodiscard]] std::vector<SchemeCase> form_subdivision_cases();
 
 /// GoogleTest value printer (parameterised tests print the name).
 void PrintTo(const BundledMesh& mesh, std::ostream* os);
