@@ -77,6 +77,13 @@ struct InnerProductOptions {
     SecAssembly assembly = SecAssembly::Auto;
 };
 
+/// @brief The positions the inner products of @p method are evaluated at, from the positions
+///   @p X (#V × 3) of @p topology (the control mesh, or level L for Sec and SecSnap): X itself, or
+///   for DecSnap and SecSnap the limit positions of the vertices under @p scheme.
+/// @throws as LimitBasis (the snapping methods)
+[[nodiscard]] Points evaluation_positions(const Topology& topology, const Points& X, InnerProductMethod method,
+                                          SchemeKind scheme, const SchemeOptions& scheme_options = {});
+
 /// @brief The inner products on the control mesh (@p topology, @p X0) under @p scheme.
 /// @throws as polygonal_inner_products, require_form_rules (Sec, SecSnap), and limit
 ///   evaluation (DecSnap, SecSnap); InputError when options.level is out of range;

@@ -42,6 +42,12 @@ Eigen::Vector3d checked_vector_area(const Eigen::Matrix<double, N, 3>& P, Index 
     return vector_area;
 }
 
+/// |a_f|. @throws as checked_vector_area
+template <int N>
+double face_area(const Topology& t, const Points& X, Index f) {
+    return checked_vector_area<N>(face_corners<N>(t, X, f), f).norm();
+}
+
 /// Appends face f's contributions to the three triplet lists.
 template <int N>
 void add_face(const Topology& t, const Points& X, Index f, Triplets& m0, Triplets& m1, Triplets& m2) {
@@ -82,6 +88,21 @@ SparseMatrix symmetrized(const SparseMatrix& M) {
     return SparseMatrix(0.5 * (M + transposed));
 }
 
+/// Sec and SecSnap from the whole hierarchy (the reference path; used where the patch assembly
+/// cannot be, and at level 0).
+InnerProducts hierarchy_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                       const InnerProductOptions& options, const SchemeOptions& scheme_options) {
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = options.level;
+    refine.scheme_options = scheme_options;
+    refine.forms = true;
+    const Hierarchy hierarchy(topology, refine);
+    const Points XL = evaluation_positions(hierarchy.topology(options.level), hierarchy.positions(options.level, X0),
+                                           options.method, scheme, scheme_options);
+    return pulled_back_inner_products(hierarchy, options.level, XL);
+}
+
 }  // namespace
 
 InnerProducts polygonal_inner_products(const Topology& topology, const Points& X) {
@@ -113,8 +134,11 @@ Eigen::VectorXd polygonal_vertex_masses(const Topology& topology, const Points& 
                   " rows but the mesh has ", topology.num_vertices(), " vertices");
     Eigen::VectorXd masses = Eigen::VectorXd::Zero(topology.num_vertices());
     for (Index f = 0; f < topology.num_faces(); ++f) {
-        const auto P = face_corners<Eigen::Dynamic>(topology, X, f);
-        const double share = checked_vector_area<Eigen::Dynamic>(P, f).norm() / static_cast<double>(P.rows());
+        const Index n = topology.face_degree(f);
+        const double area = n == 3   ? face_area<3>(topology, X, f)
+                            : n == 4 ? face_area<4>(topology, X, f)
+                                     : face_area<Eigen::Dynamic>(topology, X, f);
+        const double share = area / static_cast<double>(n);
         for (const Index v : topology.face_vertices(f)) {
             masses(v) += share;
         }
@@ -199,42 +223,28 @@ InnerProducts pulled_back_inner_products(const Hierarchy& hierarchy, int level, 
     return m;
 }
 
-namespace {
-
-/// Sec and SecSnap from the whole hierarchy (the reference path; used where the patch assembly
-/// cannot be, and at level 0).
-InnerProducts hierarchy_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
-                                       const InnerProductOptions& options, const SchemeOptions& scheme_options) {
-    RefineOptions refine;
-    refine.scheme = scheme;
-    refine.levels = options.level;
-    refine.scheme_options = scheme_options;
-    refine.forms = true;
-    const Hierarchy hierarchy(topology, refine);
-    Points XL = hierarchy.positions(options.level, X0);
-    if (uses_limit_positions(options.method)) {
-        XL = LimitBasis(hierarchy.topology(options.level), scheme, scheme_options).vertex_limit_matrix() * XL;
+Points evaluation_positions(const Topology& topology, const Points& X, InnerProductMethod method, SchemeKind scheme,
+                            const SchemeOptions& scheme_options) {
+    if (!uses_limit_positions(method)) {
+        return X;
     }
-    return pulled_back_inner_products(hierarchy, options.level, XL);
+    return LimitBasis(topology, scheme, scheme_options).vertex_limit_matrix() * X;
 }
-
-}  // namespace
 
 InnerProducts control_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
                                      const InnerProductOptions& options, const SchemeOptions& scheme_options) {
     LIMSURF_CHECK(X0.rows() == topology.num_vertices(), InputError, "positions have ", X0.rows(),
                   " rows but the mesh has ", topology.num_vertices(), " vertices");
-    const bool snap = uses_limit_positions(options.method);
-    const bool subdivide = uses_subdivision(options.method);
     InnerProducts m;
-    if (subdivide) {
+    if (uses_subdivision(options.method)) {
         LIMSURF_CHECK(options.level >= 0 && options.level <= 8, InputError, "the SEC level must be in [0, 8], got ",
                       options.level);
         require_form_rules(topology, scheme, scheme_options);
         std::optional<InnerProducts> patched;
         if (options.level >= 1 && options.assembly != SecAssembly::Hierarchy) {
-            patched = detail::patch_inner_products(topology, X0, scheme, scheme_options, options.level, snap,
-                                                   options.num_threads, options.assembly == SecAssembly::Patches);
+            patched = detail::patch_inner_products(topology, X0, scheme, scheme_options, options.level,
+                                                   uses_limit_positions(options.method), options.num_threads,
+                                                   options.assembly == SecAssembly::Patches);
         }
         if (!patched) {
             patched = hierarchy_inner_products(topology, X0, scheme, options, scheme_options);
@@ -243,8 +253,8 @@ InnerProducts control_inner_products(const Topology& topology, const Points& X0,
         m.M1.swap(patched->M1);
         m.M2.swap(patched->M2);
     } else {
-        const Points X = snap ? Points(LimitBasis(topology, scheme, scheme_options).vertex_limit_matrix() * X0) : X0;
-        m = polygonal_inner_products(topology, X);
+        m = polygonal_inner_products(topology,
+                                     evaluation_positions(topology, X0, options.method, scheme, scheme_options));
     }
     if (options.lumped) {
         m.M0 = lumped(m.M0);

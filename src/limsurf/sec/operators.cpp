@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
-#include "limsurf/limit/limit_basis.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
 #include "limsurf/sec/sparse_cholesky.h"
@@ -95,10 +94,8 @@ Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKi
     refine.levels = level;
     refine.scheme_options = scheme_options;
     const Hierarchy h(topology, refine);
-    Points XL = h.positions(level, X0);
-    if (uses_limit_positions(options.method)) {
-        XL = LimitBasis(h.topology(level), scheme, scheme_options).vertex_limit_matrix() * XL;
-    }
+    const Points XL =
+        evaluation_positions(h.topology(level), h.positions(level, X0), options.method, scheme, scheme_options);
     const Eigen::VectorXd values = f(XL);
     LIMSURF_CHECK(values.size() == XL.rows() && values.allFinite(), InputError,
                   "the right-hand side must give one finite value per point (", XL.rows(), ")");

@@ -188,7 +188,6 @@ struct EdgeSource {
 /// What every face with one ring connectivity shares: the rows of A_k^L for the level-L elements
 /// inside the ring's first face, over the ring's elements, and the level-L faces' corners.
 struct PatchStencil {
-    Index num_ring_faces = 0;
     std::vector<EdgeSource> ring_edges;  ///< one per ring edge, in the ring's local edge order
     int fine_degree = 0;                 ///< 4 (Catmull–Clark) or 3 (Loop)
     RowMatrix vertex_rows;               ///< #fine vertices × #ring vertices: A_0^L
@@ -241,7 +240,6 @@ PatchStencil build_stencil(const FaceRing& ring, SchemeKind scheme, const Scheme
                            bool snap) {
     PatchStencil s;
     Topology local = ring_topology(ring);
-    s.num_ring_faces = local.num_faces();
     s.ring_edges.resize(static_cast<std::size_t>(local.num_edges()));
     for (Index h = 0; h < local.num_faces(); ++h) {
         const auto edges = local.face_edges(h);
@@ -362,14 +360,13 @@ void add_fine_face(const PatchStencil& s, Index g, Index control_face, int level
     w.face_mass(g) = 1.0 / element.area;
 }
 
-/// out (n × n, column-major) = Aᵀ diag(d) A, filled from its lower triangle so that it is exactly
-/// symmetric.
-void weighted_gram(const RowMatrix& A, const Eigen::VectorXd& d, RowMatrix& scaled, double* out) {
+/// out (n × n, column-major) = Aᵀ B for a symmetric product, computed on its lower triangle and
+/// mirrored so that it is exactly symmetric.
+void symmetric_product(const RowMatrix& A, const RowMatrix& B, double* out) {
     const Eigen::Index n = A.cols();
-    scaled = d.asDiagonal() * A;
     Eigen::Map<Eigen::MatrixXd> C(out, n, n);
     C.setZero();
-    C.triangularView<Eigen::Lower>() += A.transpose() * scaled;
+    C.triangularView<Eigen::Lower>() += A.transpose() * B;
     for (Eigen::Index j = 0; j < n; ++j) {
         for (Eigen::Index i = 0; i < j; ++i) {
             C(i, j) = C(j, i);
@@ -397,19 +394,17 @@ void face_elements(const FaceEntry& e, const Points& X0, Index f, int level, Wor
         }
     }
     const auto at = static_cast<std::size_t>(f);
-    weighted_gram(s.vertex_rows, w.vertex_mass, w.scaled, out.values[0].data() + out.offsets[0][at]);
-    weighted_gram(s.face_rows, w.face_mass, w.scaled, out.values[2].data() + out.offsets[2][at]);
-    // M_1: A_1ᵀ (M_1^L A_1), then the signs from the ring's edge orientation to the global one.
-    const Eigen::Index n1 = s.edge_rows.cols();
-    Eigen::Map<Eigen::MatrixXd> C(out.values[1].data() + out.offsets[1][at], n1, n1);
-    C.setZero();
-    C.triangularView<Eigen::Lower>() += s.edge_rows.transpose() * w.edge_products;
-    for (Eigen::Index j = 0; j < n1; ++j) {
-        for (Eigen::Index i = j; i < n1; ++i) {
-            C(i, j) *= e.edge_signs[static_cast<std::size_t>(i)] * e.edge_signs[static_cast<std::size_t>(j)];
-            C(j, i) = C(i, j);
-        }
-    }
+    w.scaled = w.vertex_mass.asDiagonal() * s.vertex_rows;
+    symmetric_product(s.vertex_rows, w.scaled, out.values[0].data() + out.offsets[0][at]);
+    w.scaled = w.face_mass.asDiagonal() * s.face_rows;
+    symmetric_product(s.face_rows, w.scaled, out.values[2].data() + out.offsets[2][at]);
+    // M_1: A_1ᵀ (M_1^L A_1), then D C D with D the signs from the ring's edge orientation to the
+    // global one (products of ±1: C stays exactly symmetric).
+    double* one_forms = out.values[1].data() + out.offsets[1][at];
+    symmetric_product(s.edge_rows, w.edge_products, one_forms);
+    const Eigen::Map<const Eigen::VectorXd> signs(e.edge_signs.data(), s.edge_rows.cols());
+    Eigen::Map<Eigen::MatrixXd> C(one_forms, signs.size(), signs.size());
+    C = signs.asDiagonal() * C * signs.asDiagonal();
 }
 
 // --- global gather ----------------------------------------------------------------------------
@@ -591,9 +586,9 @@ std::optional<InnerProducts> patch_inner_products(const Topology& topology, cons
         for (Index f = begin; f < end; ++f) {
             const auto at = static_cast<std::size_t>(f);
             FaceEntry& e = entries[at];
-            e.vertices = std::move(rings[at].vertices);
-            e.faces = rings[at].faces;
             map_ring_edges(topology, rings[at], e);
+            e.vertices = std::move(rings[at].vertices);
+            e.faces = std::move(rings[at].faces);
             face_elements(e, X0, f, level, w, blocks);
         }
     });
