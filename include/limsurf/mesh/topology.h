@@ -163,8 +163,9 @@ class Topology {
         const auto end = at(face_offsets_[at(f) + 1]);
         return std::span<const T>(table).subspan(begin, end - begin);
     }
-    void build_edges(const std::vector<detail::HalfEdge>& half_edges);
-    void build_one_rings();
+    /// Returns, parallel to edge_faces_, the corner at which each of those faces enters the edge.
+    std::vector<Index> build_edges(const std::vector<detail::HalfEdge>& half_edges);
+    void build_one_rings(const std::vector<Index>& edge_face_corners);
     void build_boundary_loops();
     void build_components();
     void apply_sharpness(const SharpnessTags& sharpness);

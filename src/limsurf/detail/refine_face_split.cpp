@@ -1,5 +1,6 @@
 #include "limsurf/detail/refine_face_split.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 
@@ -188,8 +189,8 @@ SharpnessTags child_sharpness(const Topology& parent, const EffectiveSharpness& 
 void require_triangles(const Topology& parent, const char* scheme) {
     for (Index f = 0; f < parent.num_faces(); ++f) {
         const Index degree = parent.face_degree(f);
-        LIMSURF_CHECK(degree == 3, UnsupportedError, "face ", f, " has ", degree, " vertices: ", scheme,
-                      " needs triangles");
+        LIMSURF_CHECK_AT(degree == 3, UnsupportedError, face_element(f), "face ", f, " has ", degree,
+                         " vertices: ", scheme, " needs triangles");
     }
 }
 
@@ -199,15 +200,29 @@ SparseRowBuilder::SparseRowBuilder(Index rows, Index cols, Index nnz_hint) : mat
 }
 
 void SparseRowBuilder::end_row() {
-    // Insertion sort: rows hold a handful of entries.
-    for (std::size_t i = 1; i < row_.size(); ++i) {
-        const Entry entry = row_[i];
-        std::size_t j = i;
-        while (j > 0 && row_[j - 1].col > entry.col) {
-            row_[j] = row_[j - 1];
-            --j;
+    if (row_.size() > max_searched) {
+        // Stable: repeated columns are summed in the order they were added, as in add().
+        std::stable_sort(row_.begin(), row_.end(), [](const Entry& a, const Entry& b) { return a.col < b.col; });
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < row_.size(); ++i) {
+            if (kept > 0 && row_[kept - 1].col == row_[i].col) {
+                row_[kept - 1].weight += row_[i].weight;
+            } else {
+                row_[kept++] = row_[i];
+            }
         }
-        row_[j] = entry;
+        row_.resize(kept);
+    } else {
+        // Insertion sort: rows hold a handful of entries.
+        for (std::size_t i = 1; i < row_.size(); ++i) {
+            const Entry entry = row_[i];
+            std::size_t j = i;
+            while (j > 0 && row_[j - 1].col > entry.col) {
+                row_[j] = row_[j - 1];
+                --j;
+            }
+            row_[j] = entry;
+        }
     }
     matrix_.startVec(current_);
     for (const auto& entry : row_) {

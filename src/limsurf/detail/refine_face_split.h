@@ -72,6 +72,10 @@ class SparseRowBuilder {
         if (weight == 0.0) {
             return;
         }
+        if (row_.size() > max_searched) {  // a long row (an n-gon's face point): merged in end_row
+            row_.push_back({col, weight});
+            return;
+        }
         for (auto& entry : row_) {
             if (entry.col == col) {
                 entry.weight += weight;
@@ -90,6 +94,9 @@ class SparseRowBuilder {
         Index col;
         double weight;
     };
+    /// Rows up to this many entries merge repeated columns as they come (the usual case);
+    /// longer rows append and are sorted and merged once, so a row stays O(n log n).
+    static constexpr std::size_t max_searched = 32;
     SparseMatrix matrix_;
     std::vector<Entry> row_;
     Index current_ = 0;

@@ -74,8 +74,8 @@ Topology::Topology(Trusted, Index num_vertices, std::span<const Index> face_offs
 }
 
 void Topology::build(const std::vector<detail::HalfEdge>& half_edges, const SharpnessTags& sharpness) {
-    build_edges(half_edges);
-    build_one_rings();
+    const std::vector<Index> edge_face_corners = build_edges(half_edges);
+    build_one_rings(edge_face_corners);
     build_boundary_loops();
     build_components();
     apply_sharpness(sharpness);
@@ -101,7 +101,7 @@ Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vect
     return Topology(num_vertices, offsets, corners, sharpness);
 }
 
-void Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
+std::vector<Index> Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
     // half_edges is sorted by (edge key, face): each run of equal keys is one edge.
     std::vector<Index> group_begin;
     std::vector<Index> group_of_corner(face_vertices_.size(), invalid_index);
@@ -131,6 +131,8 @@ void Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
     edge_face_offsets_.reserve(at(num_groups) + 1);
     edge_face_offsets_.assign(1, 0);
     edge_faces_.reserve(half_edges.size());
+    std::vector<Index> edge_face_corners;  // parallel to edge_faces_: the corner where that face enters the edge
+    edge_face_corners.reserve(half_edges.size());
     for (Index e = 0; e < num_groups; ++e) {
         const Index g = group_of_edge[at(e)];
         const detail::HalfEdge& first = half_edges[at(group_begin[at(g)])];
@@ -146,11 +148,13 @@ void Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
                     face_edges_[at(h.corner)] = e;
                     face_edge_signs_[at(h.corner)] = forward ? 1 : -1;
                     edge_faces_.push_back(h.face);
+                    edge_face_corners.push_back(h.corner);
                 }
             }
         }
         edge_face_offsets_.push_back(static_cast<Index>(edge_faces_.size()));
     }
+    return edge_face_corners;
 }
 
 std::span<const Index> Topology::edge_faces(Index e) const {
@@ -170,7 +174,7 @@ Index Topology::find_edge(Index a, Index b) const {
     return invalid_index;
 }
 
-void Topology::build_one_rings() {
+void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // Corners grouped by vertex, in face order.
     std::vector<Index> offsets(at(num_vertices_) + 1, 0);
     for (const Index v : face_vertices_) {
@@ -226,10 +230,10 @@ void Topology::build_one_rings() {
                 vertex_edges_.push_back(in);  // closing boundary edge
                 break;
             }
-            const Index g = across[0] == f ? across[1] : across[0];
-            const auto g_corners = face_vertices(g);
-            const auto local = std::find(g_corners.begin(), g_corners.end(), v) - g_corners.begin();
-            corner = face_offsets_[at(g)] + static_cast<Index>(local);
+            // The other face runs that edge from v: its half-edge there starts at its corner at v
+            // (looked up, not searched: a face of 10⁵ corners must not make the walk quadratic).
+            const size_t other = across[0] == f ? 1 : 0;
+            corner = edge_face_corners[at(edge_face_offsets_[at(in)]) + other];
         }
         LIMSURF_ASSERT(vertex_faces_.size() - at(vertex_face_offsets_.back()) == mine.size(),
                        "one-ring walk of vertex ", v, " missed faces");

@@ -1,6 +1,7 @@
 #include "limsurf/mesh/validate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/magnitude.h"
 #include "limsurf/detail/connectivity.h"
 
 namespace limsurf {
@@ -297,6 +299,10 @@ class ConnectivityChecker {
         for (Index v = 0; v < faces_.num_vertices; ++v) {
             const auto first = half_edges_.begin() + bucket[at(v)];
             const auto last = half_edges_.begin() + bucket[at(v) + 1];
+            if (last - first > 32) {  // a high-valence vertex: insertion sort would be quadratic in it
+                std::sort(first, last, before);
+                continue;
+            }
             for (auto i = first; i != last; ++i) {  // insertion sort: buckets hold ~valence entries
                 for (auto j = i; j != first && before(*j, *(j - 1)); --j) {
                     std::iter_swap(j, j - 1);
@@ -365,8 +371,12 @@ class ConnectivityChecker {
     void report_non_manifold_edge(size_t begin, size_t end) {
         const HalfEdge& first = half_edges_[begin];
         std::string list;
-        for (size_t i = begin; i < end; ++i) {
+        constexpr size_t max_listed = 8;  // an edge of 10⁵ faces must not make a megabyte message
+        for (size_t i = begin; i < end && i < begin + max_listed; ++i) {
             list += (i == begin ? "" : ", ") + std::to_string(half_edges_[i].face);
+        }
+        if (end - begin > max_listed) {
+            list += ", …";
         }
         // The location is the face that made the edge non-manifold (the third one, in file order).
         add(Problem::NonManifoldEdge, source_.face_location(half_edges_[begin + 2].face),
@@ -402,33 +412,37 @@ class ConnectivityChecker {
         }
     }
 
+    /// The first faces that a flip would reverse in one orientation component, and how many.
+    struct FlipTally {
+        std::array<std::vector<Index>, 2> first;  // by parity, at most 5 each
+        std::array<size_t, 2> count{};
+    };
+
     /// "; reversing faces 3, 7 makes it consistent" for the component of face f.
     std::string flip_hint(ParityUnionFind& orientation, Index f) {
-        const Index root = orientation.find(f).first;
-        if (const auto cached = flip_hints_.find(root); cached != flip_hints_.end()) {
-            return cached->second;
-        }
-        std::vector<Index> flipped;
-        std::vector<Index> kept;
-        for (Index g = 0; g < num_faces(); ++g) {
-            if (good_face_[at(g)] == 0) {
-                continue;
-            }
-            const auto [r, parity] = orientation.find(g);
-            if (r == root) {
-                (parity != 0 ? flipped : kept).push_back(g);
+        if (flip_tallies_.empty()) {  // one pass over all faces serves every component
+            for (Index g = 0; g < num_faces(); ++g) {
+                if (good_face_[at(g)] == 0) {
+                    continue;
+                }
+                const auto [r, parity] = orientation.find(g);
+                FlipTally& tally = flip_tallies_[r];
+                if (tally.first[at(parity)].size() < 5) {
+                    tally.first[at(parity)].push_back(g);
+                }
+                ++tally.count[at(parity)];
             }
         }
-        const auto& fewer = flipped.size() <= kept.size() ? flipped : kept;
+        const FlipTally& tally = flip_tallies_.at(orientation.find(f).first);
+        const size_t fewer = tally.count[1] <= tally.count[0] ? 1 : 0;
         std::string list;
-        for (size_t i = 0; i < fewer.size() && i < 5; ++i) {
-            list += (i == 0 ? "" : ", ") + std::to_string(fewer[i]);
+        for (size_t i = 0; i < tally.first[fewer].size(); ++i) {
+            list += (i == 0 ? "" : ", ") + std::to_string(tally.first[fewer][i]);
         }
-        if (fewer.size() > 5) {
-            list += concat(", … (", fewer.size(), " faces)");
+        if (tally.count[fewer] > 5) {
+            list += concat(", … (", tally.count[fewer], " faces)");
         }
-        return flip_hints_[root] =
-                   concat("; reversing face", fewer.size() == 1 ? " " : "s ", list, " makes it consistent");
+        return concat("; reversing face", tally.count[fewer] == 1 ? " " : "s ", list, " makes it consistent");
     }
 
     void check_vertices() {
@@ -587,7 +601,7 @@ class ConnectivityChecker {
     std::vector<Index> vertex_use_;
     std::vector<std::uint8_t> touches_non_manifold_edge_;
     std::vector<HalfEdge> half_edges_;
-    std::unordered_map<Index, std::string> flip_hints_;   // per orientation component
+    std::unordered_map<Index, FlipTally> flip_tallies_;   // per orientation component (root face)
     std::vector<std::pair<Index, Index>> scratch_pairs_;  // reused by count_fans
     std::vector<Index> scratch_parents_;
 };
@@ -615,9 +629,9 @@ std::vector<HalfEdge> sorted_half_edges_unchecked(const FaceListView& faces) {
 namespace {
 
 void check_coordinates(const PolygonSoup& soup, const ValidateOptions& options, ValidationReport& report) {
-    const Points& x = soup.positions;
     bool all_finite = true;
     for (Index v = 0; v < soup.num_vertices(); ++v) {
+        const auto& x = soup.positions;
         if (!x.row(v).allFinite()) {
             all_finite = false;
             report.issues.push_back({Problem::NonFiniteCoordinate, Severity::Error, soup.source.vertex_location(v),
@@ -625,9 +639,12 @@ void check_coordinates(const PolygonSoup& soup, const ValidateOptions& options, 
                                                     x(v, 1), ", ", x(v, 2), ")")});
         }
     }
-    if (!all_finite || x.rows() == 0) {
+    if (!all_finite || soup.positions.rows() == 0) {
         return;
     }
+    // On coordinates brought to order one by a power of two: the verdict is the same for the
+    // mesh at any size (squared areas of a mesh 1e-100 across would underflow to zero).
+    const Points x = times_power_of_two(soup.positions, -magnitude_exponent(soup.positions));
     const double diagonal2 = (x.colwise().maxCoeff() - x.colwise().minCoeff()).squaredNorm();
     for (Index f = 0; f < soup.num_faces(); ++f) {
         const auto corners = soup.face(f);
