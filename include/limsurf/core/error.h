@@ -6,17 +6,44 @@
 // The CLI prints "error: " + what() and exits 1.
 #pragma once
 
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "limsurf/core/types.h"
+
 namespace limsurf {
+
+/// The mesh element an error is about, numbered as in the mesh the failing call was given,
+/// so that a caller who knows where that mesh came from can name the file and line.
+struct ErrorElement {
+    enum class Kind { Vertex, Face };
+    Kind kind = Kind::Face;
+    Index index = invalid_index;
+};
+
+[[nodiscard]] inline ErrorElement face_element(Index f) noexcept {
+    return {ErrorElement::Kind::Face, f};
+}
+[[nodiscard]] inline ErrorElement vertex_element(Index v) noexcept {
+    return {ErrorElement::Kind::Vertex, v};
+}
 
 /// Root of every exception limsurf throws.
 class Error : public std::runtime_error {
   public:
-    using std::runtime_error::runtime_error;
+    explicit Error(const std::string& what) : std::runtime_error(what) {}
+    explicit Error(const char* what) : std::runtime_error(what) {}
+    /// An error about one element of the input mesh (see ErrorElement).
+    Error(const std::string& what, ErrorElement element) : std::runtime_error(what), element_(element) {}
+
+    /// The element the error is about, when it is about one.
+    [[nodiscard]] const std::optional<ErrorElement>& element() const noexcept { return element_; }
+
+  private:
+    std::optional<ErrorElement> element_;
 };
 
 /// Bad file, bad argument, out-of-range option.
@@ -63,6 +90,15 @@ template <class... Args>
     do {                                                                                                               \
         if (!(cond)) {                                                                                                 \
             throw ErrorType(::limsurf::detail::concat(__VA_ARGS__));                                                   \
+        }                                                                                                              \
+    } while (0)
+
+/// As LIMSURF_CHECK for an error about one mesh element (an ErrorElement: face_element(f),
+/// vertex_element(v)), so that callers can name the file and line it came from.
+#define LIMSURF_CHECK_AT(cond, ErrorType, element, ...)                                                                \
+    do {                                                                                                               \
+        if (!(cond)) {                                                                                                 \
+            throw ErrorType(::limsurf::detail::concat(__VA_ARGS__), element);                                          \
         }                                                                                                              \
     } while (0)
 

@@ -82,6 +82,11 @@ enum class LimitEvaluation {
     Subdivision
 };
 
+/// Largest face degree and vertex valence the limit basis accepts (docs/io.md "Limits"): near an
+/// n-gon or a valence-n vertex the surface depends on O(n) control points through dense local
+/// matrices, so the cost grows like n³ (n = 128: about a second for every ptex face of a 128-gon).
+constexpr Index max_limit_size = 128;
+
 /// @brief The exact limit basis of a control topology under Catmull–Clark, Loop or Doo–Sabin.
 ///
 /// Construction is cheap; the local patches around irregular faces are built
@@ -94,7 +99,8 @@ class LimitBasis {
     /// @param options  boundary rule, creasing method, triangle rule
     /// @param weights  tuned Catmull–Clark weights, per valence or per vertex (weights that change a
     ///   regular interior valence-4 vertex are refused: they change the regular patches)
-    /// @throws UnsupportedError for other schemes, Loop on non-triangles, tuned weights at valence 4
+    /// @throws UnsupportedError for other schemes, Loop on non-triangles, tuned weights at valence 4,
+    ///   a face or vertex beyond max_limit_size (naming it)
     LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options = {},
                const TunedWeights& weights = {}, LimitEvaluation evaluation = LimitEvaluation::Stationary);
     ~LimitBasis();

@@ -56,6 +56,9 @@ struct BuildResult {
     ControlMesh mesh;
     ValidationReport report;           ///< warnings only (errors throw)
     std::vector<Index> source_vertex;  ///< #V: index in the soup of each mesh vertex
+    /// Where the mesh's elements came from, renumbered to the mesh (vertex v: line of
+    /// source_vertex[v]; faces keep their numbers): for naming file and line in later errors.
+    SourceMap source;
 };
 
 /// @brief Validates @p soup and builds a ControlMesh from it.

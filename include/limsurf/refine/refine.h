@@ -38,7 +38,8 @@ namespace limsurf {
 ///   (quadratic B-spline), one-face corners interpolated; BoundaryInterpolation::None
 ///   reproduces CGAL (no boundary faces). See docs/doo_sabin.md.
 /// @throws UnsupportedError when the topology has creases, corners or holes (no
-///   Doo–Sabin crease rules yet), naming the first tagged element
+///   Doo–Sabin crease rules yet), naming the first tagged element, or an interior vertex in
+///   fewer than 3 faces (its vertex face would not be a polygon)
 [[nodiscard]] Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options = {});
 
 /// @brief Dispatches on @p kind (tuned weights apply to Catmull–Clark only).

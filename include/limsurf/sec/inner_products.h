@@ -86,7 +86,8 @@ struct InnerProductOptions {
 
 /// @brief The inner products on the control mesh (@p topology, @p X0) under @p scheme.
 /// @throws as polygonal_inner_products, require_form_rules (Sec, SecSnap), and limit
-///   evaluation (DecSnap, SecSnap); InputError when options.level is out of range;
+///   evaluation (DecSnap, SecSnap); InputError when options.level is out of range; UnsupportedError
+///   (Sec, SecSnap) for a face or vertex beyond max_limit_size (require_local_size);
 ///   UnsupportedError under SecAssembly::Patches when a face's ring cannot be refined on its own
 ///   (not expected; Auto then uses Hierarchy), naming the face; NumericalError naming the control face when a level-L
 ///   face inside it has zero area

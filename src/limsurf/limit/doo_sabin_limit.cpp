@@ -427,6 +427,12 @@ DooSabinLimit::DooSabinLimit(const Topology& topology, const SchemeOptions& opti
         LIMSURF_CHECK(!topology.is_hole(f), UnsupportedError,
                       "Doo-Sabin limit evaluation does not support holes: face ", f, " is a hole");
     }
+    for (Index v = 0; v < topology.num_vertices(); ++v) {
+        LIMSURF_CHECK_AT(topology.is_boundary_vertex(v) || topology.vertex_faces(v).size() >= 3, UnsupportedError,
+                         vertex_element(v),
+                         "Doo-Sabin limit evaluation needs interior vertices in at least 3 faces: vertex ", v,
+                         " is in ", topology.vertex_faces(v).size());
+    }
     Impl& m = *impl_;
     m.topology = topology;
     m.options = options;

@@ -25,6 +25,7 @@
 #include "doo_sabin_limit.h"
 #include "limsurf/core/error.h"
 #include "limsurf/limit/patch_basis.h"
+#include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/refine.h"
 #include "local_patch.h"
 #include "parameter_maps.h"
@@ -635,6 +636,7 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
     LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
                   UnsupportedError, "limit evaluation: scheme ", to_string(scheme),
                   " has no limit evaluation (catmull-clark, loop, doo-sabin)");
+    require_local_size(topology, max_limit_size, "the limit basis");
     const VertexRuleWeights plain = TunedWeights().at(invalid_index, 4);
     const VertexRuleWeights four = weights.at(invalid_index, 4);
     LIMSURF_CHECK(four.alpha == plain.alpha && four.beta == plain.beta && four.gamma == plain.gamma, UnsupportedError,
@@ -673,8 +675,8 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
     m.first_ptex.push_back(0);
     for (Index f = 0; f < topology.num_faces(); ++f) {
         const Index degree = topology.face_degree(f);
-        LIMSURF_CHECK(m.quad || degree == 3, UnsupportedError, "Loop limit evaluation: face ", f, " has ", degree,
-                      " corners (triangles only)");
+        LIMSURF_CHECK_AT(m.quad || degree == 3, UnsupportedError, face_element(f), "Loop limit evaluation: face ", f,
+                         " has ", degree, " corners (triangles only)");
         const bool one = (m.quad && degree == 4) || !m.quad;
         if (one) {
             m.ptex.push_back({f, -1});

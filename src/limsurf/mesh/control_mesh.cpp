@@ -87,6 +87,13 @@ BuildResult build_control_mesh(const PolygonSoup& soup, const BuildOptions& opti
     Topology topology(static_cast<Index>(result.source_vertex.size()), soup.face_offsets, corners, sharpness);
     result.mesh = ControlMesh(std::move(topology), std::move(positions), soup.hints);
     result.report = std::move(report);
+    result.source.file = soup.source.file;
+    result.source.face_lines = soup.source.face_lines;
+    if (!soup.source.vertex_lines.empty()) {
+        for (const Index v : result.source_vertex) {
+            result.source.vertex_lines.push_back(soup.source.vertex_lines[at(v)]);
+        }
+    }
     return result;
 }
 

@@ -38,6 +38,13 @@ enum class CornerRule : std::uint8_t {
 };
 
 void check_supported(const Topology& parent) {
+    // An interior vertex in two faces (a two-face "pillow") would make a V-face of two corners.
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        LIMSURF_CHECK_AT(parent.is_boundary_vertex(v) || parent.vertex_faces(v).size() >= 3, UnsupportedError,
+                         vertex_element(v), "Doo-Sabin refinement needs interior vertices in at least 3 faces: vertex ",
+                         v, " is in ", parent.vertex_faces(v).size(),
+                         " (its vertex face would have fewer than 3 corners)");
+    }
     if (!parent.has_sharpness()) {
         return;
     }

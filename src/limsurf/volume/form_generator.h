@@ -357,8 +357,15 @@ struct IrregularForm {
     int squarings = 0;                 ///< Neumann terms summed: 2^squarings
 };
 
+/// Relative size of a series block below which a block that no longer shrinks is rounding noise.
+template <class Scalar>
+Scalar stagnation_floor() {
+    return Scalar(1e-10);
+}
+
 /// @brief Solves Corollary 2 for facet type @p type given the regular form's coefficients.
-/// @param tolerance stop when the next block of the Neumann series is below tolerance·max|y|
+/// @param tolerance stop when the next block of the Neumann series is below tolerance·max|y|, or
+///   when the blocks stop shrinking below 1e-10·max|y| (the rounding floor of Scalar)
 /// @throws NumericalError when the series has not converged after 40 squarings
 template <class Scalar>
 IrregularForm<Scalar> solve_irregular_form(SchemeKind scheme, int type, const std::vector<Scalar>& regular,
@@ -379,6 +386,7 @@ IrregularForm<Scalar> solve_irregular_form(SchemeKind scheme, int type, const st
     IrregularForm<Scalar> out;
     Tensor3<Scalar> y = b;
     Dense<Scalar> power = S4;
+    Scalar previous_block(-1);
     for (;;) {
         LIMSURF_CHECK(out.squarings < 40, NumericalError, "the volume form of ", to_string(scheme), " facet type ",
                       type, " did not converge");
@@ -390,9 +398,19 @@ IrregularForm<Scalar> solve_irregular_form(SchemeKind scheme, int type, const st
         // Keep y exactly alternating: rounding leaves a trace of the symmetric null vector of F,
         // which the series would otherwise double at every squaring.
         y = alternating_tensor(m, alternating_part(y));
-        if (max_abs(block.a) <= tolerance * max_abs(y.a)) {
+        const Scalar block_size = max_abs(block.a);
+        const Scalar y_size = max_abs(y.a);
+        if (block_size <= tolerance * y_size) {
             break;
         }
+        // A tolerance below the rounding of Scalar is never met: the blocks stop shrinking at
+        // the rounding floor (exact blocks shrink at every squaring). Stop there; the residual
+        // below says how good y is.
+        if (previous_block >= Scalar(0) && block_size * 2 >= previous_block &&
+            block_size <= stagnation_floor<Scalar>() * y_size) {
+            break;
+        }
+        previous_block = block_size;
         power = multiply(power, power);
     }
     const Tensor3<Scalar> Fy = pull_back(S4, y);
