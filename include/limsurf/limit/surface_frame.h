@@ -43,11 +43,19 @@ struct SurfaceFrame {
 /// @details d1 and d2 are orthonormal tangent vectors with d1 × d2 = n; at an umbilic
 ///   (k1 = k2) they are an arbitrary such pair. Each principal direction is defined up
 ///   to sign.
-/// @throws NumericalError when an entry is not finite, or when the tangents are
-///   (nearly) parallel: |∂u × ∂v| <= 1e-14 |∂u| |∂v| (this includes a zero tangent).
+///   The computation runs on the derivatives scaled to order one by a power of two, so the
+///   results do not depend on the surface's size (only E, F, G, L, M, N may overflow for
+///   derivatives beyond 1e154).
+/// @throws NumericalError when an entry is not finite, when the tangents are
+///   (nearly) parallel: |∂u × ∂v| <= 1e-14 |∂u| |∂v| (this includes a zero tangent), or when a
+///   curvature overflows (a surface smaller than about 1e-300).
 /// @see c2g0-sphere-scheme-biomembranes §3.1 (3.4), with the opposite sign convention:
 ///   there n points inward so that H = 1 on the unit sphere; here n points outward and
 ///   H = 1 all the same.
 [[nodiscard]] SurfaceFrame surface_frame(const Eigen::Matrix<double, 6, 3>& derivatives);
+
+/// @brief False where surface_frame() would find the tangents (nearly) parallel or not finite:
+///   the test it applies first, for callers that report such points instead of failing.
+[[nodiscard]] bool has_tangent_plane(const Eigen::Matrix<double, 6, 3>& derivatives);
 
 }  // namespace limsurf

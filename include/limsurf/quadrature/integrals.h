@@ -69,7 +69,10 @@ struct SurfaceMeasures {
 
 /// @brief All of SurfaceMeasures from one evaluation of the sampler.
 /// @param closed compute volume and centroid (else left 0)
-/// @throws NumericalError for a zero area, or a (nearly) zero volume when @p closed
+/// @details Computed on the control points scaled to order one by a power of two (exactly), so the
+///   verdicts do not depend on the mesh's size; each quantity is scaled back by its dimension.
+/// @throws NumericalError for a zero area, or a (nearly) zero volume when @p closed, or when
+///   the area, volume or inertia overflows or underflows a double (naming which)
 [[nodiscard]] SurfaceMeasures measure(const LimitSampler& sampler, const Points& X, bool closed);
 
 /// Estimated absolute errors of SurfaceMeasures (centroids: Euclidean distance).

@@ -68,8 +68,12 @@ class EnclosedVolume {
     EnclosedVolume& operator=(const EnclosedVolume&) = delete;
 
     /// @brief The enclosed volume of the limit surface of @p X (#V × 3); positive when the faces
-    ///   are counter-clockwise seen from outside.
+    ///   are counter-clockwise seen from outside. Computed in units of a power of two of the
+    ///   coordinates' size (exact), so a mesh at any scale gives its volume to the same relative
+    ///   accuracy.
     /// @throws InputError when X has the wrong number of rows or a non-finite entry
+    /// @throws NumericalError when the volume overflows or underflows a double (a mesh larger
+    ///   than about 1e100 or smaller than about 1e-100 across), naming which
     [[nodiscard]] double volume(const Points& X) const;
 
     /// @brief ∂volume/∂X (#V × 3), exact: the gradient of the trilinear forms.

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/magnitude.h"
 
 namespace limsurf {
 namespace {
@@ -73,12 +74,17 @@ SurfaceMeasures measure(const LimitSampler& sampler, const Points& X, bool close
     // Integrate about the mean control point o: the continuum values do not depend on o, but the
     // quadrature sums satisfy ∫ n dA = 0 and ∫ x_i n_i dA = V only approximately; taking o inside
     // the surface makes the discrete centroids exactly translation equivariant and keeps |x| small.
-    const Vec3 o = X.rows() > 0 ? Vec3(X.colwise().mean().transpose()) : Vec3::Zero();
+    // And in units of 2^e (exactly): the verdicts below and the fifth powers of the inertia do not
+    // depend on the mesh's size; each quantity is scaled back by its dimension at the end.
+    const int e = magnitude_exponent(X);
+    Points Y = times_power_of_two(X, -e);
+    const Vec3 o = Y.rows() > 0 ? Vec3(Y.colwise().mean().transpose()) : Vec3::Zero();
+    Y.rowwise() -= o.transpose();
     // 0: area, 1: 3V, 2-4: ∫ x_i²/2 n_i dA, 5-7: ∫ x dA, 8-10: ∫ x_i³/3 n_i dA,
     // 11-13: ∫ (x_i² x_j n_i + x_j² x_i n_j)/4 dA for (i, j) = (0, 1), (0, 2), (1, 2)  (x relative to o)
     const Eigen::Matrix<double, 14, 1> sums =
-        reduce<14>(sampler, X, [&o](double w, const Eigen::Matrix<double, 6, 3>& d) {
-            const Vec3 x = d.row(0).transpose() - o;
+        reduce<14>(sampler, Y, [](double w, const Eigen::Matrix<double, 6, 3>& d) {
+            const Vec3 x = d.row(0).transpose();
             const Vec3 a = cross_uv(d);
             const double da = a.norm();
             const Vec3 xx = x.cwiseProduct(x);
@@ -88,24 +94,35 @@ SurfaceMeasures measure(const LimitSampler& sampler, const Points& X, bool close
                 0.25 * (xx(1) * x(2) * a(1) + xx(2) * x(1) * a(2));
             return Eigen::Matrix<double, 14, 1>(w * t);
         });
+    const auto to_length = [e](const Vec3& p) {
+        return Vec3(std::ldexp(p.x(), e), std::ldexp(p.y(), e), std::ldexp(p.z(), e));
+    };
+    const double area = sums(0);
+    LIMSURF_CHECK(area > 0.0, NumericalError, "the limit surface has zero area");
     SurfaceMeasures m;
-    m.area = sums(0);
-    LIMSURF_CHECK(m.area > 0.0, NumericalError, "the limit surface has zero area");
-    m.surface_centroid = o + sums.segment<3>(5) / m.area;
+    m.area = scale_back(area, 2 * e, "area of the limit surface");
+    m.surface_centroid = to_length(o + sums.segment<3>(5) / area);
     if (closed) {
-        m.volume = sums(1) / 3.0;
-        LIMSURF_CHECK(std::abs(m.volume) > 1e-14 * std::pow(m.area, 1.5), NumericalError,
-                      "the enclosed volume is zero (", m.volume, "): the solid centroid is not defined");
-        const Vec3 c = sums.segment<3>(2) / m.volume;  // relative to o
-        m.centroid = o + c;
+        const double volume = sums(1) / 3.0;
+        LIMSURF_CHECK(std::abs(volume) > 1e-14 * std::pow(area, 1.5), NumericalError, "the enclosed volume is zero (",
+                      std::ldexp(volume, 3 * e), " for an area of ", m.area, "): the solid centroid is not defined");
+        m.volume = scale_back(volume, 3 * e, "enclosed volume");
+        const Vec3 c = sums.segment<3>(2) / volume;  // relative to o
+        m.centroid = to_length(o + c);
         // Second moments about o, then about the centroid (parallel axes), then the inertia tensor.
         Eigen::Matrix3d second;
         second.diagonal() = sums.segment<3>(8);
         second(0, 1) = second(1, 0) = sums(11);
         second(0, 2) = second(2, 0) = sums(12);
         second(1, 2) = second(2, 1) = sums(13);
-        const Eigen::Matrix3d central = second - m.volume * c * c.transpose();
-        m.inertia = central.trace() * Eigen::Matrix3d::Identity() - central;
+        const Eigen::Matrix3d central = second - volume * c * c.transpose();
+        const Eigen::Matrix3d inertia = central.trace() * Eigen::Matrix3d::Identity() - central;
+        (void)scale_back(inertia.trace(), 5 * e, "inertia tensor");  // names an overflow or underflow
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+                m.inertia(i, j) = std::ldexp(inertia(i, j), 5 * e);
+            }
+        }
     }
     return m;
 }

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "limsurf/core/magnitude.h"
 #include "limsurf/detail/refine_face_split.h"
 #include "limsurf/refine/refine.h"
 
@@ -39,7 +40,13 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
     // Vertex points.
     const auto smooth = [&](Index v, detail::VertexMask& mask) {
         const auto n = mask.edges.size();
-        const VertexRuleWeights w = weights.at(v, static_cast<int>(n));
+        // The rule depends on the weights' ratios only: scaled by a power of two (exactly) so that
+        // the normalising sum neither overflows (weights of 1e308) nor loses them to underflow.
+        const VertexRuleWeights given = weights.at(v, static_cast<int>(n));
+        const Eigen::Vector3d scaled =
+            times_power_of_two(Eigen::Vector3d(given.alpha, given.beta, given.gamma),
+                               -magnitude_exponent(Eigen::Vector3d(given.alpha, given.beta, given.gamma)));
+        const VertexRuleWeights w{scaled.x(), scaled.y(), scaled.z()};
         const double nd = static_cast<double>(n);
         const double denominator = w.alpha + nd * w.beta + nd * w.gamma;
         mask.vertex = w.alpha / denominator;

@@ -1,6 +1,7 @@
 // Operators of SEC Table 1 and the Poisson solve (operators.h).
 #include "limsurf/sec/operators.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <mutex>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/magnitude.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
 #include "limsurf/sec/sparse_cholesky.h"
@@ -105,6 +107,9 @@ Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKi
     for (int l = level; l >= 1; --l) {
         load = h.step(l).S0.transpose() * load;
     }
+    LIMSURF_CHECK(load.allFinite(), NumericalError,
+                  "the load vector (the right-hand side integrated over the surface) ",
+                  "overflows a double: the right-hand side reaches ", values.cwiseAbs().maxCoeff(), "; rescale it");
     return load;
 }
 
@@ -145,7 +150,19 @@ PoissonSolution solve_poisson(const Topology& topology, const Operators& operato
     const SparseMatrix L = operators.laplacian();
     LIMSURF_CHECK(!problem.load || problem.load->size() == V, InputError, "the load vector has ",
                   problem.load ? problem.load->size() : 0, " values but the mesh has ", V, " vertices");
-    Eigen::VectorXd b = problem.load ? *problem.load : Eigen::VectorXd(M0 * problem.f);
+    LIMSURF_CHECK(!problem.load || problem.load->allFinite(), InputError, "the load vector has a non-finite value");
+    const bool open = !topology.is_closed();
+    LIMSURF_CHECK(!open || (problem.boundary_values && problem.boundary_values->size() == V), InputError,
+                  "an open mesh needs Dirichlet values at its boundary vertices (", V, " values)");
+    // The problem is linear in its data: solve it for data scaled to order one by a power of two
+    // (exactly), so that M0 f, the norms and the residual neither overflow nor underflow, and scale
+    // the solution back at the end.
+    const Eigen::VectorXd& data = problem.load ? *problem.load : problem.f;
+    const int e = std::max(magnitude_exponent(data), open ? magnitude_exponent(*problem.boundary_values) : 0);
+    Eigen::VectorXd b = times_power_of_two(data, -e);
+    if (!problem.load) {
+        b = M0 * b;
+    }
     PoissonSolution out;
     out.solver = sparse_cholesky_name();
     Eigen::VectorXd u = Eigen::VectorXd::Zero(V);
@@ -156,22 +173,21 @@ PoissonSolution solve_poisson(const Topology& topology, const Operators& operato
                       topology.num_components());
         // Compatibility: ∫ f = 0 on a closed surface; remove the M0-mean of f.
         const Eigen::VectorXd mass = M0 * Eigen::VectorXd::Ones(V);
-        out.mean_removed = b.sum() / mass.sum();
-        b -= out.mean_removed * mass;
+        const double mean = b.sum() / mass.sum();
+        b -= mean * mass;
+        out.mean_removed = std::ldexp(mean, e);
         for (Index v = 1; v < V; ++v) {  // pin vertex 0: b ⊥ 1, so row 0 then holds as well
             free.push_back(v);
         }
     } else {
-        LIMSURF_CHECK(problem.boundary_values && problem.boundary_values->size() == V, InputError,
-                      "an open mesh needs Dirichlet values at its boundary vertices (", V, " values)");
+        LIMSURF_CHECK(problem.boundary_values->allFinite(), InputError, "a boundary value is not finite");
         for (Index v = 0; v < V; ++v) {
             if (topology.is_boundary_vertex(v)) {
-                u(v) = (*problem.boundary_values)(v);
+                u(v) = std::ldexp((*problem.boundary_values)(v), -e);
             } else {
                 free.push_back(v);
             }
         }
-        LIMSURF_CHECK(u.allFinite(), InputError, "a boundary value is not finite");
     }
     // Move the known values to the right-hand side, then solve on the free vertices.
     const Eigen::VectorXd rhs_full = b - L * u;
@@ -202,7 +218,10 @@ PoissonSolution solve_poisson(const Topology& topology, const Operators& operato
         const Eigen::VectorXd mass = M0 * Eigen::VectorXd::Ones(V);
         u.array() -= mass.dot(u) / mass.sum();
     }
-    out.u = std::move(u);
+    out.u = times_power_of_two(u, e);
+    LIMSURF_CHECK(out.u.allFinite(), NumericalError, "the Poisson solution overflows a double (the data reach about 2^",
+                  e, "): rescale the right-hand side or the boundary values");
+    LIMSURF_CHECK(std::isfinite(out.residual), NumericalError, "the residual of the Poisson solve is not finite");
     return out;
 }
 

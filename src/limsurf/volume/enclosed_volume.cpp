@@ -21,6 +21,8 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/magnitude.h"
+#include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/refine.h"
 #include "limsurf/volume/facet_ring.h"
 #include "limsurf/volume/facet_seed.h"
@@ -35,14 +37,15 @@ std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
 }
 
-void check_input(const Topology& topology, SchemeKind scheme, const SchemeOptions& options) {
+void check_input(const Topology& topology, SchemeKind scheme, const SchemeOptions& options, Index max_type) {
     LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
                   UnsupportedError, "exact volume: no volume forms for the ", to_string(scheme),
                   " scheme (catmull-clark, loop and doo-sabin have them)");
     LIMSURF_CHECK(topology.num_faces() > 0, InputError, "exact volume: the mesh has no faces");
     for (Index v = 0; v < topology.num_vertices(); ++v) {
-        LIMSURF_CHECK(!topology.is_boundary_vertex(v), InputError, "exact volume: the surface is open (vertex ", v,
-                      " lies on a boundary); only a closed mesh encloses a volume");
+        LIMSURF_CHECK_AT(!topology.is_boundary_vertex(v), InputError, vertex_element(v),
+                         "exact volume: the surface is open (vertex ", v,
+                         " lies on a boundary); only a closed mesh encloses a volume");
     }
     LIMSURF_CHECK(!topology.has_sharpness(), UnsupportedError,
                   "exact volume: the mesh has creases, corners or holes; the volume forms cover the smooth rules only");
@@ -50,10 +53,19 @@ void check_input(const Topology& topology, SchemeKind scheme, const SchemeOption
                   UnsupportedError, "exact volume: the smooth-triangle Catmull–Clark rule has no volume forms");
     if (scheme == SchemeKind::Loop) {
         for (Index f = 0; f < topology.num_faces(); ++f) {
-            LIMSURF_CHECK(topology.face_degree(f) == 3, UnsupportedError, "exact volume: Loop needs triangles, face ",
-                          f, " has ", topology.face_degree(f), " corners");
+            LIMSURF_CHECK_AT(topology.face_degree(f) == 3, UnsupportedError, face_element(f),
+                             "exact volume: Loop needs triangles, face ", f, " has ", topology.face_degree(f),
+                             " corners");
         }
     }
+    // Facet types are the valences and face degrees: forms exist from 3 on (a valence-2 vertex,
+    // as in a two-face "pillow", has none), and are generated up to the limit (each costs
+    // O(type⁴) operations per squaring of its series).
+    for (Index v = 0; v < topology.num_vertices(); ++v) {
+        LIMSURF_CHECK_AT(topology.valence(v) >= 3, UnsupportedError, vertex_element(v), "exact volume: vertex ", v,
+                         " has valence ", topology.valence(v), "; the volume forms need valences of at least 3");
+    }
+    require_local_size(topology, max_type, "exact volume");
 }
 
 /// A copy of the faces around some elements, as its own Topology.
@@ -376,7 +388,7 @@ bool EnclosedVolume::Impl::subdivide(const Topology& t, const std::vector<Index>
 EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, const SchemeOptions& options,
                                const VolumeOptions& volume_options)
     : impl_(std::make_unique<Impl>()) {
-    check_input(topology, scheme, options);
+    check_input(topology, scheme, options, volume_options.max_generated_type);
     Impl& d = *impl_;
     d.scheme = scheme;
     d.num_vertices = topology.num_vertices();
@@ -433,15 +445,19 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
                   " vertices");
     LIMSURF_CHECK(X.allFinite(), InputError, "exact volume: the control points have a non-finite coordinate");
     // About the mean control point: the sum is translation invariant for a closed surface, and
-    // small coordinates keep the facets' contributions from cancelling. Control and derived points
-    // go into one row-major table, so that a facet reads 3 adjacent doubles per point.
-    const Eigen::RowVector3d o = X.colwise().mean();
+    // small coordinates keep the facets' contributions from cancelling. In units of 2^e (exact):
+    // the products of three coordinates neither overflow nor underflow for a mesh of any size; the
+    // volume is scaled back by 2^3e, the gradient by 2^2e. Control and derived points go into one
+    // row-major table, so that a facet reads 3 adjacent doubles per point.
+    const int e = magnitude_exponent(X);
+    const Points Y = times_power_of_two(X, -e);
+    const Eigen::RowVector3d o = Y.colwise().mean();
     const Index V = num_vertices;
     const auto n1 = static_cast<Index>(first_level.rows());
     const auto n2 = static_cast<Index>(second_level.rows());
     const Index D = n1 + n2;
     RowPoints all(V + D, 3);
-    all.topRows(V) = X.rowwise() - o;
+    all.topRows(V) = Y.rowwise() - o;
     if (n1 > 0) {
         // Refinement rows sum to 1: they commute with the shift by o.
         all.middleRows(V, n1) = first_level * all.topRows(V);
@@ -508,9 +524,11 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
         if (n1 > 0) {
             g.topRows(V) += first_level.transpose() * g.middleRows(V, n1);
         }
-        *gradient = g.topRows(V);
+        *gradient = times_power_of_two(g.topRows(V), 2 * e);
+        LIMSURF_CHECK(gradient->allFinite(), NumericalError,
+                      "exact volume: the gradient overflows a double: the mesh is too large; rescale its coordinates");
     }
-    return volume;
+    return scale_back(volume, 3 * e, "enclosed volume");
 }
 
 double EnclosedVolume::volume(const Points& X) const {
@@ -553,18 +571,21 @@ double exact_volume(const ControlMesh& mesh, SchemeKind scheme) {
 double polyhedral_volume(const Topology& topology, const Points& X) {
     LIMSURF_CHECK(X.rows() == topology.num_vertices(), InputError, "polyhedral volume: ", X.rows(), " points for ",
                   topology.num_vertices(), " vertices");
-    const Eigen::RowVector3d o = X.rows() > 0 ? Eigen::RowVector3d(X.colwise().mean()) : Eigen::RowVector3d::Zero();
+    // In units of 2^e about the mean point, as EnclosedVolume::volume.
+    const int e = magnitude_exponent(X);
+    const Points Y = times_power_of_two(X, -e);
+    const Eigen::RowVector3d o = Y.rows() > 0 ? Eigen::RowVector3d(Y.colwise().mean()) : Eigen::RowVector3d::Zero();
     double sum = 0.0;
     for (Index f = 0; f < topology.num_faces(); ++f) {
         const auto v = topology.face_vertices(f);
-        const Eigen::Vector3d a = (X.row(v[0]) - o).transpose();
+        const Eigen::Vector3d a = (Y.row(v[0]) - o).transpose();
         for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-            const Eigen::Vector3d b = (X.row(v[k]) - o).transpose();
-            const Eigen::Vector3d c = (X.row(v[k + 1]) - o).transpose();
+            const Eigen::Vector3d b = (Y.row(v[k]) - o).transpose();
+            const Eigen::Vector3d c = (Y.row(v[k + 1]) - o).transpose();
             sum += a.dot(b.cross(c));
         }
     }
-    return sum / 6.0;
+    return scale_back(sum / 6.0, 3 * e, "polyhedral volume");
 }
 
 }  // namespace limsurf
