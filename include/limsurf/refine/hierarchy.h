@@ -33,6 +33,9 @@ struct RefineOptions {
     SchemeOptions scheme_options;                    ///< boundary, creasing, triangle rule
     TunedWeights weights;                            ///< Catmull–Clark only; default = Catmull–Clark's own
     std::int64_t max_faces = std::int64_t{1} << 27;  ///< refuse when the finest level would exceed this
+    /// Refuse (before allocating) when estimated_peak_bytes() exceeds this; empty: the default
+    /// budget, 3/4 of the machine's memory (default_memory_budget(), core/memory.h).
+    std::optional<std::int64_t> max_memory = std::nullopt;
     /// Also build the form operators S1, S2 of every step (form_subdivision.h; Loop and
     /// Catmull–Clark): off by default, so plain subdivision pays nothing for them.
     bool forms = false;
@@ -44,6 +47,11 @@ struct LevelSize {
     std::int64_t edges = 0;
     std::int64_t faces = 0;
     std::int64_t corners = 0;  ///< sum of face degrees
+    /// Σ (face degree)²: the non-zeros of the masks that are dense over a face (Catmull–Clark's
+    /// face points inside its vertex and edge points, Doo–Sabin's corners). Exact at level 0,
+    /// an upper bound after.
+    std::int64_t face_degree_squares = 0;
+    std::int64_t valence_squares = 0;  ///< Σ valence², likewise
 };
 
 /// @brief Counts of levels 0..levels for @p scheme, without refining: exact for
@@ -51,14 +59,24 @@ struct LevelSize {
 ///   an upper bound for Doo–Sabin with boundary.
 [[nodiscard]] std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, int levels);
 
-/// Rough memory (bytes) a level of this size takes: topology tables and S0.
+/// Memory (bytes) of a Topology of this size, and of its positions.
 [[nodiscard]] std::int64_t estimated_bytes(const LevelSize& size);
+
+/// @brief An upper bound of the non-zeros of the S0 that refines a level of size @p parent.
+[[nodiscard]] std::int64_t estimated_step_nonzeros(const LevelSize& parent, SchemeKind scheme);
+
+/// @brief Peak memory (bytes) of a Hierarchy over @p sizes (predict_sizes()): every level's
+///   topology, S0 and positions (all are kept) and the transient tables of building the largest
+///   step. Calibrated on the bundled meshes (measured peaks 0.8–0.95 of it; docs/io.md "Limits").
+[[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme);
 
 class Hierarchy {
   public:
     /// @brief Refines @p base options.levels times.
     /// @throws InputError when levels is out of range or the finest level would
-    ///   exceed options.max_faces or 32-bit indices (checked before any work)
+    ///   exceed options.max_faces or 32-bit indices, or the estimated peak memory
+    ///   options.max_memory (all checked before any work; the message names the largest face
+    ///   when dense masks over it dominate)
     /// @throws UnsupportedError when the scheme cannot refine a face (e.g. Loop on a quad), or
     ///   options.forms is set and form subdivision has no rules for the mesh (require_form_rules)
     Hierarchy(Topology base, const RefineOptions& options);
@@ -89,7 +107,9 @@ class Hierarchy {
     /// S0 products (cheaper than forming A). @throws InputError on a row-count mismatch
     [[nodiscard]] Eigen::MatrixXd apply(int level, const Eigen::MatrixXd& data) const;
 
-    /// Positions (#V_0 × 3) at level @p level.
+    /// Positions at level @p level from control points (#V_0 × 3).
+    /// @throws InputError as apply(); NumericalError when finite control points give non-finite
+    ///   positions (an overflow, for coordinates near the range of a double)
     [[nodiscard]] Points positions(int level, const Points& control_points) const;
 
   private:

@@ -1,10 +1,13 @@
 #include "limsurf/refine/hierarchy.h"
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <utility>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/memory.h"
+#include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/form_subdivision.h"
 
 namespace limsurf {
@@ -13,28 +16,81 @@ namespace {
 constexpr int max_levels = 16;
 
 LevelSize size_of(const Topology& t) {
-    return {t.num_vertices(), t.num_edges(), t.num_faces(), t.num_corners()};
+    LevelSize s{t.num_vertices(), t.num_edges(), t.num_faces(), t.num_corners(), 0, 0};
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        s.face_degree_squares += std::int64_t{t.face_degree(f)} * t.face_degree(f);
+    }
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        s.valence_squares += std::int64_t{t.valence(v)} * t.valence(v);
+    }
+    return s;
 }
 
 /// One step of the counting recurrences; for Doo–Sabin on a mesh with boundary
-/// an upper bound (the boundary rule adds at most two vertices per edge).
+/// an upper bound (the boundary rule adds at most two vertices per edge). The sums of
+/// squares are upper bounds after level 0.
 LevelSize next_size(const LevelSize& s, SchemeKind scheme, bool closed) {
     switch (scheme) {
     case SchemeKind::CatmullClark:
     case SchemeKind::Bilinear:
-        // every corner becomes a quad
-        return {s.vertices + s.edges + s.faces, 2 * s.edges + s.corners, s.corners, 4 * s.corners};
+        // every corner becomes a quad; a face point has the valence of its face's degree
+        return {s.vertices + s.edges + s.faces,
+                2 * s.edges + s.corners,
+                s.corners,
+                4 * s.corners,
+                16 * s.corners,
+                s.valence_squares + 16 * s.edges + s.face_degree_squares};
     case SchemeKind::Loop:
     case SchemeKind::Linear:
-        return {s.vertices + s.edges, 2 * s.edges + 3 * s.faces, 4 * s.faces, 12 * s.faces};
+        return {s.vertices + s.edges, 2 * s.edges + 3 * s.faces,       4 * s.faces, 12 * s.faces,
+                36 * s.faces,         s.valence_squares + 36 * s.edges};
     case SchemeKind::DooSabin: {
-        // closed: a vertex per corner, F + E + V faces, every child vertex of valence 4
+        // closed: a vertex per corner, F + E + V faces, every child vertex of valence 4; the
+        // face of a face keeps its degree, the face of a vertex has its valence
         const std::int64_t v = s.corners + (closed ? 0 : 2 * s.edges);
         const std::int64_t f = s.faces + s.edges + s.vertices;
-        return {v, closed ? 2 * s.corners : 2 * v + s.edges, f, closed ? 4 * s.corners : 2 * (2 * v + s.edges)};
+        return {v,
+                closed ? 2 * s.corners : 2 * v + s.edges,
+                f,
+                closed ? 4 * s.corners : 2 * (2 * v + s.edges),
+                s.face_degree_squares + 16 * s.edges + s.valence_squares,
+                16 * v};
     }
     }
     return s;
+}
+
+/// Bytes of the transient tables of building a level of size @p child with an S0 of @p nonzeros:
+/// the sorted half-edges and one-ring scratch of the Topology, and the triplets or growth slack
+/// of S0 (Doo–Sabin's triplets are sorted into a second copy).
+std::int64_t transient_bytes(const LevelSize& child, std::int64_t nonzeros, SchemeKind scheme) {
+    const std::int64_t per_nonzero = scheme == SchemeKind::DooSabin ? 28 : 12;
+    return 32 * child.corners + per_nonzero * nonzeros;
+}
+
+/// Refuses a hierarchy whose estimated peak exceeds the memory budget, naming the cause.
+void check_memory(const Topology& base, const std::vector<LevelSize>& sizes, std::int64_t peak,
+                  const RefineOptions& options) {
+    constexpr std::int64_t always_fine = std::int64_t{64} << 20;  // local patches: no look-up of the machine
+    if (!options.max_memory && peak <= always_fine) {
+        return;
+    }
+    const std::int64_t budget = options.max_memory.value_or(default_memory_budget());
+    if (peak <= budget) {
+        return;
+    }
+    std::string cause;
+    const bool dense_masks = options.scheme == SchemeKind::CatmullClark || options.scheme == SchemeKind::DooSabin;
+    if (const LocalSize local = local_size(base); dense_masks && local.max_face_degree > 64) {
+        cause = detail::concat("; most of it is the masks of face ", local.face, "'s ", local.max_face_degree,
+                               " corners, which grow with the square of a face's degree");
+    }
+    throw InputError(
+        detail::concat(to_string(options.scheme), " with ", options.levels, " levels needs about ", format_bytes(peak),
+                       " at its peak (", sizes.back().faces, " faces at level ", options.levels, ")", cause,
+                       ", more than the memory budget of ", format_bytes(budget),
+                       options.max_memory ? " (max_memory)" : " (3/4 of this machine's memory)",
+                       ": use fewer levels, or set a larger budget (limsurf --max-memory) if the machine has it"));
 }
 
 }  // namespace
@@ -49,9 +105,42 @@ std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, in
 }
 
 std::int64_t estimated_bytes(const LevelSize& size) {
-    // Topology: ~6 Index tables per corner plus edge and vertex tables; S0: ~8
-    // non-zeros per vertex row at 12 bytes each (value + column index).
-    return 26 * size.corners + 20 * size.edges + 24 * size.vertices + 8 * 12 * size.vertices;
+    // The Topology's tables (21 bytes per corner: corners, edges, signs, one-ring faces, corners
+    // and edges; edge ends and faces; vertex offsets; face offsets and components) and positions.
+    return 21 * size.corners + 20 * size.edges + 9 * size.vertices + 8 * size.faces + 24 * size.vertices;
+}
+
+std::int64_t estimated_step_nonzeros(const LevelSize& parent, SchemeKind scheme) {
+    const LevelSize& s = parent;
+    switch (scheme) {
+    case SchemeKind::CatmullClark:
+        // vertex rows 1 + valence + the other corners of its faces, edge rows 2 + the other corners of
+        // both faces, face rows every corner: V + 4E + 2 Σn² − 4C (25 per face of a quad mesh)
+        return s.vertices + 4 * s.edges + 2 * s.face_degree_squares - 4 * s.corners;
+    case SchemeKind::Bilinear:
+        return s.vertices + 2 * s.edges + s.corners;
+    case SchemeKind::Loop:
+        return s.vertices + 6 * s.edges;
+    case SchemeKind::Linear:
+        return s.vertices + 2 * s.edges;
+    case SchemeKind::DooSabin:
+        return s.face_degree_squares;  // each corner's point mixes all corners of its face
+    }
+    return 0;
+}
+
+std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme) {
+    std::int64_t kept = 0;
+    std::int64_t transient = 0;
+    for (std::size_t l = 0; l < sizes.size(); ++l) {
+        kept += estimated_bytes(sizes[l]);
+        if (l > 0) {
+            const std::int64_t nonzeros = estimated_step_nonzeros(sizes[l - 1], scheme);
+            kept += 12 * nonzeros + 4 * sizes[l].vertices;
+            transient = std::max(transient, transient_bytes(sizes[l], nonzeros, scheme));
+        }
+    }
+    return kept + transient;
 }
 
 Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(options), base_(std::move(base)) {
@@ -60,10 +149,11 @@ Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(opt
     LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
     const std::vector<LevelSize> sizes = predict_sizes(base_, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
+    const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme);
     LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
                   " levels would make ", finest.faces, " faces at level ", options.levels, " (about ",
-                  estimated_bytes(finest) / (std::int64_t{1} << 20), " MiB); the limit is ", options.max_faces,
-                  " faces (max_faces): use fewer levels");
+                  format_bytes(peak), "); the limit is ", options.max_faces, " faces (max_faces): use fewer levels");
+    check_memory(base_, sizes, peak, options);
     const auto index_max = static_cast<std::int64_t>(std::numeric_limits<Index>::max());
     LIMSURF_CHECK(finest.corners < index_max && finest.vertices < index_max && finest.edges < index_max, InputError,
                   to_string(options.scheme), " with ", options.levels, " levels would exceed 32-bit indices at level ",
@@ -142,7 +232,13 @@ Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {
 }
 
 Points Hierarchy::positions(int level, const Points& control_points) const {
-    return apply(level, control_points);
+    Points out = apply(level, control_points);
+    // Masks with negative weights (tuned, semi-sharp blends) can leave the range of a double
+    // for control points near it.
+    LIMSURF_CHECK(!control_points.allFinite() || out.allFinite(), NumericalError, "the level-", level,
+                  " positions overflow a double (the control points reach ", control_points.cwiseAbs().maxCoeff(),
+                  "): rescale the mesh");
+    return out;
 }
 
 }  // namespace limsurf
