@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,13 @@ enum class MeshFormat { Obj, Off, Ply };
 /// Options for the writers.
 struct WriteOptions {
     PlyEncoding ply_encoding = PlyEncoding::Ascii;  ///< only for .ply
+    /// The format, when the path's extension does not say it (/dev/stdout, a pipe); empty: by extension.
+    std::optional<MeshFormat> format = std::nullopt;
 };
+
+/// @brief The format named "obj", "off" or "ply" (case-insensitive).
+/// @throws InputError for any other name
+[[nodiscard]] MeshFormat mesh_format_from_name(const std::string& name);
 
 /// @brief The format of @p path from its extension (.obj, .off, .ply; case-insensitive).
 /// @throws InputError "path: unknown mesh format '.xyz' (expected .obj, .off or .ply)"
@@ -33,10 +40,11 @@ struct WriteOptions {
 [[nodiscard]] BuildResult read_mesh(const std::filesystem::path& path, const BuildOptions& options = {});
 
 /// @brief Writes @p soup to @p path atomically (write_file_atomically()), choosing the
-///   format by extension.
+///   format by options.format, else by extension.
 /// @return warnings about data the format cannot store, e.g.
 ///   "OFF cannot store subdivision tags: 3 creases, 1 corner dropped"
-/// @throws InputError for an unknown extension, a malformed soup or a failed write
+/// @throws InputError for an unknown extension, a malformed soup, a non-finite position (the
+///   stream writers write them, for exact round trips; a file never gets them) or a failed write
 std::vector<std::string> write_mesh(const std::filesystem::path& path, const PolygonSoup& soup,
                                     const WriteOptions& options = {});
 

@@ -1,6 +1,7 @@
 // Per-vertex data written next to a mesh (PLY properties, VTK point data).
 #pragma once
 
+#include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
@@ -31,5 +32,11 @@ void validate_vertex_field(const VertexField& field, Index num_vertices);
 /// @throws InputError naming the offending field
 void validate_vertex_fields(std::span<const VertexField> fields, Index num_vertices,
                             std::span<const std::string_view> reserved = {});
+
+/// @brief Reads one finite number per line ('#' comments and blank lines skipped), @p count of
+///   them: per-vertex data such as a right-hand side.
+/// @throws InputError naming the file (and line): cannot open, a directory, a line that is not
+///   one finite number, more or fewer than @p count values
+[[nodiscard]] Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count);
 
 }  // namespace limsurf

@@ -14,6 +14,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "limsurf/core/types.h"
@@ -48,31 +49,40 @@ void io_split(std::string_view line, std::vector<std::string_view>& tokens);
 /// @throws InputError "FILE:LINE: invalid integer 'tok'" or "... out of range".
 [[nodiscard]] long long io_to_int(std::string_view token, const std::string& file, long long line);
 
-/// Reads lines ending in "\n" or "\r\n" (the terminator is not returned) and counts
-/// lines and bytes.
+/// How a line reader treats a carriage return that does not end a "\r\n".
+enum class LoneCarriageReturn {
+    EndsLine,  ///< classic Mac OS line endings: "\r" alone ends a line (OBJ, OFF, value files)
+    Refused    ///< an error naming the line (a PLY header: its binary data must start right after it)
+};
+
+/// Reads lines ending in "\n", "\r\n" or (by default) a lone "\r"; the terminator is not
+/// returned. A UTF-8 byte-order mark at the start of the stream is skipped. Counts lines and bytes.
 class IoLineReader {
   public:
-    explicit IoLineReader(std::istream& in) : in_(in) {}
+    explicit IoLineReader(std::istream& in, std::string file = {},
+                          LoneCarriageReturn lone_cr = LoneCarriageReturn::EndsLine)
+        : in_(in), file_(std::move(file)), lone_cr_(lone_cr) {}
 
     /// Next line into @p line; false at the end of the stream.
+    /// @throws InputError for a lone carriage return under LoneCarriageReturn::Refused
     bool next(std::string& line);
     /// 1-based number of the last line returned (0 before the first).
     [[nodiscard]] long long line_number() const noexcept { return line_; }
-    /// Bytes consumed so far, terminators included.
+    /// Bytes consumed from the stream so far, terminators and a byte-order mark included.
     [[nodiscard]] std::uint64_t bytes_consumed() const noexcept { return bytes_; }
 
   private:
     std::istream& in_;
+    std::string file_;
+    LoneCarriageReturn lone_cr_;
     long long line_ = 0;
     std::uint64_t bytes_ = 0;
+    std::string pending_;  ///< what followed a lone "\r" in the last chunk read
+    bool has_pending_ = false;
 };
 
 /// Bytes left between the stream's read position and its end, when the stream can seek.
 [[nodiscard]] std::optional<std::uint64_t> io_remaining_bytes(std::istream& in);
-
-/// Opens @p path for binary reading.
-/// @throws InputError "path: cannot open: <strerror>" or "path: is a directory"
-[[nodiscard]] std::ifstream io_open_input(const std::filesystem::path& path);
 
 /// Shortest text that reads back as exactly @p value ("nan", "inf", "-inf" for non-finite).
 [[nodiscard]] std::string io_format_double(double value);

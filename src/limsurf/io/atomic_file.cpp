@@ -26,7 +26,7 @@ std::string error_text(int error) {
 }
 
 /// Creates a new, empty file next to @p path with a name nobody else uses.
-fs::path create_temp_file(const fs::path& path) {
+fs::path create_temp_file(const fs::path& path, const std::string& shown) {
     const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
     std::random_device device;
     std::mt19937_64 random((static_cast<std::uint64_t>(device()) << 32U) ^ static_cast<std::uint64_t>(device()));
@@ -63,8 +63,7 @@ fs::path create_temp_file(const fs::path& path) {
         }
 #endif
     }
-    throw InputError(path.string() + ": cannot create a temporary file in '" + dir.string() +
-                     "': " + error_text(last_error));
+    throw InputError(shown + ": cannot create a temporary file in '" + dir.string() + "': " + error_text(last_error));
 }
 
 void sync_file(const fs::path& path) {
@@ -79,37 +78,91 @@ void sync_file(const fs::path& path) {
 #endif
 }
 
+/// The file a path finally names: symbolic links followed (also to a target that does not
+/// exist yet, which is then created, as the shell's '>' does).
+fs::path follow_links(const fs::path& path) {
+    fs::path current = path;
+    constexpr int max_links = 40;  // as the kernel's ELOOP limit
+    for (int hop = 0; hop < max_links; ++hop) {
+        std::error_code ec;
+        if (!fs::is_symlink(fs::symlink_status(current, ec))) {
+            return current;
+        }
+        const fs::path target = fs::read_symlink(current, ec);
+        if (ec) {
+            throw InputError(path.string() + ": cannot read the symbolic link '" + current.string() +
+                             "': " + ec.message());
+        }
+        current = target.is_absolute() ? target : current.parent_path() / target;
+    }
+    throw InputError(path.string() + ": too many levels of symbolic links");
+}
+
+/// Writes straight into an existing file that is not a regular file (a character device
+/// such as /dev/null, a FIFO): there is nothing to replace atomically, and a temporary file
+/// renamed over it would destroy the device or pipe.
+void write_through(const fs::path& path, const std::string& shown, const std::function<void(std::ostream&)>& write) {
+    errno = 0;
+    std::ofstream out(path, std::ios::out | std::ios::binary);
+    if (!out.is_open()) {
+        throw InputError(shown + ": cannot open for writing: " + error_text(errno));
+    }
+    write(out);
+    out.flush();
+    if (!out.good()) {
+        throw InputError(shown + ": write failed: " + error_text(errno));
+    }
+    out.close();
+    if (out.fail()) {
+        throw InputError(shown + ": write failed on close: " + error_text(errno));
+    }
+}
+
 }  // namespace
 
-void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+void write_file_atomically(const fs::path& requested, const std::function<void(std::ostream&)>& write) {
+    const std::string shown = requested.string();
     std::error_code ec;
-    if (fs::is_directory(path, ec)) {
-        throw InputError(path.string() + ": cannot write: is a directory");
+    const fs::file_status existing = fs::status(requested, ec);  // through any links, as the kernel sees it
+    if (fs::is_directory(existing)) {
+        throw InputError(shown + ": cannot write: is a directory");
     }
-    const fs::path temp = create_temp_file(path);
+    if (fs::exists(existing) && !fs::is_regular_file(existing)) {
+        if (fs::is_socket(existing)) {
+            throw InputError(shown + ": cannot write: is a socket");
+        }
+        write_through(requested, shown, write);  // /dev/stdout's magic links included
+        return;
+    }
+    // A regular file (or a new one): replace the file the links end at, so the links stay.
+    std::error_code resolve_error;
+    const fs::path path = fs::exists(existing) ? fs::canonical(requested, resolve_error) : follow_links(requested);
+    if (resolve_error) {
+        throw InputError(shown + ": cannot resolve the path: " + resolve_error.message());
+    }
+    const fs::path temp = create_temp_file(path, shown);
     try {
         errno = 0;
         std::ofstream out(temp, std::ios::out | std::ios::binary | std::ios::trunc);
         if (!out.is_open()) {
-            throw InputError(path.string() + ": cannot open for writing: " + error_text(errno));
+            throw InputError(shown + ": cannot open for writing: " + error_text(errno));
         }
         write(out);
         out.flush();
         if (!out.good()) {
-            throw InputError(path.string() + ": write failed: " + error_text(errno));
+            throw InputError(shown + ": write failed: " + error_text(errno));
         }
         out.close();
         if (out.fail()) {
-            throw InputError(path.string() + ": write failed on close: " + error_text(errno));
+            throw InputError(shown + ": write failed on close: " + error_text(errno));
         }
         sync_file(temp);
-        const fs::file_status existing = fs::status(path, ec);
-        if (!ec && fs::is_regular_file(existing)) {
+        if (fs::is_regular_file(existing)) {
             fs::permissions(temp, existing.permissions(), ec);  // best effort
         }
         fs::rename(temp, path, ec);
         if (ec) {
-            throw InputError(path.string() + ": cannot replace the file: " + ec.message());
+            throw InputError(shown + ": cannot replace the file: " + ec.message());
         }
     } catch (...) {
         std::error_code ignored;

@@ -119,16 +119,35 @@ long long io_to_int(std::string_view token, const std::string& file, long long l
 }
 
 bool IoLineReader::next(std::string& line) {
-    if (!std::getline(in_, line)) {
-        return false;
+    if (has_pending_) {
+        line.swap(pending_);
+        has_pending_ = false;
+    } else {
+        if (!std::getline(in_, line)) {
+            return false;
+        }
+        bytes_ += line.size();
+        if (!in_.eof()) {
+            ++bytes_;  // the '\n' getline consumed
+        }
+        if (line_ == 0 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+            line.erase(0, 3);  // a UTF-8 byte-order mark, as some editors on Windows write
+        }
+        if (!line.empty() && line.back() == '\r') {
+            line.pop_back();
+        }
     }
     ++line_;
-    bytes_ += line.size();
-    if (!in_.eof()) {
-        ++bytes_;  // the '\n' getline consumed
-    }
-    if (!line.empty() && line.back() == '\r') {
-        line.pop_back();
+    // A "\r" left inside the line is a line ending of its own (classic Mac OS).
+    if (const auto cr = line.find('\r'); cr != std::string::npos) {
+        if (lone_cr_ == LoneCarriageReturn::Refused) {
+            io_fail(file_, line_,
+                    "a carriage return (\\r) ends a line without a line feed (classic Mac OS line "
+                    "endings): this format needs LF or CRLF line endings");
+        }
+        pending_.assign(line, cr + 1);
+        has_pending_ = true;
+        line.resize(cr);
     }
     return true;
 }
@@ -152,20 +171,6 @@ std::optional<std::uint64_t> io_remaining_bytes(std::istream& in) {
         return std::nullopt;
     }
     return static_cast<std::uint64_t>(end - here);
-}
-
-std::ifstream io_open_input(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-        throw InputError(path.string() + ": cannot open: is a directory");
-    }
-    errno = 0;
-    std::ifstream in(path, std::ios::in | std::ios::binary);
-    if (!in.is_open()) {
-        const int error = errno;
-        throw InputError(path.string() + ": cannot open: " + (error != 0 ? std::strerror(error) : "unknown error"));
-    }
-    return in;
 }
 
 std::string io_format_double(double value) {

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/input_file.h"
 #include "limsurf/detail/io_text.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/io/obj.h"
@@ -30,9 +31,25 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
     throw InputError(path.string() + ": unknown mesh format '" + extension + "' (expected .obj, .off or .ply)");
 }
 
+MeshFormat mesh_format_from_name(const std::string& name) {
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower == "obj") {
+        return MeshFormat::Obj;
+    }
+    if (lower == "off") {
+        return MeshFormat::Off;
+    }
+    if (lower == "ply") {
+        return MeshFormat::Ply;
+    }
+    throw InputError("unknown mesh format '" + name + "' (expected obj, off or ply)");
+}
+
 PolygonSoup read_polygon_soup(const std::filesystem::path& path) {
     const MeshFormat format = mesh_format_from_path(path);
-    std::ifstream in = detail::io_open_input(path);
+    std::ifstream in = open_input_file(path);
     const std::string name = path.string();
     switch (format) {
     case MeshFormat::Obj:
@@ -51,8 +68,13 @@ BuildResult read_mesh(const std::filesystem::path& path, const BuildOptions& opt
 
 std::vector<std::string> write_mesh(const std::filesystem::path& path, const PolygonSoup& soup,
                                     const WriteOptions& options) {
-    const MeshFormat format = mesh_format_from_path(path);
+    const MeshFormat format = options.format ? *options.format : mesh_format_from_path(path);
     detail::io_check_soup(soup);
+    for (Index v = 0; v < soup.num_vertices(); ++v) {  // a file never carries nan or inf as a result
+        LIMSURF_CHECK(soup.positions.row(v).allFinite(), InputError, path.string(), ": cannot write vertex ", v,
+                      ": a non-finite coordinate (", soup.positions(v, 0), ", ", soup.positions(v, 1), ", ",
+                      soup.positions(v, 2), ")");
+    }
     std::vector<std::string> warnings;
     switch (format) {
     case MeshFormat::Obj:

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/input_file.h"
 #include "limsurf/detail/io_text.h"
 
 namespace limsurf {
@@ -439,7 +440,7 @@ PolygonSoup read_obj(std::istream& in, const std::string& source_name) {
 }
 
 PolygonSoup read_obj(const std::filesystem::path& path) {
-    std::ifstream in = detail::io_open_input(path);
+    std::ifstream in = open_input_file(path);
     return read_obj(in, path.string());
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/input_file.h"
 #include "limsurf/detail/io_text.h"
 
 namespace limsurf {
@@ -210,7 +211,7 @@ PolygonSoup read_off(std::istream& in, const std::string& source_name) {
 }
 
 PolygonSoup read_off(const std::filesystem::path& path) {
-    std::ifstream in = detail::io_open_input(path);
+    std::ifstream in = open_input_file(path);
     return read_off(in, path.string());
 }
 

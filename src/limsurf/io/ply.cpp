@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/input_file.h"
 #include "limsurf/detail/io_text.h"
 
 namespace limsurf {
@@ -187,7 +188,8 @@ constexpr std::size_t no_property = static_cast<std::size_t>(-1);
 
 class PlyReader {
   public:
-    PlyReader(std::istream& in, const std::string& file) : in_(in), reader_(in), file_(file) {
+    PlyReader(std::istream& in, const std::string& file)
+        : in_(in), reader_(in, file, detail::LoneCarriageReturn::Refused), file_(file) {
         soup_.source.file = file;
     }
 
@@ -672,7 +674,7 @@ PolygonSoup read_ply(std::istream& in, const std::string& source_name) {
 }
 
 PolygonSoup read_ply(const std::filesystem::path& path) {
-    std::ifstream in = detail::io_open_input(path);
+    std::ifstream in = open_input_file(path);
     return read_ply(in, path.string());
 }
 

@@ -1,10 +1,13 @@
 #include "limsurf/io/vertex_field.h"
 
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/input_file.h"
+#include "limsurf/detail/io_text.h"
 
 namespace limsurf {
 
@@ -55,6 +58,37 @@ void validate_vertex_fields(std::span<const VertexField> fields, Index num_verti
         }
         names.insert(names.end(), claimed.begin(), claimed.end());
     }
+}
+
+Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count) {
+    std::ifstream in = open_input_file(path);
+    const std::string name = path.string();
+    Eigen::VectorXd out(count);
+    Index n = 0;
+    detail::IoLineReader lines(in);
+    std::string line;
+    std::vector<std::string_view> tokens;
+    while (lines.next(line)) {
+        detail::io_split(detail::io_strip_comment(line), tokens);
+        if (tokens.empty()) {
+            continue;
+        }
+        const long long number = lines.line_number();
+        if (tokens.size() != 1) {
+            detail::io_fail(name, number, "expected one number, got " + std::to_string(tokens.size()) + " fields");
+        }
+        const double value = detail::io_to_double(tokens[0], name, number);
+        if (!std::isfinite(value)) {
+            detail::io_fail(name, number, "value " + detail::io_quote(tokens[0]) + " is not finite");
+        }
+        if (n >= count) {
+            detail::io_fail(name, number, "more than " + std::to_string(count) + " values (one per vertex)");
+        }
+        out(n++) = value;
+    }
+    LIMSURF_CHECK(!in.bad(), InputError, name, ": read error");
+    LIMSURF_CHECK(n == count, InputError, name, ": ", n, " values, but the mesh has ", count, " vertices");
+    return out;
 }
 
 }  // namespace limsurf

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/input_file.h"
 
 namespace limsurf {
 namespace {
@@ -36,8 +37,7 @@ TunedWeights TunedWeights::preset(std::string_view name) {
 }
 
 TunedWeights TunedWeights::from_file(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    LIMSURF_CHECK(in.is_open(), InputError, path.string(), ": cannot open");
+    std::ifstream in = open_input_file(path);
     TunedWeights weights;
     std::string line;
     int number = 0;

@@ -70,7 +70,7 @@ TEST(MeshIo, WriteMeshWarnsAboutWhatTheFormatCannotStore) {
     soup.sharpness.corners.resize(1);
     soup.hints.creasing = CreasingMethod::Chaikin;
     soup.sharpness.holes.push_back({2, 0});
-    EXPECT_EQ(write_mesh(dir / "a.ply", soup, {PlyEncoding::BinaryBigEndian}),
+    EXPECT_EQ(write_mesh(dir / "a.ply", soup, {.ply_encoding = PlyEncoding::BinaryBigEndian}),
               std::vector<std::string>{
                   "PLY cannot store subdivision tags: 3 creases, 1 corner, 1 hole, 1 scheme hint dropped"});
     const PolygonSoup off = read_polygon_soup(dir / "a.off");
