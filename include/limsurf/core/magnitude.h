@@ -40,6 +40,15 @@ template <class Derived>
     return ((x * std::ldexp(1.0, half)) * std::ldexp(1.0, k - half)).eval();
 }
 
+/// @brief The Euclidean (Frobenius) norm of @p x without overflow or underflow of its squares:
+///   computed on x · 2^−e. (Eigen 3.4's stableNorm() is wrong for matrix expressions.)
+template <class Derived>
+[[nodiscard]] double scale_free_norm(const Eigen::MatrixBase<Derived>& x) {
+    const auto values = x.eval();
+    const int e = magnitude_exponent(values);
+    return std::ldexp(times_power_of_two(values, -e).norm(), e);
+}
+
 /// @brief @p value · 2^k for a quantity computed on normalised data.
 /// @throws NumericalError naming @p what when the result overflows, or underflows to zero or a
 ///   subnormal number while @p value is not zero: "the enclosed volume (about 1e+465) overflows a double"

@@ -36,6 +36,9 @@ struct RefineOptions {
     /// Refuse (before allocating) when estimated_peak_bytes() exceeds this; empty: the default
     /// budget, 3/4 of the machine's memory (default_memory_budget(), core/memory.h).
     std::optional<std::int64_t> max_memory = std::nullopt;
+    /// Memory the caller will hold next to the hierarchy (e.g. a copy of the finest level to
+    /// write it), counted into the peak that max_memory limits.
+    std::int64_t reserved_bytes = 0;
     /// Also build the form operators S1, S2 of every step (form_subdivision.h; Loop and
     /// Catmull–Clark): off by default, so plain subdivision pays nothing for them.
     bool forms = false;
@@ -52,6 +55,9 @@ struct LevelSize {
     /// an upper bound after.
     std::int64_t face_degree_squares = 0;
     std::int64_t valence_squares = 0;  ///< Σ valence², likewise
+    /// The non-zeros of the S0 that refines this level: counted rule by rule at level 0 (a
+    /// boundary vertex's crease rule has no face point), estimated_step_nonzeros() after.
+    std::int64_t step_nonzeros = 0;
 };
 
 /// @brief Counts of levels 0..levels for @p scheme, without refining: exact for
@@ -62,7 +68,8 @@ struct LevelSize {
 /// Memory (bytes) of a Topology of this size, and of its positions.
 [[nodiscard]] std::int64_t estimated_bytes(const LevelSize& size);
 
-/// @brief An upper bound of the non-zeros of the S0 that refines a level of size @p parent.
+/// @brief An upper bound of the non-zeros of the S0 that refines a level of size @p parent,
+///   from its counts alone (as if every vertex and edge were interior).
 [[nodiscard]] std::int64_t estimated_step_nonzeros(const LevelSize& parent, SchemeKind scheme);
 
 /// @brief Peak memory (bytes) of a Hierarchy over @p sizes (predict_sizes()): every level's

@@ -198,9 +198,10 @@ MeasureReport measure_with_error(const LimitBasis& basis, const Points& X, const
     const SurfaceMeasures better = measure(fine, X, report.closed);
     report.error.area = std::abs(report.value.area - better.area);
     report.error.volume = std::abs(report.value.volume - better.volume);
-    report.error.centroid = (report.value.centroid - better.centroid).norm();
-    report.error.surface_centroid = (report.value.surface_centroid - better.surface_centroid).norm();
-    report.error.inertia = (report.value.inertia - better.inertia).norm();
+    // The squares of differences of quantities near the range of a double must not overflow.
+    report.error.centroid = scale_free_norm(report.value.centroid - better.centroid);
+    report.error.surface_centroid = scale_free_norm(report.value.surface_centroid - better.surface_centroid);
+    report.error.inertia = scale_free_norm(report.value.inertia - better.inertia);
     return report;
 }
 

@@ -92,13 +92,16 @@ Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options) {
     const auto corners = parent.all_face_vertices();
 
     // --- S0 -------------------------------------------------------------------
-    // Classic masks: row nnz = n per corner, so Σ n² in all (boundary rows use fewer).
+    // Classic masks: row nnz = n per corner (Σ n² in all); boundary rows use at most 2.
     std::size_t num_triplets = 0;
     Index max_degree = 0;
     for (Index f = 0; f < num_faces; ++f) {
-        const auto n = static_cast<std::size_t>(parent.face_degree(f));
-        num_triplets += n * n;
-        max_degree = std::max(max_degree, parent.face_degree(f));
+        const Index n = parent.face_degree(f);
+        for (Index i = 0; i < n; ++i) {
+            num_triplets +=
+                corner_rule(parent, f, i, n, boundary_rule) == CornerRule::Classic ? static_cast<std::size_t>(n) : 2;
+        }
+        max_degree = std::max(max_degree, n);
     }
     std::vector<Eigen::Triplet<double, Index>> triplets;
     triplets.reserve(num_triplets);

@@ -16,7 +16,7 @@ namespace {
 constexpr int max_levels = 16;
 
 LevelSize size_of(const Topology& t) {
-    LevelSize s{t.num_vertices(), t.num_edges(), t.num_faces(), t.num_corners(), 0, 0};
+    LevelSize s{t.num_vertices(), t.num_edges(), t.num_faces(), t.num_corners(), 0, 0, 0};
     for (Index f = 0; f < t.num_faces(); ++f) {
         s.face_degree_squares += std::int64_t{t.face_degree(f)} * t.face_degree(f);
     }
@@ -39,11 +39,17 @@ LevelSize next_size(const LevelSize& s, SchemeKind scheme, bool closed) {
                 s.corners,
                 4 * s.corners,
                 16 * s.corners,
-                s.valence_squares + 16 * s.edges + s.face_degree_squares};
+                s.valence_squares + 16 * s.edges + s.face_degree_squares,
+                0};
     case SchemeKind::Loop:
     case SchemeKind::Linear:
-        return {s.vertices + s.edges, 2 * s.edges + 3 * s.faces,       4 * s.faces, 12 * s.faces,
-                36 * s.faces,         s.valence_squares + 36 * s.edges};
+        return {s.vertices + s.edges,
+                2 * s.edges + 3 * s.faces,
+                4 * s.faces,
+                12 * s.faces,
+                36 * s.faces,
+                s.valence_squares + 36 * s.edges,
+                0};
     case SchemeKind::DooSabin: {
         // closed: a vertex per corner, F + E + V faces, every child vertex of valence 4; the
         // face of a face keeps its degree, the face of a vertex has its valence
@@ -54,10 +60,45 @@ LevelSize next_size(const LevelSize& s, SchemeKind scheme, bool closed) {
                 f,
                 closed ? 4 * s.corners : 2 * (2 * v + s.edges),
                 s.face_degree_squares + 16 * s.edges + s.valence_squares,
-                16 * v};
+                16 * v,
+                0};
     }
     }
     return s;
+}
+
+/// The non-zeros of the first step's S0, rule by rule where masks span whole faces: a Catmull–Clark
+/// vertex or edge point holds its faces' points only in the interior, a Doo–Sabin corner holds its
+/// whole face only away from the boundary (2 entries there).
+std::int64_t first_step_nonzeros(const Topology& t, SchemeKind scheme) {
+    const LevelSize s = {t.num_vertices(), t.num_edges(), t.num_faces(), t.num_corners(), 0, 0, 0};
+    if (scheme == SchemeKind::CatmullClark) {
+        std::int64_t extra = 0;  // face-point corners beyond the vertex's and edge's own neighbours
+        for (Index v = 0; v < t.num_vertices(); ++v) {
+            for (const Index f : t.vertex_faces(v)) {
+                extra += t.is_boundary_vertex(v) ? 0 : t.face_degree(f) - 3;
+            }
+        }
+        for (Index e = 0; e < t.num_edges(); ++e) {
+            for (const Index f : t.edge_faces(e)) {
+                extra += t.is_boundary_edge(e) ? 0 : t.face_degree(f) - 2;
+            }
+        }
+        return s.vertices + 4 * s.edges + s.corners + extra;
+    }
+    if (scheme == SchemeKind::DooSabin) {
+        std::int64_t nonzeros = 0;
+        for (Index f = 0; f < t.num_faces(); ++f) {
+            const auto edges = t.face_edges(f);
+            const std::size_t n = edges.size();
+            for (std::size_t i = 0; i < n; ++i) {
+                const bool interior = !t.is_boundary_edge(edges[i]) && !t.is_boundary_edge(edges[(i + n - 1) % n]);
+                nonzeros += interior ? static_cast<std::int64_t>(n) : 2;
+            }
+        }
+        return nonzeros;
+    }
+    return estimated_step_nonzeros(s, scheme);
 }
 
 /// Bytes of the transient tables of building a level of size @p child with an S0 of @p nonzeros:
@@ -79,27 +120,33 @@ void check_memory(const Topology& base, const std::vector<LevelSize>& sizes, std
     if (peak <= budget) {
         return;
     }
-    std::string cause;
     const bool dense_masks = options.scheme == SchemeKind::CatmullClark || options.scheme == SchemeKind::DooSabin;
     if (const LocalSize local = local_size(base); dense_masks && local.max_face_degree > 64) {
-        cause = detail::concat("; most of it is the masks of face ", local.face, "'s ", local.max_face_degree,
-                               " corners, which grow with the square of a face's degree");
+        throw InputError(detail::concat(to_string(options.scheme), " refinement needs about ", format_bytes(peak),
+                                        ", more than the memory budget of ", format_bytes(budget),
+                                        options.max_memory ? " (max_memory)" : " (3/4 of this machine's memory)",
+                                        ": most of it are the masks over face ", local.face, "'s ",
+                                        local.max_face_degree,
+                                        " corners, which grow with the square of a face's degree (split the face)"),
+                         face_element(local.face));
     }
     throw InputError(
-        detail::concat(to_string(options.scheme), " with ", options.levels, " levels needs about ", format_bytes(peak),
-                       " at its peak (", sizes.back().faces, " faces at level ", options.levels, ")", cause,
-                       ", more than the memory budget of ", format_bytes(budget),
+        detail::concat(to_string(options.scheme), " with ", options.levels, options.levels == 1 ? " level" : " levels",
+                       " needs about ", format_bytes(peak), " at its peak (", sizes.back().faces, " faces at level ",
+                       options.levels, "), more than the memory budget of ", format_bytes(budget),
                        options.max_memory ? " (max_memory)" : " (3/4 of this machine's memory)",
-                       ": use fewer levels, or set a larger budget (limsurf --max-memory) if the machine has it"));
+                       ": use fewer levels, or a larger budget (limsurf --max-memory) if the machine has the memory"));
 }
 
 }  // namespace
 
 std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, int levels) {
     std::vector<LevelSize> sizes{size_of(base)};
+    sizes[0].step_nonzeros = first_step_nonzeros(base, scheme);
     const bool closed = base.is_closed();
     for (int l = 0; l < levels; ++l) {
         sizes.push_back(next_size(sizes.back(), scheme, closed));
+        sizes.back().step_nonzeros = estimated_step_nonzeros(sizes.back(), scheme);
     }
     return sizes;
 }
@@ -135,7 +182,7 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKin
     for (std::size_t l = 0; l < sizes.size(); ++l) {
         kept += estimated_bytes(sizes[l]);
         if (l > 0) {
-            const std::int64_t nonzeros = estimated_step_nonzeros(sizes[l - 1], scheme);
+            const std::int64_t nonzeros = sizes[l - 1].step_nonzeros;
             kept += 12 * nonzeros + 4 * sizes[l].vertices;
             transient = std::max(transient, transient_bytes(sizes[l], nonzeros, scheme));
         }
@@ -149,7 +196,7 @@ Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(opt
     LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
     const std::vector<LevelSize> sizes = predict_sizes(base_, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
-    const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme);
+    const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme) + options.reserved_bytes;
     LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
                   " levels would make ", finest.faces, " faces at level ", options.levels, " (about ",
                   format_bytes(peak), "); the limit is ", options.max_faces, " faces (max_faces): use fewer levels");

@@ -20,11 +20,17 @@ class SparseCholesky {
 
     /// @throws NumericalError (naming @p what) when @p A is not positive definite
     SparseCholesky(const SparseMatrix& A, const char* what) : A_(A) {
+        if (A_.rows() == 0) {  // nothing to solve (CHOLMOD crashes on an empty matrix)
+            return;
+        }
         solver_.compute(A_);
         LIMSURF_CHECK(solver_.info() == Eigen::Success, NumericalError, "the Cholesky factorisation of ", what,
                       " failed: the matrix is not positive definite (degenerate geometry?)");
     }
     [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+        if (A_.rows() == 0) {
+            return Eigen::VectorXd(0);
+        }
         Eigen::VectorXd x = solver_.solve(b);
         return x;
     }
