@@ -98,12 +98,11 @@ fs::path follow_links(const fs::path& path) {
     throw InputError(path.string() + ": too many levels of symbolic links");
 }
 
-/// Writes straight into an existing file that is not a regular file (a character device
-/// such as /dev/null, a FIFO): there is nothing to replace atomically, and a temporary file
-/// renamed over it would destroy the device or pipe.
-void write_through(const fs::path& path, const std::string& shown, const std::function<void(std::ostream&)>& write) {
+/// Opens @p path, runs @p write, flushes and closes; every failure named after @p shown.
+void write_and_close(const fs::path& path, std::ios::openmode mode, const std::string& shown,
+                     const std::function<void(std::ostream&)>& write) {
     errno = 0;
-    std::ofstream out(path, std::ios::out | std::ios::binary);
+    std::ofstream out(path, mode);
     if (!out.is_open()) {
         throw InputError(shown + ": cannot open for writing: " + error_text(errno));
     }
@@ -131,7 +130,10 @@ void write_file_atomically(const fs::path& requested, const std::function<void(s
         if (fs::is_socket(existing)) {
             throw InputError(shown + ": cannot write: is a socket");
         }
-        write_through(requested, shown, write);  // /dev/stdout's magic links included
+        // A character device such as /dev/null, a FIFO: nothing to replace atomically, and a
+        // temporary file renamed over it would destroy the device or the pipe. Written straight
+        // through (the kernel follows /dev/stdout's magic links).
+        write_and_close(requested, std::ios::out | std::ios::binary, shown, write);
         return;
     }
     // A regular file (or a new one): replace the file the links end at, so the links stay.
@@ -142,20 +144,7 @@ void write_file_atomically(const fs::path& requested, const std::function<void(s
     }
     const fs::path temp = create_temp_file(path, shown);
     try {
-        errno = 0;
-        std::ofstream out(temp, std::ios::out | std::ios::binary | std::ios::trunc);
-        if (!out.is_open()) {
-            throw InputError(shown + ": cannot open for writing: " + error_text(errno));
-        }
-        write(out);
-        out.flush();
-        if (!out.good()) {
-            throw InputError(shown + ": write failed: " + error_text(errno));
-        }
-        out.close();
-        if (out.fail()) {
-            throw InputError(shown + ": write failed on close: " + error_text(errno));
-        }
+        write_and_close(temp, std::ios::out | std::ios::binary | std::ios::trunc, shown, write);
         sync_file(temp);
         if (fs::is_regular_file(existing)) {
             fs::permissions(temp, existing.permissions(), ec);  // best effort

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <optional>
+#include <utility>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/input_file.h"
@@ -14,35 +16,34 @@
 
 namespace limsurf {
 
+namespace {
+
+/// The format called @p name ("obj", "off", "ply", any case), if any.
+std::optional<MeshFormat> format_called(std::string name) {
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const auto& [known, format] :
+         {std::pair{"obj", MeshFormat::Obj}, std::pair{"off", MeshFormat::Off}, std::pair{"ply", MeshFormat::Ply}}) {
+        if (name == known) {
+            return format;
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
 MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
     const std::string extension = path.extension().string();
-    std::string lower = extension;
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (lower == ".obj") {
-        return MeshFormat::Obj;
-    }
-    if (lower == ".off") {
-        return MeshFormat::Off;
-    }
-    if (lower == ".ply") {
-        return MeshFormat::Ply;
+    if (const auto format = format_called(extension.empty() ? extension : extension.substr(1))) {
+        return *format;
     }
     throw InputError(path.string() + ": unknown mesh format '" + extension + "' (expected .obj, .off or .ply)");
 }
 
 MeshFormat mesh_format_from_name(const std::string& name) {
-    std::string lower = name;
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (lower == "obj") {
-        return MeshFormat::Obj;
-    }
-    if (lower == "off") {
-        return MeshFormat::Off;
-    }
-    if (lower == "ply") {
-        return MeshFormat::Ply;
+    if (const auto format = format_called(name)) {
+        return *format;
     }
     throw InputError("unknown mesh format '" + name + "' (expected obj, off or ply)");
 }

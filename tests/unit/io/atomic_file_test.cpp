@@ -9,6 +9,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/io/mesh_io.h"
+#include "limsurf/io/vertex_field.h"
 #include "support/paths.h"
 
 namespace limsurf {
@@ -118,6 +119,65 @@ TEST(AtomicFile, WriteMeshWithAMalformedSoupCreatesNothing) {
         EXPECT_THROW((void)write_mesh(dir / name, soup), InputError) << name;
     }
     EXPECT_EQ(entries(dir), 0U);
+    fs::remove_all(dir);
+}
+
+TEST(AtomicFile, ASymbolicLinkKeepsPointingAtItsReplacedTarget) {
+    const fs::path dir = test::make_temp_dir("atomic");
+    std::ofstream(dir / "target.txt") << "old\n";
+    fs::create_symlink("target.txt", dir / "link.txt");
+    write_file_atomically(dir / "link.txt", [](std::ostream& out) { out << "new\n"; });
+    EXPECT_TRUE(fs::is_symlink(dir / "link.txt"));
+    EXPECT_EQ(slurp(dir / "target.txt"), "new\n");
+    // A dangling link: the target is created; a loop of links is refused.
+    fs::create_symlink("made.txt", dir / "dangling.txt");
+    write_file_atomically(dir / "dangling.txt", [](std::ostream& out) { out << "made\n"; });
+    EXPECT_EQ(slurp(dir / "made.txt"), "made\n");
+    fs::create_symlink("loop.txt", dir / "loop.txt");
+    EXPECT_THROW(write_file_atomically(dir / "loop.txt", [](std::ostream& out) { out << "x"; }), InputError);
+    EXPECT_EQ(entries(dir), 5U);  // target, link, dangling, made, loop: no temporary file left
+    fs::remove_all(dir);
+}
+
+TEST(AtomicFile, DevicesAreWrittenThroughAndStayDevices) {
+    write_file_atomically("/dev/null", [](std::ostream& out) { out << "discarded\n"; });
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    if (fs::exists("/dev/full")) {
+        try {
+            write_file_atomically("/dev/full", [](std::ostream& out) { out << std::string(1 << 16, 'x'); });
+            FAIL() << "writing /dev/full succeeded";
+        } catch (const InputError& error) {
+            EXPECT_EQ(std::string(error.what()).rfind("/dev/full: write failed", 0), 0U) << error.what();
+        }
+        EXPECT_TRUE(fs::is_character_file("/dev/full"));
+    }
+}
+
+TEST(VertexValues, OneFiniteNumberPerLineAndOnePerVertex) {
+    const fs::path dir = test::make_temp_dir("values");
+    std::ofstream(dir / "ok.txt") << "\xEF\xBB\xBF# values\n1.5\n\n-2 # second\r3e-3\n";
+    const Eigen::VectorXd values = read_vertex_values(dir / "ok.txt", 3);
+    EXPECT_EQ(values, Eigen::Vector3d(1.5, -2, 3e-3));
+    const auto message = [&](const char* text, Index count) {
+        std::ofstream(dir / "bad.txt") << text;
+        try {
+            (void)read_vertex_values(dir / "bad.txt", count);
+        } catch (const InputError& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    const std::string bad = (dir / "bad.txt").string();
+    EXPECT_EQ(message("1\n2 3\n", 2), bad + ":2: expected one number, got 2 fields");
+    EXPECT_EQ(message("1\nnan\n", 2), bad + ":2: value 'nan' is not finite");
+    EXPECT_EQ(message("1\n2\n3\n", 2), bad + ":3: more than 2 values (one per vertex)");
+    EXPECT_EQ(message("1\n", 2), bad + ": 1 values, but the mesh has 2 vertices");
+    try {
+        (void)read_vertex_values(dir, 1);
+        FAIL();
+    } catch (const InputError& error) {
+        EXPECT_EQ(std::string(error.what()), dir.string() + ": cannot open: is a directory");
+    }
     fs::remove_all(dir);
 }
 

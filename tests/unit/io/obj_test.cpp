@@ -311,5 +311,19 @@ TEST(ObjWrite, RefusesAMalformedSoup) {
     EXPECT_THROW(write_obj(out, soup), InputError);
 }
 
+TEST(ObjRead, ByteOrderMarkAndClassicMacLineEndings) {
+    // A UTF-8 byte-order mark is skipped; a lone CR ends a line, numbered as such.
+    const PolygonSoup bom = parse("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(bom.num_vertices(), 3);
+    EXPECT_EQ(bom.source.vertex_lines[0], 1);
+    const PolygonSoup cr = parse("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
+    EXPECT_EQ(cr.num_vertices(), 3);
+    EXPECT_EQ(cr.num_faces(), 1);
+    EXPECT_EQ(cr.source.face_lines[0], 4);
+    EXPECT_EQ(parse_error("v 0 0 0\rv 1 0 x\r"), "mem.obj:2: invalid number 'x'");
+    // Mixed: CRLF lines with a lone CR inside one of them.
+    EXPECT_EQ(parse("v 0 0 0\r\nv 1 0 0\rv 0 1 0\r\nf 1 2 3\r\n").source.face_lines[0], 4);
+}
+
 }  // namespace
 }  // namespace limsurf

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <random>
@@ -135,6 +136,16 @@ TEST(OffWrite, RoundTripIsExact) {
     }
     EXPECT_EQ(back.face_offsets, soup.face_offsets);
     EXPECT_EQ(back.face_vertices, soup.face_vertices);
+}
+
+TEST(OffRead, ByteOrderMarkAndClassicMacLineEndings) {
+    const std::string cube_like = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+    EXPECT_EQ(parse("\xEF\xBB\xBF" + cube_like).num_faces(), 1);
+    std::string cr = cube_like;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    const PolygonSoup soup = parse(cr);
+    EXPECT_EQ(soup.num_vertices(), 4);
+    EXPECT_EQ(soup.face(0).size(), 4U);
 }
 
 }  // namespace

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -206,6 +207,17 @@ TEST(PlyRead, BinaryErrorsNameTheElementAndByteOffset) {
     const std::string list_truncated = header + std::string("\x00\x00\x00\x09\x00\x00", 6);
     EXPECT_EQ(parse_error(list_truncated), "mem.ply: element 'face' 0 (byte offset " +
                                                std::to_string(header.size() + 3) + "): unexpected end of file");
+}
+
+TEST(PlyRead, ByteOrderMarkIsSkippedAndAClassicMacHeaderIsNamed) {
+    const std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    EXPECT_EQ(parse("\xEF\xBB\xBF" + ascii).num_faces(), 1);
+    std::string cr = ascii;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    EXPECT_EQ(parse_error(cr), "mem.ply:1: a carriage return (\\r) ends a line without a line feed (classic Mac OS "
+                               "line endings): this format needs LF or CRLF line endings");
 }
 
 }  // namespace
