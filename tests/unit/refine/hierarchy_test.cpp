@@ -2,6 +2,7 @@
 // against successive products, refusal before allocating.
 #include <gtest/gtest.h>
 
+#include "limsurf/core/memory.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/refine/hierarchy.h"
 #include "support/mesh_zoo.h"
@@ -162,6 +163,88 @@ TEST(Hierarchy, ApplyChecksTheRowCount) {
     const Eigen::MatrixXd ones = hierarchy.apply(1, Eigen::MatrixXd::Ones(8, 2));
     EXPECT_EQ(ones.rows(), 26);  // 8 + 12 + 6
     EXPECT_LT((ones.array() - 1.0).abs().maxCoeff(), 1e-15);
+}
+
+TEST(Hierarchy, TheFirstStepsNonZerosAreCountedRuleByRule) {
+    // Exact on closed meshes without creases (every vertex and edge point holds its faces' points);
+    // an upper bound where boundaries and creases use shorter rules. Later levels: the formula from
+    // the counts bounds the real S0 too.
+    for (const auto& mesh : test::bundled_meshes()) {
+        SCOPED_TRACE(mesh.name);
+        const BuildResult built = read_mesh(mesh.path);
+        const Topology& t = built.mesh.topology();
+        std::vector<SchemeKind> schemes{SchemeKind::CatmullClark, SchemeKind::Bilinear};
+        if (t.all_faces_have_degree(3)) {
+            schemes.push_back(SchemeKind::Loop);
+            schemes.push_back(SchemeKind::Linear);
+        }
+        if (!t.has_sharpness()) {
+            schemes.push_back(SchemeKind::DooSabin);
+        }
+        for (const SchemeKind scheme : schemes) {
+            SCOPED_TRACE(to_string(scheme));
+            const Hierarchy h(t, options_for(scheme, 2));
+            const auto predicted = predict_sizes(t, scheme, 2);
+            const auto nonzeros = [&](int l) { return static_cast<std::int64_t>(h.step(l).S0.nonZeros()); };
+            EXPECT_GE(predicted[0].step_nonzeros, nonzeros(1));
+            EXPECT_GE(predicted[1].step_nonzeros, nonzeros(2));
+            const bool smooth_closed = t.is_closed() && !t.has_sharpness();
+            if (smooth_closed && scheme != SchemeKind::Bilinear && scheme != SchemeKind::Linear) {
+                EXPECT_EQ(predicted[0].step_nonzeros, nonzeros(1));
+            }
+        }
+    }
+}
+
+TEST(Hierarchy, RefusesWorkBeyondItsMemoryBudgetBeforeAllocating) {
+    const BuildResult built = read_mesh(test::find_bundled("cube").path);
+    RefineOptions options = options_for(SchemeKind::CatmullClark, 6);
+    const std::int64_t peak =
+        estimated_peak_bytes(predict_sizes(built.mesh.topology(), options.scheme, 6), options.scheme);
+    options.max_memory = peak - 1;
+    try {
+        const Hierarchy h(built.mesh.topology(), options);
+        FAIL() << "expected a refusal";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("needs about " + format_bytes(peak) + " at its peak"),
+                  std::string::npos)
+            << error.what();
+        EXPECT_NE(std::string(error.what()).find("(max_memory)"), std::string::npos) << error.what();
+        EXPECT_FALSE(error.element().has_value());
+    }
+    options.max_memory = peak;
+    EXPECT_NO_THROW(Hierarchy(built.mesh.topology(), options));
+    // reserved_bytes counts into the peak.
+    options.reserved_bytes = 1;
+    EXPECT_THROW(Hierarchy(built.mesh.topology(), options), InputError);
+}
+
+TEST(Hierarchy, DenseMasksOverAHugeFaceAreRefusedNamingTheFace) {
+    // Two 5000-gons glued at their rims: Catmull–Clark's vertex and edge points each hold a
+    // whole face point (2 · 5000² weights); the refusal names the face (its ErrorElement).
+    constexpr Index n = 5000;
+    std::vector<Index> top(n);
+    std::vector<Index> bottom(n);
+    for (Index i = 0; i < n; ++i) {
+        top[static_cast<std::size_t>(i)] = i;
+        bottom[static_cast<std::size_t>(i)] = n - 1 - i;
+    }
+    const Topology pillow = Topology::from_polygons(n, {top, bottom});
+    RefineOptions options = options_for(SchemeKind::CatmullClark, 1);
+    options.max_memory = std::int64_t{64} << 20;
+    try {
+        const Hierarchy h(pillow, options);
+        FAIL() << "expected a refusal";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("the masks over face 0's 5000 corners"), std::string::npos)
+            << error.what();
+        ASSERT_TRUE(error.element().has_value());
+        EXPECT_EQ(error.element()->kind, ErrorElement::Kind::Face);
+        EXPECT_EQ(error.element()->index, 0);
+    }
+    // Bilinear's face point is the only dense row: linear, and within the budget.
+    options.scheme = SchemeKind::Bilinear;
+    EXPECT_NO_THROW(Hierarchy(pillow, options));
 }
 
 }  // namespace
