@@ -1,10 +1,14 @@
 #include "output.h"
 
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <stdexcept>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/memory.h"
 
 namespace limsurf::cli {
 
@@ -24,9 +28,109 @@ int run_guarded(const std::function<int()>& command) {
 }
 
 void print_warnings(const std::vector<std::string>& warnings) {
-    for (const std::string& warning : warnings) {
-        std::cerr << "warning: " << warning << '\n';
+    for (std::size_t i = 0; i < warnings.size() && i < max_warning_lines; ++i) {
+        std::cerr << "warning: " << warnings[i] << '\n';
     }
+    if (warnings.size() > max_warning_lines) {
+        std::cerr << "warning: … and " << warnings.size() - max_warning_lines
+                  << " more warnings not shown ('limsurf info' lists them all)\n";
+    }
+}
+
+void print_warnings(const ValidationReport& report) {
+    std::vector<std::string> warnings;
+    for (const Issue& issue : report.issues) {
+        warnings.push_back(issue.to_string());
+    }
+    print_warnings(warnings);
+}
+
+void refuse_overwriting_inputs(const std::string& output, const std::vector<std::string>& inputs) {
+    for (const std::string& input : inputs) {
+        std::error_code ec;
+        if (!input.empty() && std::filesystem::equivalent(output, input, ec) && !ec) {
+            throw InputError(output + ": is also the input '" + input +
+                             "': write the result to another file (limsurf never overwrites its input)");
+        }
+    }
+}
+
+namespace {
+
+/// The path of the first non-finite number in @p json ("reference.l2_relative"), or empty.
+std::string non_finite_entry(const nlohmann::json& json, const std::string& path) {
+    if (json.is_number_float() && !std::isfinite(json.get<double>())) {
+        return path.empty() ? std::string("value") : path;
+    }
+    if (json.is_object()) {
+        for (const auto& [key, value] : json.items()) {
+            if (auto found = non_finite_entry(value, path.empty() ? key : path + "." + key); !found.empty()) {
+                return found;
+            }
+        }
+    } else if (json.is_array()) {
+        for (std::size_t i = 0; i < json.size(); ++i) {
+            if (auto found = non_finite_entry(json[i], path + "[" + std::to_string(i) + "]"); !found.empty()) {
+                return found;
+            }
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
+void require_finite(const nlohmann::json& json) {
+    const std::string bad = non_finite_entry(json, "");
+    LIMSURF_CHECK(bad.empty(), NumericalError, "the result '", bad,
+                  "' is not a finite number (an overflow: the mesh or the data may be too large)");
+}
+
+void print_json(const nlohmann::json& json) {
+    require_finite(json);
+    std::cout << json.dump(2) << '\n';
+}
+
+void add_memory_option(CLI::App* cmd, std::string& text) {
+    cmd->add_option("--max-memory", text,
+                    "Refuse work whose estimated peak memory exceeds SIZE (e.g. 8G, 512M; default 3/4 of this "
+                    "machine's memory)");
+}
+
+std::optional<std::int64_t> memory_budget(const std::string& text) {
+    if (text.empty()) {
+        return std::nullopt;
+    }
+    try {
+        return parse_memory_size(text);
+    } catch (const InputError& e) {
+        throw InputError(std::string("--max-memory: ") + e.what());
+    }
+}
+
+void add_format_option(CLI::App* cmd, std::string& text) {
+    cmd->add_option("--format", text, "Output format when the output's extension does not say it (e.g. /dev/stdout)")
+        ->check(CLI::IsMember({"obj", "off", "ply"}));
+}
+
+MeshFormat output_format(const std::string& output, const std::string& format) {
+    return format.empty() ? mesh_format_from_path(output) : mesh_format_from_name(format);
+}
+
+std::string with_file_named(const Error& error, const SourceMap& source, const std::vector<std::string>& other_files) {
+    const std::string message = error.what();
+    const auto names = [&](const std::string& file) {
+        return !file.empty() && message.compare(0, file.size() + 1, file + ":") == 0;
+    };
+    if (names(source.file) || std::any_of(other_files.begin(), other_files.end(), names)) {
+        return message;
+    }
+    std::string where = source.file;
+    if (const auto& element = error.element()) {
+        where = element->kind == ErrorElement::Kind::Face ? source.face_location(element->index)
+                                                          : source.vertex_location(element->index);
+    }
+    return where.empty() ? message : where + ": " + message;
 }
 
 std::vector<std::string> report_lines(const ValidationReport& report) {

@@ -14,22 +14,22 @@ struct ConvertOptions {
     std::string input;
     std::string output;
     std::string ply_encoding = "ascii";
+    std::string format;
     bool strict_isolated = false;
 };
 
 int run_convert(const ConvertOptions& options) {
     // Refuse before reading: an unknown output format is a usage mistake.
-    (void)mesh_format_from_path(options.output);
+    const MeshFormat format = output_format(options.output, options.format);
+    refuse_overwriting_inputs(options.output, {options.input});
     const BuildResult built =
         read_mesh(options.input,
                   {.isolated_vertices = options.strict_isolated ? IsolatedVertices::Error : IsolatedVertices::Drop});
-    for (const Issue& issue : built.report.issues) {
-        std::cerr << "warning: " << issue.to_string() << '\n';
-    }
+    print_warnings(built.report);
     const PlyEncoding encoding = options.ply_encoding == "binary-le"   ? PlyEncoding::BinaryLittleEndian
                                  : options.ply_encoding == "binary-be" ? PlyEncoding::BinaryBigEndian
                                                                        : PlyEncoding::Ascii;
-    print_warnings(write_mesh(options.output, built.mesh, {.ply_encoding = encoding}));
+    print_warnings(write_mesh(options.output, built.mesh, {.ply_encoding = encoding, .format = format}));
     return exit_ok;
 }
 
@@ -40,6 +40,7 @@ void add_convert_command(CLI::App& app, CommandStatus& status) {
     CLI::App* convert = app.add_subcommand("convert", "Convert a mesh between OBJ, OFF and PLY (by extension)");
     convert->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
     convert->add_option("output", options->output, "Output mesh (.obj, .off, .ply); written atomically")->required();
+    add_format_option(convert, options->format);
     convert->add_option("--ply-encoding", options->ply_encoding, "PLY encoding (default ascii)")
         ->check(CLI::IsMember({"ascii", "binary-le", "binary-be"}));
     convert->add_flag("--strict-isolated", options->strict_isolated,

@@ -15,6 +15,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "limsurf/core/input_file.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/surface_frame.h"
@@ -34,8 +35,7 @@ struct EvalOptions {
 
 /// Reads "face u v" lines ('#' starts a comment) and checks each point against @p basis.
 std::vector<SurfacePoint> read_points(const std::string& path, const LimitBasis& basis) {
-    std::ifstream in(path);
-    LIMSURF_CHECK(in, InputError, path, ": cannot open");
+    std::ifstream in = open_input_file(path);
     std::vector<SurfacePoint> points;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
@@ -66,6 +66,8 @@ std::vector<SurfacePoint> read_points(const std::string& path, const LimitBasis&
                       face, " has no limit surface (a hole, or a boundary under --boundary none)");
         points.push_back({static_cast<Index>(face), u, v});
     }
+    LIMSURF_CHECK(!in.bad(), InputError, path, ": read error");
+    LIMSURF_CHECK(!points.empty(), InputError, path, ": no points (expected lines 'face u v')");
     return points;
 }
 
@@ -145,37 +147,51 @@ void write_table(std::ostream& out, const std::vector<Evaluated>& results) {
     }
 }
 
-int run_eval(const EvalOptions& options) {
-    const BuildResult built = read_mesh(options.input);
-    for (const Issue& issue : built.report.issues) {
-        std::cerr << "warning: " << issue.to_string() << '\n';
-    }
-    const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
-    const std::vector<SurfacePoint> points =
-        options.points.empty() ? grid_points(options.grid, basis) : read_points(options.points, basis);
+/// Position, derivatives and frame at each point; the frame is empty where the tangent plane is
+/// degenerate. @throws NumericalError when the derivatives overflow a double
+std::vector<Evaluated> evaluate_points(const LimitBasis& basis, const Points& X,
+                                       const std::vector<SurfacePoint>& points) {
     std::vector<Evaluated> results;
     results.reserve(points.size());
     for (const SurfacePoint& point : points) {
         const LimitWeights weights = basis.evaluate(point);
-        Evaluated r{point, weights.apply(built.mesh.positions()), std::nullopt, weights.at_extraordinary_vertex};
-        try {
-            r.frame = surface_frame(r.d);
-        } catch (const NumericalError&) {
-            r.frame.reset();  // degenerate tangent plane (e.g. some extraordinary vertices): reported as null
+        Evaluated r{point, weights.apply(X), std::nullopt, weights.at_extraordinary_vertex};
+        LIMSURF_CHECK(r.d.allFinite(), NumericalError, "the limit surface's derivatives at ptex face ", point.face,
+                      " (", point.u, ", ", point.v, ") overflow a double (the control points reach ",
+                      X.cwiseAbs().maxCoeff(), "): rescale the mesh");
+        if (has_tangent_plane(r.d)) {      // else (e.g. at some extraordinary vertices) reported as null
+            r.frame = surface_frame(r.d);  // throws when a curvature overflows (a mesh ~1e-160 across)
         }
         results.push_back(r);
     }
+    return results;
+}
+
+int run_eval(const EvalOptions& options) {
+    if (!options.output.empty()) {
+        refuse_overwriting_inputs(options.output, {options.input, options.points});
+    }
+    const BuildResult built = read_mesh(options.input);
+    print_warnings(built.report);
+    const std::vector<Evaluated> results = naming_file(built.source, {options.points}, [&] {
+        const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
+        const std::vector<SurfacePoint> points =
+            options.points.empty() ? grid_points(options.grid, basis) : read_points(options.points, basis);
+        return evaluate_points(basis, built.mesh.positions(), points);
+    });
+    const nlohmann::json json = points_json(results);
+    require_finite(json);
     const bool json_file = std::filesystem::path(options.output).extension() == ".json";
     if (!options.output.empty()) {
         write_file_atomically(options.output, [&](std::ostream& out) {
             if (json_file) {
-                out << points_json(results).dump(2) << '\n';
+                out << json.dump(2) << '\n';
             } else {
                 write_table(out, results);
             }
         });
     } else if (options.json) {
-        std::cout << points_json(results).dump(2) << '\n';
+        std::cout << json.dump(2) << '\n';
     } else {
         write_table(std::cout, results);
     }

@@ -31,12 +31,11 @@ nlohmann::json vector_json(const Eigen::Vector3d& x) {
 
 int run_measure(const MeasureOptions& options) {
     const BuildResult built = read_mesh(options.input);
-    for (const Issue& issue : built.report.issues) {
-        std::cerr << "warning: " << issue.to_string() << '\n';
-    }
-    const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
-    const SamplerOptions sampler{options.degree, options.tiles, 0};
-    const MeasureReport r = measure_with_error(basis, built.mesh.positions(), sampler);
+    print_warnings(built.report);
+    const MeasureReport r = naming_file(built.source, {}, [&] {
+        const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
+        return measure_with_error(basis, built.mesh.positions(), SamplerOptions{options.degree, options.tiles, 0});
+    });
     if (options.json) {
         nlohmann::json errors{{"area", r.error.area}, {"surface_centroid", r.error.surface_centroid}};
         errors["volume"] = r.closed ? nlohmann::json(r.error.volume) : nlohmann::json(nullptr);
@@ -57,9 +56,12 @@ int run_measure(const MeasureOptions& options) {
             r.closed
                 ? nlohmann::json{{I(0, 0), I(0, 1), I(0, 2)}, {I(1, 0), I(1, 1), I(1, 2)}, {I(2, 0), I(2, 1), I(2, 2)}}
                 : nlohmann::json(nullptr);
-        std::cout << out.dump(2) << '\n';
+        print_json(out);
         return exit_ok;
     }
+    require_finite({r.value.area, r.value.volume, r.error.area, r.error.volume, r.error.centroid,
+                    r.error.surface_centroid, r.error.inertia, r.value.inertia.sum(), r.value.centroid.sum(),
+                    r.value.surface_centroid.sum()});
     const auto vec = [](const Eigen::Vector3d& x) {
         std::ostringstream s;
         s << std::setprecision(15) << x.x() << ' ' << x.y() << ' ' << x.z();

@@ -1,16 +1,14 @@
 // limsurf poisson MESH --scheme S --method M [--level L] (--rhs EXPR | --rhs-file FILE)
-//   [--boundary-value EXPR] [--reference-level K] [-o OUT.ply|.vtk|.vtu] [--json]:
+//   [--boundary-value EXPR] [--reference-level K] [--max-memory SIZE] [-o OUT.ply|.vtk|.vtu] [--json]:
 // solves −Δu = f on the limit surface with the inner products of --method (dec, decsnap, sec,
 // secsnap; SEC §3), all unknowns on the control mesh. With --reference-level K it also solves with
 // DEC on the K-times subdivided mesh (the paper's reference construction) and reports the L² and
 // L∞ differences of the subdivided solution from it.
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
 #include <muParser.h>
@@ -19,9 +17,10 @@
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "limsurf/io/mesh_io.h"
+#include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
-#include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/operators.h"
+#include "limsurf/sec/reference_solution.h"
 #include "output.h"
 
 namespace limsurf::cli {
@@ -37,6 +36,7 @@ struct PoissonCommandOptions {
     std::string rhs_file;
     std::string boundary_value = "0";
     int reference_level = -1;
+    std::string max_memory;
     std::string output;
     bool json = false;
 };
@@ -58,8 +58,8 @@ Eigen::VectorXd evaluate_formula(const std::string& what, const std::string& exp
             y = X(v, 1);
             z = X(v, 2);
             out(v) = parser.Eval();
-            LIMSURF_CHECK(std::isfinite(out(v)), InputError, what, " '", expression, "' is not finite at vertex ", v,
-                          " (", x, ", ", y, ", ", z, ")");
+            LIMSURF_CHECK(std::isfinite(out(v)), InputError, what, " '", expression, "' is not finite at (x, y, z) = (",
+                          x, ", ", y, ", ", z, ")");
         }
     } catch (const mu::Parser::exception_type& e) {
         throw InputError(detail::concat(what, " '", expression, "': ", e.GetMsg()));
@@ -67,74 +67,7 @@ Eigen::VectorXd evaluate_formula(const std::string& what, const std::string& exp
     return out;
 }
 
-/// One value per line (blank lines and '#' comments skipped), #V values.
-Eigen::VectorXd read_values(const std::string& path, Index count) {
-    std::ifstream in(path);
-    LIMSURF_CHECK(in, InputError, path, ": cannot open");
-    Eigen::VectorXd out(count);
-    Index n = 0;
-    std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-        const auto start = line.find_first_not_of(" \t\r");
-        if (start == std::string::npos || line[start] == '#') {
-            continue;
-        }
-        std::istringstream fields(line);
-        double value = 0.0;
-        std::string rest;
-        LIMSURF_CHECK(fields >> value && !(fields >> rest) && std::isfinite(value), InputError, path, ":", number,
-                      ": expected one finite number, got '", line, "'");
-        LIMSURF_CHECK(n < count, InputError, path, ":", number, ": more than ", count, " values (one per vertex)");
-        out(n++) = value;
-    }
-    LIMSURF_CHECK(n == count, InputError, path, ": ", n, " values, but the mesh has ", count, " vertices");
-    return out;
-}
-
-struct ReferenceComparison {
-    int level = 0;
-    Index vertices = 0;
-    double l2 = 0.0;    ///< ‖A u − u_K‖ in the level-K mass, relative to ‖u_K‖
-    double linf = 0.0;  ///< max |A u − u_K| relative to max |u_K|
-};
-
-ReferenceComparison compare_with_reference(const ControlMesh& mesh, SchemeKind scheme, const SchemeOptions& rules,
-                                           const PoissonCommandOptions& options, const Eigen::VectorXd& u,
-                                           const std::optional<Eigen::VectorXd>& rhs_values) {
-    LIMSURF_CHECK(!rhs_values, InputError, "--reference-level needs --rhs (a formula to evaluate on the fine mesh)");
-    RefineOptions refine;
-    refine.scheme = scheme;
-    refine.levels = options.reference_level;
-    refine.scheme_options = rules;
-    const Hierarchy h(mesh.topology(), refine);
-    const Topology& fine = h.topology(options.reference_level);
-    const Points XK = h.positions(options.reference_level, mesh.positions());
-    const Operators ops(fine, polygonal_inner_products(fine, XK));
-    PoissonProblem problem;
-    problem.f = evaluate_formula("--rhs", options.rhs, XK);
-    if (fine.has_boundary()) {
-        problem.boundary_values = evaluate_formula("--boundary-value", options.boundary_value, XK);
-    }
-    const Eigen::VectorXd reference = solve_poisson(fine, ops, problem).u;
-    Eigen::VectorXd difference = h.apply(options.reference_level, u) - reference;
-    const SparseMatrix& M0 = ops.inner_products().M0;
-    if (fine.is_closed()) {  // solutions are defined up to a constant
-        const Eigen::VectorXd mass = M0 * Eigen::VectorXd::Ones(fine.num_vertices());
-        difference.array() -= mass.dot(difference) / mass.sum();
-    }
-    ReferenceComparison out;
-    out.level = options.reference_level;
-    out.vertices = fine.num_vertices();
-    out.l2 = std::sqrt(difference.dot(M0 * difference) / reference.dot(M0 * reference));
-    out.linf = difference.cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
-    return out;
-}
-
-int run_poisson(const PoissonCommandOptions& options) {
-    const BuildResult built = read_mesh(options.input);
-    for (const Issue& issue : built.report.issues) {
-        std::cerr << "warning: " << issue.to_string() << '\n';
-    }
+int solve_and_report(const BuildResult& built, const PoissonCommandOptions& options) {
     const ControlMesh& mesh = built.mesh;
     const Topology& t = mesh.topology();
     const SchemeKind scheme = limit_schemes().at(options.scheme);
@@ -145,70 +78,65 @@ int run_poisson(const PoissonCommandOptions& options) {
     ip.method = parse_inner_product_method(options.method);
     ip.level = options.level;
     ip.lumped = options.lumped;
+    const auto rhs = [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); };
+    const auto boundary = [&](const Points& P) {
+        return evaluate_formula("--boundary-value", options.boundary_value, P);
+    };
 
+    ReferenceProblem reference_problem{options.reference_level, rhs, boundary, rules,
+                                       memory_budget(options.max_memory)};
+    if (options.reference_level >= 0) {
+        // A reference that cannot be had is refused now, not after the main solve.
+        LIMSURF_CHECK(options.rhs_file.empty(), InputError,
+                      "--reference-level needs --rhs (a formula to evaluate on the fine mesh)");
+        check_reference(t, scheme, reference_problem);
+    }
+    // Refuse what the scheme or the form rules cannot do before evaluating anything.
+    const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, rules));
     PoissonProblem problem;
-    std::optional<Eigen::VectorXd> file_values;
-    std::unique_ptr<Operators> ops;
-    try {
-        // Refuse what the scheme or the form rules cannot do before evaluating anything.
-        ops = std::make_unique<Operators>(t, control_inner_products(t, mesh.positions(), scheme, ip, rules));
-        if (!options.rhs_file.empty()) {
-            file_values = read_values(options.rhs_file, t.num_vertices());
-            problem.f = *file_values;
-        } else {
-            problem.f = evaluate_formula("--rhs", options.rhs, mesh.positions());
-            // Integrate f where the inner products live (level L for sec), not at the control points.
-            problem.load = load_vector(
-                t, mesh.positions(), scheme, ip,
-                [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); }, rules);
-        }
-    } catch (const UnsupportedError& e) {
-        throw UnsupportedError(options.input + ": " + e.what());
+    if (!options.rhs_file.empty()) {
+        problem.f = read_vertex_values(options.rhs_file, t.num_vertices());
+    } else {
+        problem.f = rhs(mesh.positions());
+        // Integrate f where the inner products live (level L for sec), not at the control points.
+        problem.load = load_vector(t, mesh.positions(), scheme, ip, rhs, rules);
     }
     if (t.has_boundary()) {
-        problem.boundary_values = evaluate_formula("--boundary-value", options.boundary_value, mesh.positions());
+        problem.boundary_values = boundary(mesh.positions());
     }
-    const PoissonSolution solution = solve_poisson(t, *ops, problem);
+    const PoissonSolution solution = solve_poisson(t, ops, problem);
     std::optional<ReferenceComparison> reference;
     if (options.reference_level >= 0) {
-        reference = compare_with_reference(mesh, scheme, rules, options, solution.u, file_values);
+        reference = compare_with_reference(t, mesh.positions(), scheme, reference_problem, solution.u);
     }
+    const Eigen::VectorXd& u = solution.u;
+    const bool sec = ip.method == InnerProductMethod::Sec || ip.method == InnerProductMethod::SecSnap;
+    nlohmann::json out{
+        {"scheme", options.scheme},  {"method", options.method},      {"level", sec ? options.level : 0},
+        {"lumped", options.lumped},  {"vertices", t.num_vertices()},  {"closed", t.is_closed()},
+        {"solver", solution.solver}, {"residual", solution.residual}, {"mean_removed", solution.mean_removed},
+        {"u_min", u.minCoeff()},     {"u_max", u.maxCoeff()}};
+    if (reference) {
+        out["reference"] = {{"level", reference->level},
+                            {"method", "dec"},
+                            {"vertices", reference->vertices},
+                            {"l2_relative", reference->l2},
+                            {"linf_relative", reference->linf}};
+    }
+    if (!options.output.empty()) {
+        out["output"] = options.output;
+    }
+    require_finite(out);  // before anything is written
     if (!options.output.empty()) {
         const std::vector<VertexField> fields{{"u", solution.u}, {"f", problem.f}};
         write_vertex_data(options.output, to_polygon_soup(mesh), fields);
     }
-    const Eigen::VectorXd& u = solution.u;
     if (options.json) {
-        nlohmann::json out{{"scheme", options.scheme},
-                           {"method", options.method},
-                           {"level", ip.method == InnerProductMethod::Sec || ip.method == InnerProductMethod::SecSnap
-                                         ? options.level
-                                         : 0},
-                           {"lumped", options.lumped},
-                           {"vertices", t.num_vertices()},
-                           {"closed", t.is_closed()},
-                           {"solver", solution.solver},
-                           {"residual", solution.residual},
-                           {"mean_removed", solution.mean_removed},
-                           {"u_min", u.minCoeff()},
-                           {"u_max", u.maxCoeff()}};
-        if (reference) {
-            out["reference"] = {{"level", reference->level},
-                                {"method", "dec"},
-                                {"vertices", reference->vertices},
-                                {"l2_relative", reference->l2},
-                                {"linf_relative", reference->linf}};
-        }
-        if (!options.output.empty()) {
-            out["output"] = options.output;
-        }
-        std::cout << out.dump(2) << '\n';
+        print_json(out);
         return exit_ok;
     }
     std::cout << std::setprecision(6) << "poisson     " << options.method
-              << (ip.method == InnerProductMethod::Sec || ip.method == InnerProductMethod::SecSnap
-                      ? " level " + std::to_string(options.level)
-                      : std::string())
+              << (sec ? " level " + std::to_string(options.level) : std::string())
               << (options.lumped ? " (lumped)" : "") << ", " << t.num_vertices() << " unknowns, " << solution.solver
               << "\nresidual    " << solution.residual << "\nu           min " << u.minCoeff() << "  max "
               << u.maxCoeff() << '\n';
@@ -223,6 +151,16 @@ int run_poisson(const PoissonCommandOptions& options) {
         std::cout << "wrote       " << options.output << '\n';
     }
     return exit_ok;
+}
+
+int run_poisson(const PoissonCommandOptions& options) {
+    if (!options.output.empty()) {
+        refuse_overwriting_inputs(options.output, {options.input, options.rhs_file});
+    }
+    const BuildResult built = read_mesh(options.input);
+    print_warnings(built.report);
+    return naming_file(built.source, {options.rhs_file, options.output},
+                       [&] { return solve_and_report(built, options); });
 }
 
 }  // namespace
@@ -248,6 +186,7 @@ void add_poisson_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--reference-level", options->reference_level,
                     "Also solve with DEC on the K-times subdivided mesh and report the differences (0..7)")
         ->check(CLI::Range(0, 7));
+    add_memory_option(cmd, options->max_memory);
     cmd->add_option("-o,--output", options->output, "Write the control mesh with fields u and f (.ply, .vtk, .vtu)");
     cmd->add_flag("--json", options->json, "Print JSON");
     cmd->callback([options, &status] {

@@ -28,6 +28,8 @@ struct SubdivideOptions {
     std::string triangles;  // empty: the file's hint, else catmull-clark
     std::string weights;    // cup | saddle | FILE
     std::int64_t max_faces = RefineOptions{}.max_faces;
+    std::string max_memory;
+    std::string format;
     bool json = false;
 };
 
@@ -59,6 +61,7 @@ RefineOptions refine_options(const SubdivideOptions& options, const SchemeHints&
     refine.scheme = schemes.at(options.scheme);
     refine.levels = options.levels;
     refine.max_faces = options.max_faces;
+    refine.max_memory = memory_budget(options.max_memory);
     const SchemeOptions defaults;
     refine.scheme_options.boundary = choose(options.boundary, boundaries, hints.boundary, defaults.boundary);
     refine.scheme_options.creasing = choose(options.creasing, creasings, hints.creasing, defaults.creasing);
@@ -78,44 +81,47 @@ nlohmann::json size_json(const Topology& t) {
 }
 
 int run_subdivide(const SubdivideOptions& options) {
-    (void)mesh_format_from_path(options.output);  // refuse an unknown output format before working
+    const MeshFormat format = output_format(options.output, options.format);  // refused before any work
+    refuse_overwriting_inputs(options.output, {options.input, options.weights});
     const BuildResult built = read_mesh(options.input);
-    for (const Issue& issue : built.report.issues) {
-        std::cerr << "warning: " << issue.to_string() << '\n';
-    }
-    const RefineOptions refine = refine_options(options, built.mesh.hints());
-    const auto start = std::chrono::steady_clock::now();
-    const Hierarchy hierarchy(built.mesh.topology(), refine);
-    const Points positions = hierarchy.positions(hierarchy.num_steps(), built.mesh.positions());
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    print_warnings(built.report);
+    RefineOptions refine = refine_options(options, built.mesh.hints());
+    return naming_file(built.source, {options.output, options.weights}, [&] {
+        // The finest level is copied once more for writing: keep room for it in the budget.
+        const std::vector<LevelSize> sizes = predict_sizes(built.mesh.topology(), refine.scheme, refine.levels);
+        refine.reserved_bytes = estimated_bytes(sizes.back());
+        const auto start = std::chrono::steady_clock::now();
+        const Hierarchy hierarchy(built.mesh.topology(), refine);
+        const Points positions = hierarchy.positions(hierarchy.num_steps(), built.mesh.positions());
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    SchemeHints hints;  // record the rules used, so that the output refines the same way
-    hints.boundary = refine.scheme_options.boundary;
-    hints.creasing = refine.scheme_options.creasing;
-    hints.triangles = refine.scheme_options.triangles;
-    const ControlMesh finest(hierarchy.topology(hierarchy.num_steps()), positions, hints);
-    print_warnings(write_mesh(options.output, finest));
+        SchemeHints hints;  // record the rules used, so that the output refines the same way
+        hints.boundary = refine.scheme_options.boundary;
+        hints.creasing = refine.scheme_options.creasing;
+        hints.triangles = refine.scheme_options.triangles;
+        const ControlMesh finest(hierarchy.topology(hierarchy.num_steps()), positions, hints);
+        print_warnings(write_mesh(options.output, finest, {.format = format}));
 
-    if (options.json) {
-        nlohmann::json levels = nlohmann::json::array();
-        for (int l = 0; l <= hierarchy.num_steps(); ++l) {
-            levels.push_back(size_json(hierarchy.topology(l)));
+        if (options.json) {
+            nlohmann::json levels = nlohmann::json::array();
+            for (int l = 0; l <= hierarchy.num_steps(); ++l) {
+                levels.push_back(size_json(hierarchy.topology(l)));
+            }
+            print_json({{"scheme", options.scheme},
+                        {"levels", options.levels},
+                        {"boundary", to_string(refine.scheme_options.boundary)},
+                        {"creasing", to_string(refine.scheme_options.creasing)},
+                        {"triangles", to_string(refine.scheme_options.triangles)},
+                        {"tuned_weights", !refine.weights.is_catmull_clark()},
+                        {"input", size_json(built.mesh.topology())},
+                        {"output", size_json(finest.topology())},
+                        {"per_level", levels},
+                        {"output_file", options.output},
+                        {"estimated_peak_bytes", estimated_peak_bytes(sizes, refine.scheme) + refine.reserved_bytes},
+                        {"seconds", seconds}});
         }
-        std::cout << nlohmann::json{{"scheme", options.scheme},
-                                    {"levels", options.levels},
-                                    {"boundary", to_string(refine.scheme_options.boundary)},
-                                    {"creasing", to_string(refine.scheme_options.creasing)},
-                                    {"triangles", to_string(refine.scheme_options.triangles)},
-                                    {"tuned_weights", !refine.weights.is_catmull_clark()},
-                                    {"input", size_json(built.mesh.topology())},
-                                    {"output", size_json(finest.topology())},
-                                    {"per_level", levels},
-                                    {"output_file", options.output},
-                                    {"seconds", seconds}}
-                         .dump(2)
-                  << '\n';
-    }
-    return exit_ok;
+        return exit_ok;
+    });
 }
 
 template <class T>
@@ -134,6 +140,7 @@ void add_subdivide_command(CLI::App& app, CommandStatus& status) {
     CLI::App* cmd = app.add_subcommand("subdivide", "Uniform subdivision; writes the finest level");
     cmd->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
     cmd->add_option("-o,--output", options->output, "Output mesh (.obj, .off, .ply); written atomically")->required();
+    add_format_option(cmd, options->format);
     cmd->add_option("--scheme", options->scheme, "Subdivision scheme")->required()->check(CLI::IsMember(keys(schemes)));
     cmd->add_option("--levels", options->levels, "Refinement steps (0..16)")->check(CLI::Range(0, 16));
     cmd->add_option("--boundary", options->boundary,
@@ -149,6 +156,7 @@ void add_subdivide_command(CLI::App& app, CommandStatus& status) {
                     "'valence alpha beta gamma' / 'vertex I alpha beta gamma' lines");
     cmd->add_option("--max-faces", options->max_faces, "Refuse when the finest level would have more faces")
         ->check(CLI::PositiveNumber);
+    add_memory_option(cmd, options->max_memory);
     cmd->add_flag("--json", options->json, "Print a JSON summary");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_subdivide(*options); }); });
 }

@@ -3,6 +3,7 @@
 // levels for comparison, and with --moments the centroid and inertia tensor of the solid by
 // quadrature of the limit surface, with error estimates.
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -15,9 +16,11 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "limsurf/core/memory.h"
 #include "limsurf/io/mesh_io.h"
+#include "limsurf/mesh/local_size.h"
 #include "limsurf/quadrature/integrals.h"
-#include "limsurf/refine/refine.h"
+#include "limsurf/refine/hierarchy.h"
 #include "limsurf/volume/enclosed_volume.h"
 #include "output.h"
 
@@ -48,11 +51,9 @@ std::vector<PolyhedralLevel> polyhedral_levels(const ControlMesh& mesh, SchemeKi
     Topology t = mesh.topology();
     Points X = mesh.positions();
     for (int l = 1; l <= levels; ++l) {
-        // Catmull–Clark makes one quad per face corner, Loop four triangles, Doo–Sabin F + E + V faces.
-        const Index next = scheme == SchemeKind::CatmullClark ? t.num_corners()
-                           : scheme == SchemeKind::Loop       ? 4 * t.num_faces()
-                                                              : t.num_faces() + t.num_edges() + t.num_vertices();
-        if (next > max_polyhedral_faces) {
+        // Only the last level is kept: the next step's own estimate decides.
+        const std::vector<LevelSize> next = predict_sizes(t, scheme, 1);
+        if (next.back().faces > max_polyhedral_faces || estimated_peak_bytes(next, scheme) > default_memory_budget()) {
             break;
         }
         Level level = refine(t, scheme);
@@ -63,10 +64,19 @@ std::vector<PolyhedralLevel> polyhedral_levels(const ControlMesh& mesh, SchemeKi
     return out;
 }
 
-/// Types beyond the shipped tables the mesh will need (valences and face degrees above 12).
+/// Types beyond the shipped tables the mesh will need (valences and face degrees above 12); none
+/// when the mesh will be refused anyway (a type above the generated limit, a valence below 3).
 std::set<Index> types_beyond_tables(const Topology& t) {
     std::set<Index> out;
+    const LocalSize size = local_size(t);
+    if (size.max_valence > VolumeOptions{}.max_generated_type ||
+        size.max_face_degree > VolumeOptions{}.max_generated_type) {
+        return out;
+    }
     for (Index v = 0; v < t.num_vertices(); ++v) {
+        if (t.valence(v) < 3) {
+            return {};
+        }
         if (t.valence(v) > 12) {
             out.insert(t.valence(v));
         }
@@ -87,77 +97,25 @@ nlohmann::json matrix_json(const Eigen::Matrix3d& m) {
     return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
 }
 
-int run_volume(const VolumeCommandOptions& options) {
-    const BuildResult built = read_mesh(options.input);
-    for (const Issue& issue : built.report.issues) {
-        std::cerr << "warning: " << issue.to_string() << '\n';
-    }
-    const ControlMesh& mesh = built.mesh;
-    const SchemeKind scheme = limit_schemes().at(options.scheme.scheme);
-    const auto extra = types_beyond_tables(mesh.topology());
-    if (!extra.empty() && !options.json) {
-        std::cerr << "note: generating the volume forms of facet types";
-        for (const Index type : extra) {
-            std::cerr << ' ' << type;
-        }
-        std::cerr << " on demand (the shipped tables cover 3..12)\n";
-    }
-    std::unique_ptr<EnclosedVolume> forms;
-    try {
-        forms = std::make_unique<EnclosedVolume>(mesh.topology(), scheme, scheme_rules(mesh, options.scheme));
-    } catch (const InputError& e) {
-        throw InputError(options.input + ": " + e.what());
-    } catch (const UnsupportedError& e) {
-        throw UnsupportedError(options.input + ": " + e.what());
-    }
-    const double volume = forms->volume(mesh.positions());
-    const auto levels = polyhedral_levels(mesh, scheme, options.levels);
-    std::optional<MeasureReport> moments;
-    if (options.moments) {
-        const LimitBasis basis = make_limit_basis(mesh, options.scheme);
-        moments = measure_with_error(basis, mesh.positions(), SamplerOptions{options.degree, options.tiles, 0});
-    }
-    const VolumeStatistics& stats = forms->statistics();
-    if (options.json) {
-        nlohmann::json out{{"scheme", options.scheme.scheme},
-                           {"volume", volume},
-                           {"method", "trilinear forms (exact)"},
-                           {"facets",
-                            {{"direct", stats.direct_facets},
-                             {"subdivided", stats.subdivided_facets},
-                             {"max_type", stats.max_type},
-                             {"generated_types", stats.generated_types}}}};
-        nlohmann::json polyhedral = nlohmann::json::array();
-        for (const PolyhedralLevel& l : levels) {
-            polyhedral.push_back({{"level", l.level},
-                                  {"faces", l.faces},
-                                  {"volume", l.volume},
-                                  {"relative_difference", (l.volume - volume) / volume}});
-        }
-        out["polyhedral"] = polyhedral;
-        if (moments) {
-            out["centroid"] = vector_json(moments->value.centroid);
-            out["inertia"] = matrix_json(moments->value.inertia);
-            out["moments"] = {{"method", "quadrature of the limit surface"},
-                              {"about", "centroid"},
-                              {"degree", options.degree},
-                              {"tiles", options.tiles},
-                              {"quadrature_volume", moments->value.volume},
-                              {"error_estimate",
-                               {{"volume", moments->error.volume},
-                                {"centroid", moments->error.centroid},
-                                {"inertia", moments->error.inertia}}}};
-        }
-        std::cout << out.dump(2) << '\n';
-        return exit_ok;
-    }
+void print_volume_text(const VolumeCommandOptions& options, const nlohmann::json& out,
+                       const std::vector<PolyhedralLevel>& levels, const std::optional<MeasureReport>& moments,
+                       double volume, bool zero) {
     std::cout << std::setprecision(16) << "volume      " << volume << "  (exact: trilinear forms, "
-              << options.scheme.scheme << "; " << stats.direct_facets << " facets direct, " << stats.subdivided_facets
-              << " from locally subdivided faces)\n";
+              << options.scheme.scheme << "; " << out["facets"]["direct"] << " facets direct, "
+              << out["facets"]["subdivided"] << " from locally subdivided faces)\n";
     for (const PolyhedralLevel& l : levels) {
         std::cout << std::setprecision(16) << "polyhedral  level " << l.level << "  " << std::setw(18) << std::left
-                  << l.volume << std::right << std::setprecision(2) << "  relative difference "
-                  << (l.volume - volume) / volume << "  (" << l.faces << " faces)\n";
+                  << l.volume << std::right << std::setprecision(2);
+        if (zero) {
+            std::cout << "  difference " << l.volume - volume << " (the exact volume is zero)";
+        } else {
+            std::cout << "  relative difference " << (l.volume - volume) / volume;
+        }
+        std::cout << "  (" << l.faces << " faces)\n";
+    }
+    if (static_cast<int>(levels.size()) <= options.levels) {
+        std::cout << "polyhedral  levels " << levels.size() << ".." << options.levels << " skipped (more than "
+                  << max_polyhedral_faces << " faces, or beyond the memory budget)\n";
     }
     if (moments) {
         const Eigen::Vector3d& c = moments->value.centroid;
@@ -177,7 +135,84 @@ int run_volume(const VolumeCommandOptions& options) {
                   << "  (differs from the exact volume by " << std::abs(moments->value.volume - volume) / volume
                   << " relative)\n";
     }
-    return exit_ok;
+}
+
+/// True when @p volume is zero next to the cube of the mesh's extent (a flat closed surface):
+/// relative differences to it are not defined.
+bool is_zero_volume(double volume, const Points& X) {
+    const double extent = (X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff();
+    return extent == 0.0 || std::abs(volume) / extent / extent / extent <= 1e-12;
+}
+
+/// The polyhedral levels as JSON: volume, difference to the exact volume, and the relative
+/// difference where the exact volume is not zero.
+nlohmann::json polyhedral_json(const std::vector<PolyhedralLevel>& levels, double volume, bool zero) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const PolyhedralLevel& l : levels) {
+        out.push_back(
+            {{"level", l.level},
+             {"faces", l.faces},
+             {"volume", l.volume},
+             {"difference", l.volume - volume},
+             {"relative_difference", zero ? nlohmann::json(nullptr) : nlohmann::json((l.volume - volume) / volume)}});
+    }
+    return out;
+}
+
+int run_volume(const VolumeCommandOptions& options) {
+    const BuildResult built = read_mesh(options.input);
+    print_warnings(built.report);
+    const ControlMesh& mesh = built.mesh;
+    const SchemeKind scheme = limit_schemes().at(options.scheme.scheme);
+    const auto extra = types_beyond_tables(mesh.topology());
+    if (!extra.empty() && !options.json) {
+        std::cerr << "note: generating the volume forms of facet types";
+        for (const Index type : extra) {
+            std::cerr << ' ' << type;
+        }
+        std::cerr << " on demand (the shipped tables cover 3..12)\n";
+    }
+    return naming_file(built.source, {}, [&] {
+        const EnclosedVolume forms(mesh.topology(), scheme, scheme_rules(mesh, options.scheme));
+        const double volume = forms.volume(mesh.positions());
+        const bool zero = is_zero_volume(volume, mesh.positions());
+        const auto levels = polyhedral_levels(mesh, scheme, options.levels);
+        std::optional<MeasureReport> moments;
+        if (options.moments) {
+            const LimitBasis basis = make_limit_basis(mesh, options.scheme);
+            moments = measure_with_error(basis, mesh.positions(), SamplerOptions{options.degree, options.tiles, 0});
+        }
+        const VolumeStatistics& stats = forms.statistics();
+        nlohmann::json out{{"scheme", options.scheme.scheme},
+                           {"volume", volume},
+                           {"method", "trilinear forms (exact)"},
+                           {"facets",
+                            {{"direct", stats.direct_facets},
+                             {"subdivided", stats.subdivided_facets},
+                             {"max_type", stats.max_type},
+                             {"generated_types", stats.generated_types}}},
+                           {"polyhedral", polyhedral_json(levels, volume, zero)}};
+        if (moments) {
+            out["centroid"] = vector_json(moments->value.centroid);
+            out["inertia"] = matrix_json(moments->value.inertia);
+            out["moments"] = {{"method", "quadrature of the limit surface"},
+                              {"about", "centroid"},
+                              {"degree", options.degree},
+                              {"tiles", options.tiles},
+                              {"quadrature_volume", moments->value.volume},
+                              {"error_estimate",
+                               {{"volume", moments->error.volume},
+                                {"centroid", moments->error.centroid},
+                                {"inertia", moments->error.inertia}}}};
+        }
+        if (options.json) {
+            print_json(out);
+            return exit_ok;
+        }
+        require_finite(out);
+        print_volume_text(options, out, levels, moments, volume, zero);
+        return exit_ok;
+    });
 }
 
 }  // namespace

@@ -134,7 +134,15 @@ TEST(CliEval, BadPointsFilesNameTheFileAndLine) {
     }
     const CliRun missing = limsurf({"eval", cube, "--scheme", "catmull-clark", "--points", "/nonexistent/points.txt"});
     EXPECT_EQ(missing.exit_code, 1);
-    EXPECT_EQ(missing.err, "error: /nonexistent/points.txt: cannot open\n");
+    EXPECT_EQ(missing.err, "error: /nonexistent/points.txt: cannot open: No such file or directory\n");
+    const CliRun directory = limsurf({"eval", cube, "--scheme", "catmull-clark", "--points", temp_dir().string()});
+    EXPECT_EQ(directory.exit_code, 1);
+    EXPECT_EQ(directory.err, "error: " + temp_dir().string() + ": cannot open: is a directory\n");
+    const fs::path empty = temp_dir() / "no_points.txt";
+    std::ofstream(empty) << "# nothing but a comment\n";
+    const CliRun none = limsurf({"eval", cube, "--scheme", "catmull-clark", "--points", empty.string()});
+    EXPECT_EQ(none.exit_code, 1);
+    EXPECT_EQ(none.err, "error: " + empty.string() + ": no points (expected lines 'face u v')\n");
 }
 
 TEST(CliEval, UsageErrorsExitTwo) {

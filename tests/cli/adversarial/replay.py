@@ -1,0 +1,262 @@
+#!/usr/bin/env python3
+"""Replays adversarial inputs through every limsurf command and checks the CLI's promise.
+
+For each input (the committed corpus in tests/data/malformed and tests/cli/adversarial/corpus,
+plus inputs generated here: huge faces and valences, scaled and flattened meshes, byte-order
+marks, CR line endings, special files) and each command, a run must:
+  - end within its time bound (no hang), with exit code 0, 1 or 2 (never 3, never a signal);
+  - on failure, print exactly one "error: " line on stderr (as its last line), at most
+    max_warning_lines warnings, and leave no output file and no temporary file;
+  - on success, print no nan or inf anywhere (stdout, output files), and write output meshes
+    that limsurf reads back.
+Runs whose inputs are huge (10^5 corners or edges) must also finish, accepted or refused, within
+a second. The last line is "N passed, M failed".
+
+Usage: replay.py LIMSURF REPO_ROOT WORK_DIR [--huge N]
+"""
+import argparse
+import concurrent.futures
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import threading
+import time
+
+MAX_WARNING_LINES = 11  # cli/output.h: 10 warnings and one "… and N more" line
+NON_FINITE = re.compile(r"(?<![A-Za-z_])[-+]?(nan|inf|infinity)(?![A-Za-z_])", re.IGNORECASE)
+SLOW_SECONDS = 60.0  # any run: a hang is far beyond this
+HUGE_SECONDS = 1.0  # runs on the huge generated inputs
+
+
+# ---------------------------------------------------------------------------- inputs
+
+def polygon(n, z=0.0, scale=1.0):
+    return ["v %r %r %r" % (scale * math.cos(2 * math.pi * i / n), scale * math.sin(2 * math.pi * i / n), z)
+            for i in range(n)]
+
+
+def write(path, lines, newline="\n", prefix=b""):
+    with open(path, "wb") as f:
+        f.write(prefix + (newline.join(lines) + newline).encode())
+    return path
+
+
+def cube_lines(scale=1.0, flat=False):
+    corners = [(x, y, z) for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)]
+    lines = ["v %r %r %r" % (scale * x, scale * y, 0.0 if flat else scale * z) for x, y, z in corners]
+    return lines + ["f 5 7 8 6", "f 1 2 4 3", "f 3 4 8 7", "f 1 5 6 2", "f 2 6 8 4", "f 1 3 7 5"]
+
+
+def generate(work, corners):
+    """Writes the generated inputs; returns {name: (path, is_huge)}. The huge ones have about
+    @p corners face corners each, in one face (disk), two (pillow), or around one vertex (fan)
+    or two (bipyramid)."""
+    out = {}
+    n = corners
+    out["disk"] = (write(os.path.join(work, "disk.obj"), polygon(n) + ["f " + " ".join(map(str, range(1, n + 1)))]),
+                   True)
+    n = corners // 2
+    out["pillow"] = (write(os.path.join(work, "pillow.obj"),
+                           polygon(n) + ["f " + " ".join(map(str, range(1, n + 1))),
+                                         "f " + " ".join(map(str, range(n, 0, -1)))]), True)
+    # A cone whose apex has valence n, closed by a bipyramid's second apex.
+    n = corners // 6
+    ring = polygon(n)
+    faces = ["f 1 %d %d" % (i + 3, (i + 1) % n + 3) for i in range(n)]
+    faces += ["f 2 %d %d" % ((i + 1) % n + 3, i + 3) for i in range(n)]
+    out["bipyramid"] = (write(os.path.join(work, "bipyramid.obj"), ["v 0 0 1", "v 0 0 -1"] + ring + faces), True)
+    n = corners // 3
+    ring = polygon(n)
+    fan = ["f 1 %d %d" % (i + 2, (i + 1) % n + 2) for i in range(n)]
+    out["fan"] = (write(os.path.join(work, "fan.obj"), ["v 0 0 1"] + ring + fan), True)
+    for name, scale in [("cube_1e-160", 1e-160), ("cube_1e-100", 1e-100), ("cube_1e80", 1e80),
+                        ("cube_1e155", 1e155), ("cube_1.7e308", 1.7e308)]:
+        out[name] = (write(os.path.join(work, name + ".obj"), cube_lines(scale)), False)
+    out["cube_flat"] = (write(os.path.join(work, "cube_flat.obj"), cube_lines(flat=True)), False)
+    bom = b"\xef\xbb\xbf"
+    out["bom_obj"] = (write(os.path.join(work, "bom.obj"), cube_lines(), prefix=bom), False)
+    out["bom_off"] = (write(os.path.join(work, "bom.off"),
+                            ["OFF", "4 4 0", "0 0 0", "1 0 0", "0 1 0", "0 0 1",
+                             "3 0 2 1", "3 0 1 3", "3 0 3 2", "3 1 2 3"], prefix=bom), False)
+    out["bom_ply"] = (write(os.path.join(work, "bom.ply"),
+                            ["ply", "format ascii 1.0", "element vertex 4", "property float x",
+                             "property float y", "property float z", "element face 4",
+                             "property list uchar int vertex_indices", "end_header", "0 0 0", "1 0 0", "0 1 0",
+                             "0 0 1", "3 0 2 1", "3 0 1 3", "3 0 3 2", "3 1 2 3"], prefix=bom), False)
+    out["cr_obj"] = (write(os.path.join(work, "cr.obj"), cube_lines(), newline="\r"), False)
+    out["cr_off"] = (write(os.path.join(work, "cr.off"),
+                           ["OFF", "4 4 0", "0 0 0", "1 0 0", "0 1 0", "0 0 1",
+                            "3 0 2 1", "3 0 1 3", "3 0 3 2", "3 1 2 3"], newline="\r"), False)
+    out["cr_ply"] = (write(os.path.join(work, "cr.ply"),
+                           ["ply", "format ascii 1.0", "element vertex 1", "property float x",
+                            "property float y", "property float z", "end_header", "0 0 0"], newline="\r"), False)
+    directory = os.path.join(work, "a_directory.obj")
+    os.makedirs(directory, exist_ok=True)
+    out["directory"] = (directory, False)
+    return out
+
+
+def corpus(root):
+    out = {}
+    for folder in [os.path.join(root, "tests", "data", "malformed"),
+                   os.path.join(root, "tests", "cli", "adversarial", "corpus")]:
+        if not os.path.isdir(folder):
+            continue
+        for name in sorted(os.listdir(folder)):
+            out[name] = (os.path.join(folder, name), False)
+    for name in ["cube.obj", "genus2.obj", "icosahedron.obj", "quad_grid.obj", "cube_creases.obj"]:
+        out["bundled_" + name] = (os.path.join(root, "data", "meshes", name), False)
+    return out
+
+
+# ---------------------------------------------------------------------------- commands
+
+def commands(mesh, out_dir, is_huge):
+    """(label, argv, output files it may write) for one input."""
+    def o(name):
+        return os.path.join(out_dir, name)
+    runs = [
+        ("info", ["info", mesh], []),
+        ("info --json", ["info", "--json", mesh], []),
+        ("convert obj", ["convert", mesh, o("c.obj")], [o("c.obj")]),
+        ("convert ply", ["convert", mesh, o("c.ply"), "--ply-encoding", "binary-le"], [o("c.ply")]),
+        ("subdivide bilinear", ["subdivide", mesh, "--scheme", "bilinear", "--levels", "1", "-o", o("b.obj")],
+         [o("b.obj")]),
+        ("subdivide catmull-clark", ["subdivide", mesh, "--scheme", "catmull-clark", "--levels", "1", "-o", o("s.off")],
+         [o("s.off")]),
+        ("subdivide loop", ["subdivide", mesh, "--scheme", "loop", "--levels", "1", "-o", o("l.obj")], [o("l.obj")]),
+        ("subdivide doo-sabin", ["subdivide", mesh, "--scheme", "doo-sabin", "--levels", "1", "-o", o("d.ply")],
+         [o("d.ply")]),
+    ]
+    if is_huge:
+        return runs + [
+            ("eval catmull-clark", ["eval", mesh, "--scheme", "catmull-clark", "--grid", "1"], []),
+            ("volume doo-sabin", ["volume", mesh, "--scheme", "doo-sabin"], []),
+            ("volume loop", ["volume", mesh, "--scheme", "loop"], []),
+            ("poisson loop sec", ["poisson", mesh, "--scheme", "loop", "--rhs", "x"], []),
+        ]
+    return runs + [
+        ("subdivide 2 levels", ["subdivide", mesh, "--scheme", "catmull-clark", "--levels", "2", "-o", o("s2.obj"),
+                                "--json"], [o("s2.obj")]),
+        ("eval catmull-clark", ["eval", mesh, "--scheme", "catmull-clark", "--grid", "2"], []),
+        ("eval loop json", ["eval", mesh, "--scheme", "loop", "--grid", "2", "--json"], []),
+        ("eval doo-sabin to file", ["eval", mesh, "--scheme", "doo-sabin", "--grid", "1", "-o", o("e.json")],
+         [o("e.json")]),
+        ("measure catmull-clark", ["measure", mesh, "--scheme", "catmull-clark", "--degree", "6", "--tiles", "4"], []),
+        ("measure loop json", ["measure", mesh, "--scheme", "loop", "--degree", "6", "--tiles", "4", "--json"], []),
+        ("volume catmull-clark", ["volume", mesh, "--scheme", "catmull-clark", "--levels", "2"], []),
+        ("volume doo-sabin json", ["volume", mesh, "--scheme", "doo-sabin", "--levels", "1", "--json"], []),
+        ("volume loop moments", ["volume", mesh, "--scheme", "loop", "--levels", "1", "--moments", "--degree", "6",
+                                 "--tiles", "4"], []),
+        ("poisson catmull-clark sec", ["poisson", mesh, "--scheme", "catmull-clark", "--rhs", "x", "--level", "2",
+                                       "-o", o("p.vtk")], [o("p.vtk")]),
+        ("poisson loop dec json", ["poisson", mesh, "--scheme", "loop", "--method", "dec", "--rhs", "1e308*(x+0.6)",
+                                   "--json"], []),
+        ("poisson catmull-clark huge boundary", ["poisson", mesh, "--scheme", "catmull-clark", "--method", "dec",
+                                                 "--rhs", "1", "--boundary-value", "1e308", "-o", o("q.vtu")],
+         [o("q.vtu")]),
+    ]
+
+
+# ---------------------------------------------------------------------------- checks
+
+def check(limsurf, name, label, argv, outputs, out_dir, is_huge):
+    """Runs one command; returns a list of problems (empty when it kept the promise)."""
+    for path in os.listdir(out_dir):
+        os.remove(os.path.join(out_dir, path))
+    start = time.monotonic()
+    limit = HUGE_SECONDS if is_huge else SLOW_SECONDS
+    try:
+        run = subprocess.run([limsurf] + argv, capture_output=True, timeout=max(limit * 20, 10), cwd=out_dir)
+    except subprocess.TimeoutExpired:
+        return ["%s | %s: did not finish (a hang)" % (name, label)]
+    seconds = time.monotonic() - start
+    problems = []
+    where = "%s | %s" % (name, label)
+    out = run.stdout.decode("utf-8", "replace")
+    err = run.stderr.decode("utf-8", "replace")
+    err_lines = [line for line in err.splitlines() if line]
+    if seconds > limit:
+        problems.append("%s: took %.2f s (limit %.1f s)" % (where, seconds, limit))
+    if run.returncode not in (0, 1, 2):
+        problems.append("%s: exit code %d: %s" % (where, run.returncode, err[-300:]))
+        return problems
+    written = sorted(os.listdir(out_dir))
+    if run.returncode != 0:
+        errors = [line for line in err_lines if line.startswith("error:")]
+        if len(errors) != 1 or not err_lines or not err_lines[-1].startswith("error:"):
+            problems.append("%s: expected one final 'error:' line, got: %r" % (where, err[-400:]))
+        if written:
+            problems.append("%s: failed but left files %s" % (where, written))
+    else:
+        if NON_FINITE.search(out):
+            problems.append("%s: nan/inf on stdout: %s" % (where, NON_FINITE.search(out).group(0)))
+        for path in outputs:
+            if os.path.exists(path) and NON_FINITE.search(open(path, "rb").read().decode("utf-8", "replace")):
+                problems.append("%s: nan/inf in %s" % (where, os.path.basename(path)))
+            if os.path.exists(path) and os.path.splitext(path)[1] in (".obj", ".off", ".ply"):
+                back = subprocess.run([limsurf, "info", path], capture_output=True, timeout=60)
+                if back.returncode != 0:
+                    problems.append("%s: wrote %s that limsurf does not read back: %s"
+                                    % (where, os.path.basename(path), back.stderr.decode()[-200:]))
+        strays = [f for f in written if os.path.join(out_dir, f) not in outputs]
+        if strays:
+            problems.append("%s: left unexpected files %s" % (where, strays))
+    warnings = [line for line in err_lines if line.startswith("warning:")]
+    if len(warnings) > MAX_WARNING_LINES:
+        problems.append("%s: %d warning lines (at most %d)" % (where, len(warnings), MAX_WARNING_LINES))
+    return problems
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("limsurf")
+    parser.add_argument("root")
+    parser.add_argument("work")
+    parser.add_argument("--huge", type=int, default=100000, help="face corners of each huge input")
+    args = parser.parse_args()
+    if os.path.exists(args.work):
+        shutil.rmtree(args.work)
+    os.makedirs(args.work)
+    inputs = dict(corpus(args.root))
+    inputs.update(generate(args.work, args.huge))
+    jobs = []
+    for index, (name, (path, is_huge)) in enumerate(sorted(inputs.items())):
+        for label, argv, outputs in commands(path, "@OUT@", is_huge):
+            jobs.append((name, label, argv, outputs, is_huge, index))
+
+    local = threading.local()  # one output folder per worker thread
+
+    def run_job(job):
+        name, label, argv, outputs, is_huge, _ = job
+        if not hasattr(local, "out_dir"):
+            local.out_dir = os.path.join(args.work, "out-%d" % threading.get_ident())
+            os.makedirs(local.out_dir)
+        out_dir = local.out_dir
+        fix = lambda s: s.replace("@OUT@", out_dir)
+        return check(args.limsurf, name, label, [fix(a) for a in argv], [fix(o) for o in outputs], out_dir, is_huge)
+
+    # Huge inputs run alone (their time bound is tight); the others two at a time.
+    problems = []
+    passed = 0
+    small = [j for j in jobs if not j[4]]
+    huge = [j for j in jobs if j[4]]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        for result in pool.map(run_job, small):
+            problems += result
+            passed += not result
+    for job in huge:
+        result = run_job(job)
+        problems += result
+        passed += not result
+    for problem in problems:
+        print("FAIL " + problem)
+    print("%d passed, %d failed" % (passed, len(jobs) - passed))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
