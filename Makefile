@@ -1,6 +1,6 @@
 # The README's two commands:
 #   make demo   installs what is missing, builds, and runs limsurf on a bundled mesh
-#   make test   installs what is missing, builds, and runs every test (CI runs this)
+#   make test   installs what is missing, fuzzes each parser for 30 s, builds, and runs every test (CI runs this)
 # Other targets: make asan (the whole suite under sanitizers), make fuzz, make install PREFIX=...
 
 JOBS ?= 2
@@ -19,6 +19,7 @@ demo: setup
 	bash scripts/demo.sh build/release/cli/limsurf $(DEMO_MESH) $(DEMO_OUT)
 
 test: setup
+	bash fuzz/run.sh 30
 	cmake --preset ci
 	cmake --build --preset ci -j $(JOBS)
 	ctest --preset ci
