@@ -11,7 +11,7 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
-#include "face_split/face_split_helpers.h"
+#include "refine/face_split/face_split_helpers.h"
 #include "limsurf/refine/refine.h"
 #include "support/opensubdiv_refiner.h"
 

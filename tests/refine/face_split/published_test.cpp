@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
-#include "face_split/face_split_helpers.h"
+#include "refine/face_split/face_split_helpers.h"
 #include "limsurf/refine/refine.h"
 
 namespace limsurf::test {
