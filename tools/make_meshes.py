@@ -381,6 +381,40 @@ def make_sphere_tris():
                 b.verts, b.faces, 0, 0, 1, "volume", (5,))
 
 
+def make_tetra_sphere(j):
+    """F_tetra,j of the C2g0 paper (Fig. 6): the tetrahedron split 1-to-4 j times, every new
+    midpoint projected to the unit sphere; valences 3 (the four original vertices) and 6."""
+    verts = [normalize(v) for v in tetra_verts()]
+    faces = hull_faces(verts, TETRA_NORMALS)
+    for _ in range(j):
+        b = Builder()
+        for i, v in enumerate(verts):
+            b.vertex(("v", i), v)
+        for a, c, d in faces:
+            mids = []
+            for p, q in ((a, c), (c, d), (d, a)):
+                key = ("e", min(p, q), max(p, q))
+                mids.append(b.vertex(key, normalize(vscale(vadd(verts[p], verts[q]), 0.5))))
+            mab, mbc, mca = mids
+            b.face((a, mab, mca))
+            b.face((c, mbc, mab))
+            b.face((d, mca, mbc))
+            b.face((mab, mbc, mca))
+        verts, faces = b.verts, b.faces
+    return Mesh("tetra_%d" % j,
+                "F_tetra_%d (C2g0 paper Fig. 6): the tetrahedron split 1-to-4 %d times with midpoints projected "
+                "to the unit sphere; valences 3 and 6" % (j, j),
+                verts, faces, 0, 0, 1, "volume", (3,))
+
+
+def make_c2g0_torus(nu, nv):
+    vs, quads = torus_grid(nu, nv)
+    return Mesh("torus_%dx%d" % (nu, nv),
+                "torus (R=1 r=0.4) as a %dx%d grid with quads split along one diagonal; all valences 6 "
+                "(C2g0 paper Fig. 6)" % (nu, nv),
+                vs, split_quads(quads), 1, 0, 1, "volume", (6,))
+
+
 def make_cube_ngons():
     t = 0.25
     vs = [v for v in cube_verts() if v != (0.5, 0.5, 0.5)]
@@ -661,6 +695,8 @@ def all_meshes():
     ]
     meshes += [make_quad_valence(k) for k in range(3, 9)]
     meshes += [make_tri_valence(k) for k in range(3, 13)]
+    meshes += [make_tetra_sphere(j) for j in range(0, 5)]
+    meshes += [make_c2g0_torus(4, 5), make_c2g0_torus(8, 10)]
     return meshes
 
 

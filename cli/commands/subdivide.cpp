@@ -33,11 +33,9 @@ struct SubdivideOptions {
     bool json = false;
 };
 
-const std::map<std::string, SchemeKind> schemes{{"catmull-clark", SchemeKind::CatmullClark},
-                                                {"loop", SchemeKind::Loop},
-                                                {"doo-sabin", SchemeKind::DooSabin},
-                                                {"bilinear", SchemeKind::Bilinear},
-                                                {"linear", SchemeKind::Linear}};
+const std::map<std::string, SchemeKind> schemes{
+    {"catmull-clark", SchemeKind::CatmullClark}, {"loop", SchemeKind::Loop},     {"doo-sabin", SchemeKind::DooSabin},
+    {"bilinear", SchemeKind::Bilinear},          {"linear", SchemeKind::Linear}, {"c2g0", SchemeKind::C2g0}};
 const std::map<std::string, BoundaryInterpolation> boundaries{
     {"none", BoundaryInterpolation::None},
     {"edge-only", BoundaryInterpolation::EdgeOnly},

@@ -3,7 +3,7 @@
 //     box-spline patch (exact), to 1e-12 of the mesh size including second derivatives;
 //     limit positions and normals of the control vertices (PrimvarRefiner::Limit);
 //   - deep subdivision with limsurf's refinement (checked against OpenSubdiv in
-//     tests/face_split) and its own regular-patch gathering: everywhere the level-5
+//     tests/refine/face_split) and its own regular-patch gathering: everywhere the level-5
 //     face is regular, i.e. also in the irregular regions where Far uses Gregory end caps;
 //   - and how far Far's Gregory end caps are from the exact surface (printed, bounded).
 // Positions are perturbed randomly so that symmetric meshes cannot hide an error.
@@ -147,7 +147,7 @@ TEST_P(LimitPeer, MatchesOpenSubdivVertexLimits) {
     const Loaded m = load(GetParam());
     const LimitBasis basis(m.topology, GetParam().scheme, m.options);
     // Far's Limit masks treat a semi-sharp feature still alive at the last level as
-    // infinitely sharp: refine (with limsurf's engine, equal to Far's in tests/face_split)
+    // infinitely sharp: refine (with limsurf's engine, equal to Far's in tests/refine/face_split)
     // until every semi-sharp feature has decayed; child vertex v is control vertex v.
     Topology refined = m.topology;
     Points refined_X = m.X;

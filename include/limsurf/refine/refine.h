@@ -42,6 +42,14 @@ namespace limsurf {
 ///   fewer than 3 faces (its vertex face would not be a polygon)
 [[nodiscard]] Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options = {});
 
+/// @brief C2g0 (c2g0-sphere-scheme-biomembranes §1.2, §2): the triangle split of Loop with the
+///   rules of the three-directional box spline (each direction thrice: C⁴, degree 7) and the
+///   valence-3 rules of Fig. 3 (scheme/c2g0.h, exact rationals). Vertex rules read the 1-ring (the
+///   2-ring at a valence-3 vertex), edge rules the 1-rings of both ends.
+/// @throws UnsupportedError as require_c2g0_topology (boundaries, non-triangles, valences other than
+///   3 and 6, tags, adjacent valence-3 vertices), naming the element
+[[nodiscard]] Level refine_c2g0(const Topology& parent);
+
 /// @brief Dispatches on @p kind (tuned weights apply to Catmull–Clark only).
 [[nodiscard]] Level refine(const Topology& parent, SchemeKind kind, const SchemeOptions& options = {},
                            const TunedWeights& weights = {});

@@ -12,7 +12,8 @@ enum class SchemeKind {
     Loop,          ///< triangles in and out
     DooSabin,      ///< dual scheme, any polygon in
     Bilinear,      ///< quad split, linear interpolation (any polygon in)
-    Linear         ///< triangle midpoint split, linear interpolation
+    Linear,        ///< triangle midpoint split, linear interpolation
+    C2g0           ///< triangles with valences 3 and 6 only: C² with flexible curvature (scheme/c2g0.h)
 };
 
 /// Stable lower-case names as the CLI spells them ("catmull-clark", "doo-sabin").

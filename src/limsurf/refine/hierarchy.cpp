@@ -43,6 +43,7 @@ LevelSize next_size(const LevelSize& s, SchemeKind scheme, bool closed) {
                 0};
     case SchemeKind::Loop:
     case SchemeKind::Linear:
+    case SchemeKind::C2g0:
         return {s.vertices + s.edges,
                 2 * s.edges + 3 * s.faces,
                 4 * s.faces,
@@ -170,6 +171,8 @@ std::int64_t estimated_step_nonzeros(const LevelSize& parent, SchemeKind scheme)
         return s.vertices + 6 * s.edges;
     case SchemeKind::Linear:
         return s.vertices + 2 * s.edges;
+    case SchemeKind::C2g0:
+        return 10 * s.vertices + 10 * s.edges;  // 7 (10 at valence 3) per vertex row, 10 (8) per edge row
     case SchemeKind::DooSabin:
         return s.face_degree_squares;  // each corner's point mixes all corners of its face
     }

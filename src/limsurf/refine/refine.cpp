@@ -14,6 +14,8 @@ const char* to_string(SchemeKind kind) noexcept {
         return "bilinear";
     case SchemeKind::Linear:
         return "linear";
+    case SchemeKind::C2g0:
+        return "c2g0";
     }
     return "?";
 }
@@ -30,6 +32,8 @@ Level refine(const Topology& parent, SchemeKind kind, const SchemeOptions& optio
         return refine_bilinear(parent);
     case SchemeKind::Linear:
         return refine_linear(parent);
+    case SchemeKind::C2g0:
+        return refine_c2g0(parent);
     }
     return refine_bilinear(parent);
 }
