@@ -1,13 +1,19 @@
 // Catmull–Clark with tuned extraordinary-vertex weights
 // (iga-tuned-catmull-clark-weights, Fig. 1 and Table 1).
 //
-// At a smooth interior vertex v of valence n, the Catmull–Clark vertex rule is
-//     v' = (α v + β Σ_j e_j + γ Σ_j f_j) / (α + n β + n γ)
-// with e_j the n edge-neighbours of v and f_j the n new face points of the
-// faces around v. Catmull–Clark's own weights are α = n(n−2), β = γ = 1
-// (for n = 4: 8, 1, 1, the bicubic B-spline). Tuned weights change α, β, γ at
-// extraordinary vertices only; every other rule (faces, edges, creases,
-// boundaries) is unchanged.
+// α, β, γ are an extraordinary vertex v's *own* unnormalised weights in the three rules of
+// Fig. 1 (each rule then normalised to sum to one), every other point weighing 1:
+//     vertex rule  v' = (α v + Σ_j e_j + Σ_j F_j) / (α + 2n)       (e_j: the n edge-neighbours,
+//                                                                  F_j: the n new face points)
+//     edge rule    E  = (β v + w + F_0 + F_1) / (β + 3)           (edge (v, w), its two new face points)
+//     face rule    F  = (γ v + Σ other corners) / (γ + m − 1)     (an m-gon at v)
+// Catmull–Clark's own weights are α = n(n−2), β = γ = 1 (for n = 4: 8, 1, 1, the bicubic
+// B-spline). When both ends of an edge (or several corners of a face) have own weights, each
+// end (corner) brings its own. The weights act where the smooth vertex rule acts (Smooth and
+// Dart vertices, the smooth part of a semi-sharp blend); boundary, crease and corner vertices
+// keep β = γ = 1. Read this way, Table 1's weights give the subdominant eigenvalues 0.5500 (cup)
+// and 0.5850 (saddle) (`limsurf eigen`, docs/eigen.md). Until issue 13 β and γ were read as the
+// neighbours' weights in the vertex rule, which is a different scheme.
 #pragma once
 
 #include <filesystem>
@@ -18,11 +24,11 @@
 
 namespace limsurf {
 
-/// Unnormalised weights of the vertex rule (see the header comment).
+/// An extraordinary vertex's own unnormalised weights in its three rules (see the header comment).
 struct VertexRuleWeights {
-    double alpha = 0.0;  ///< weight of the vertex itself, > 0
-    double beta = 1.0;   ///< weight of each edge-neighbour, >= 0
-    double gamma = 1.0;  ///< weight of each new face point, >= 0
+    double alpha = 0.0;  ///< its weight in its vertex rule (neighbours and face points weigh 1), > 0
+    double beta = 1.0;   ///< its weight in the edge rule of each incident edge, >= 0
+    double gamma = 1.0;  ///< its weight in the face rule of each incident face, >= 0
 };
 
 /// Catmull–Clark's own weights for valence @p n: α = n(n−2), β = γ = 1.

@@ -1,11 +1,14 @@
 // Catmull–Clark refinement with OpenSubdiv's boundary, crease and triangle rules
 // (docs/schemes.md; iga-with-catmull-clark §3 for the regular stencils).
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include "limsurf/core/magnitude.h"
 #include "limsurf/detail/refine_face_split.h"
 #include "limsurf/refine/refine.h"
+#include "limsurf/scheme/tuned_weights.h"
 
 namespace limsurf {
 namespace {
@@ -17,13 +20,77 @@ std::size_t at(Index i) {
 /// Sdc's CATMARK_SMOOTH_TRI_EDGE_WEIGHT: face weight of a triangle next to a smooth edge.
 constexpr double smooth_triangle_edge_weight = 0.470;
 
-/// Adds weight w times the centroid of face f.
-void add_face_point(const Topology& parent, Index f, double w, detail::SparseRowBuilder& rows) {
+/// The extraordinary vertices' own weights in the edge (β) and face (γ) rules
+/// (iga-tuned-catmull-clark-weights Fig. 1); empty when every vertex has Catmull–Clark's (1, 1).
+struct OwnEdgeFaceWeights {
+    std::vector<double> beta;
+    std::vector<double> gamma;
+    [[nodiscard]] bool empty() const noexcept { return beta.empty(); }
+};
+
+/// Adds weight w times the point of face f: the centroid, or with tuned corners
+/// (Σ γ_c c) / Σ γ_c, γ_c = 1 for corners without tuned weights.
+void add_face_point(const Topology& parent, Index f, double w, const OwnEdgeFaceWeights& own,
+                    detail::SparseRowBuilder& rows) {
     const auto verts = parent.face_vertices(f);
-    const double share = w / static_cast<double>(verts.size());
-    for (const Index c : verts) {
-        rows.add(c, share);
+    bool tuned = false;
+    double largest = 1.0;
+    if (!own.empty()) {
+        for (const Index c : verts) {
+            tuned = tuned || own.gamma[at(c)] != 1.0;
+            largest = std::max(largest, own.gamma[at(c)]);
+        }
     }
+    if (!tuned) {  // Catmull–Clark's centroid, bit for bit
+        const double share = w / static_cast<double>(verts.size());
+        for (const Index c : verts) {
+            rows.add(c, share);
+        }
+        return;
+    }
+    // Scaled by a power of two (exactly) so that the sum cannot overflow (γ = 1e308).
+    const int exponent = -magnitude_exponent(Eigen::Vector3d(largest, 0.0, 0.0));
+    double sum = 0.0;
+    for (const Index c : verts) {
+        sum += std::ldexp(own.gamma[at(c)], exponent);
+    }
+    for (const Index c : verts) {
+        rows.add(c, w * (std::ldexp(own.gamma[at(c)], exponent) / sum));
+    }
+}
+
+/// Three weights of one rule scaled by a power of two (exactly) so that their normalising sum
+/// neither overflows (weights of 1e308) nor loses them to underflow: a rule depends on ratios only.
+Eigen::Vector3d scale_free(const Eigen::Vector3d& w) {
+    return times_power_of_two(w, -magnitude_exponent(w));
+}
+
+/// β and γ of every vertex whose rule is the smooth one (Smooth, Dart, or the smooth part of a
+/// semi-sharp blend) and whose weights are tuned; (1, 1) elsewhere. Empty for Catmull–Clark's own.
+OwnEdgeFaceWeights own_edge_face_weights(const Topology& parent, const detail::EffectiveSharpness& effective,
+                                         CreasingMethod creasing, const TunedWeights& weights) {
+    OwnEdgeFaceWeights own;
+    if (weights.is_catmull_clark()) {
+        return own;
+    }
+    own.beta.assign(at(parent.num_vertices()), 1.0);
+    own.gamma.assign(at(parent.num_vertices()), 1.0);
+    bool any = false;
+    detail::VertexMask mask;
+    detail::VertexMaskWorkspace work;
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        const auto record = [&](Index u, detail::VertexMask&) {
+            const VertexRuleWeights w = weights.at(u, static_cast<int>(parent.valence(u)));
+            own.beta[at(u)] = w.beta;
+            own.gamma[at(u)] = w.gamma;
+            any = any || w.beta != 1.0 || w.gamma != 1.0;
+        };
+        detail::vertex_mask(parent, effective, creasing, v, record, mask, work);
+    }
+    if (!any) {
+        own = {};
+    }
+    return own;
 }
 
 }  // namespace
@@ -37,21 +104,22 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
     // Regular interior rows: 9 (vertex), 4 (face), 6 (edge) entries.
     detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E);
 
-    // Vertex points.
+    // The paper's convention (iga-tuned-catmull-clark-weights Fig. 1): α, β, γ are an
+    // extraordinary vertex's own weights in its vertex rule, in the edge rule of its edges and in the
+    // face rule of its faces; neighbours, other corners and new face points weigh 1; each rule is
+    // normalised to sum to 1. Catmull–Clark's own: α = n(n−2), β = γ = 1.
+    const OwnEdgeFaceWeights own = own_edge_face_weights(parent, effective, options.creasing, weights);
+
+    // Vertex points: (α v + Σ neighbours + Σ new face points) / (α + 2n).
     const auto smooth = [&](Index v, detail::VertexMask& mask) {
         const auto n = mask.edges.size();
-        // The rule depends on the weights' ratios only: scaled by a power of two (exactly) so that
-        // the normalising sum neither overflows (weights of 1e308) nor loses them to underflow.
         const VertexRuleWeights given = weights.at(v, static_cast<int>(n));
-        const Eigen::Vector3d scaled =
-            times_power_of_two(Eigen::Vector3d(given.alpha, given.beta, given.gamma),
-                               -magnitude_exponent(Eigen::Vector3d(given.alpha, given.beta, given.gamma)));
-        const VertexRuleWeights w{scaled.x(), scaled.y(), scaled.z()};
+        const Eigen::Vector3d w = scale_free({given.alpha, 1.0, 1.0});  // v, neighbours, face points
         const double nd = static_cast<double>(n);
-        const double denominator = w.alpha + nd * w.beta + nd * w.gamma;
-        mask.vertex = w.alpha / denominator;
-        const double edge_weight = w.beta / denominator;
-        const double face_weight = w.gamma / denominator;
+        const double denominator = w[0] + nd * w[1] + nd * w[2];
+        mask.vertex = w[0] / denominator;
+        const double edge_weight = w[1] / denominator;
+        const double face_weight = w[2] / denominator;
         for (auto& x : mask.edges) {
             x = edge_weight;
         }
@@ -67,15 +135,15 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
         const auto faces = parent.vertex_faces(v);
         for (std::size_t i = 0; i < faces.size(); ++i) {
             if (mask.faces[i] != 0.0) {
-                add_face_point(parent, faces[i], mask.faces[i], rows);
+                add_face_point(parent, faces[i], mask.faces[i], own, rows);
             }
         }
         rows.end_row();
     }
 
-    // Face points: centroids.
+    // Face points: centroids (γ-weighted at tuned corners).
     for (Index f = 0; f < F; ++f) {
-        add_face_point(parent, f, 1.0, rows);
+        add_face_point(parent, f, 1.0, own, rows);
         rows.end_row();
     }
 
@@ -91,25 +159,39 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
             rows.end_row();
             continue;
         }
-        // Smooth mask (an edge with one face is a boundary edge, always sharp).
+        // Smooth mask (an edge with one face is a boundary edge, always sharp):
+        // (β₀ v₀ + β₁ v₁ + f₀ + f₁) / (β₀ + β₁ + 2), β = 1 unless an end is tuned.
         double vertex_weight = 0.25;
         double face_weight = 0.25;
-        if (smooth_triangles && (parent.face_degree(faces[0]) == 3 || parent.face_degree(faces[1]) == 3)) {
+        double end_weight[2] = {0.25, 0.25};
+        const bool tuned_edge = !own.empty() && (own.beta[at(ends[0])] != 1.0 || own.beta[at(ends[1])] != 1.0);
+        const bool triangle_rule =
+            smooth_triangles && (parent.face_degree(faces[0]) == 3 || parent.face_degree(faces[1]) == 3);
+        if (triangle_rule) {
             const double w0 = parent.face_degree(faces[0]) == 3 ? smooth_triangle_edge_weight : 0.25;
             const double w1 = parent.face_degree(faces[1]) == 3 ? smooth_triangle_edge_weight : 0.25;
             face_weight = 0.5 * (w0 + w1);
             vertex_weight = 0.5 * (1.0 - 2.0 * face_weight);
         }
+        end_weight[0] = end_weight[1] = vertex_weight;
+        if (tuned_edge && !triangle_rule) {
+            const Eigen::Vector3d b = scale_free({own.beta[at(ends[0])], own.beta[at(ends[1])], 1.0});
+            const double sum = b[0] + b[1] + 2.0 * b[2];  // two ends, two face points of weight 1
+            end_weight[0] = b[0] / sum;
+            end_weight[1] = b[1] / sum;
+            face_weight = b[2] / sum;
+        }
         if (is_sharp(s)) {
             // Crease decaying to smooth: blend with the crease mask by the edge's sharpness.
             const double c = 1.0 - s;
-            vertex_weight = s * 0.5 + c * vertex_weight;
+            end_weight[0] = s * 0.5 + c * end_weight[0];
+            end_weight[1] = s * 0.5 + c * end_weight[1];
             face_weight *= c;
         }
-        rows.add(ends[0], vertex_weight);
-        rows.add(ends[1], vertex_weight);
-        add_face_point(parent, faces[0], face_weight, rows);
-        add_face_point(parent, faces[1], face_weight, rows);
+        rows.add(ends[0], end_weight[0]);
+        rows.add(ends[1], end_weight[1]);
+        add_face_point(parent, faces[0], face_weight, own, rows);
+        add_face_point(parent, faces[1], face_weight, own, rows);
         rows.end_row();
     }
 

@@ -1,15 +1,17 @@
 // Identity tests of the face-split schemes: affine invariance, counts, Euler
 // characteristic, linear precision on planar grids, sharpness propagation,
 // tuned weights, provenance.
+#include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "refine/face_split/face_split_helpers.h"
 #include "limsurf/core/error.h"
 #include "limsurf/refine/refine.h"
+#include "refine/face_split/face_split_helpers.h"
 
 namespace limsurf::test {
 namespace {
@@ -289,24 +291,94 @@ TEST(FaceSplitTunedWeights, DefaultIsCatmullClarkBitForBit) {
     }
 }
 
-TEST(FaceSplitTunedWeights, CupChangesOnlyValenceFiveInteriorVertexRows) {
+// The paper's convention (Fig. 1): a valence-5 vertex's α changes its own vertex row, its β the
+// rows of its edges, its γ the rows of its faces (and, through the new face points, the rows of
+// its neighbours' vertex rules and of the edges of its faces). Every other row is Catmull–Clark's.
+TEST(FaceSplitTunedWeights, CupChangesOnlyTheRowsAroundValenceFiveInteriorVertices) {
     for (const char* name : {"disk_ev5_quads", "quad_valence_5", "genus2"}) {
         const auto mesh = load_bundled(name);
         const Topology& t = mesh.topology;
         const Level plain = refine_catmull_clark(t);
         const Level cup = refine_catmull_clark(t, {}, TunedWeights::preset("cup"));
+        const auto tuned = [&](Index v) { return !t.is_boundary_vertex(v) && t.valence(v) == 5; };
+        // A face point moves when its corners' γ differ (all tuned alike is the centroid again).
+        std::vector<bool> tuned_face(static_cast<std::size_t>(t.num_faces()), false);
+        for (Index f = 0; f < t.num_faces(); ++f) {
+            const auto corners = t.face_vertices(f);
+            const auto count = std::count_if(corners.begin(), corners.end(), tuned);
+            tuned_face[static_cast<std::size_t>(f)] = count > 0 && count < static_cast<std::ptrdiff_t>(corners.size());
+        }
+        const auto touches_tuned_face = [&](std::span<const Index> faces) {
+            return std::any_of(faces.begin(), faces.end(),
+                               [&](Index f) { return tuned_face[static_cast<std::size_t>(f)]; });
+        };
         int changed = 0;
         for (Index r = 0; r < plain.S0.rows(); ++r) {
-            const bool expected = r < t.num_vertices() && !t.is_boundary_vertex(r) && t.valence(r) == 5;
+            bool expected = false;
+            if (r < t.num_vertices()) {
+                expected = tuned(r) || (!t.is_boundary_vertex(r) && touches_tuned_face(t.vertex_faces(r)));
+            } else if (r < t.num_vertices() + t.num_faces()) {
+                expected = tuned_face[static_cast<std::size_t>(r - t.num_vertices())];
+            } else {
+                const Index e = r - t.num_vertices() - t.num_faces();
+                const auto ends = t.edge_vertices(e);
+                expected =
+                    !t.is_boundary_edge(e) && (tuned(ends[0]) || tuned(ends[1]) || touches_tuned_face(t.edge_faces(e)));
+            }
             const double diff = (Eigen::RowVectorXd(plain.S0.row(r)) - Eigen::RowVectorXd(cup.S0.row(r))).norm();
             EXPECT_EQ(diff != 0.0, expected) << name << " row " << r;
             changed += expected ? 1 : 0;
             for (SparseMatrix::InnerIterator it(cup.S0, r); it; ++it) {
                 EXPECT_GE(it.value(), 0.0);
             }
+            EXPECT_NEAR(Eigen::RowVectorXd(cup.S0.row(r)).sum(), 1.0, 1e-14) << name << " row " << r;
         }
         EXPECT_GT(changed, 0) << name;
     }
+}
+
+// The three rules with the paper's reading of α, β, γ, written out for one valence-5 vertex.
+TEST(FaceSplitTunedWeights, TheRulesAreThePapersFigureOne) {
+    const auto mesh = load_bundled("quad_valence_5");
+    const Topology& t = mesh.topology;
+    const auto tuned = [&](Index u) { return !t.is_boundary_vertex(u) && t.valence(u) == 5; };
+    Index v = invalid_index;
+    for (Index u = 0; u < t.num_vertices() && v == invalid_index; ++u) {
+        v = tuned(u) ? u : invalid_index;
+    }
+    ASSERT_NE(v, invalid_index);
+    const double alpha = 13.9851, beta = 0.824885, gamma = 0.824885;  // Table 1, saddle
+    const Level level = refine_catmull_clark(t, {}, TunedWeights::preset("saddle"));
+    const Eigen::MatrixXd S(level.S0);
+    const auto face_point = [&](Index f) {
+        Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(t.num_vertices());
+        double sum = 0.0;
+        for (const Index c : t.face_vertices(f)) {
+            const double w = tuned(c) ? gamma : 1.0;
+            row[c] += w;
+            sum += w;
+        }
+        return Eigen::RowVectorXd(row / sum);
+    };
+    for (const Index f : t.vertex_faces(v)) {
+        EXPECT_LT((S.row(t.num_vertices() + f) - face_point(f)).norm(), 1e-15);
+    }
+    Eigen::RowVectorXd vertex_row = Eigen::RowVectorXd::Zero(t.num_vertices());
+    vertex_row[v] = alpha;
+    for (const Index e : t.vertex_edges(v)) {
+        const Index w = t.other_vertex(e, v);
+        vertex_row[w] += 1.0;
+        const auto faces = t.edge_faces(e);
+        Eigen::RowVectorXd edge_row = face_point(faces[0]) + face_point(faces[1]);
+        const double beta_w = tuned(w) ? beta : 1.0;
+        edge_row[v] += beta;
+        edge_row[w] += beta_w;
+        EXPECT_LT((S.row(t.num_vertices() + t.num_faces() + e) - edge_row / (beta + beta_w + 2.0)).norm(), 1e-15);
+    }
+    for (const Index f : t.vertex_faces(v)) {
+        vertex_row += face_point(f);
+    }
+    EXPECT_LT((S.row(v) - vertex_row / (alpha + 10.0)).norm(), 1e-15);
 }
 
 }  // namespace
