@@ -23,8 +23,10 @@ struct LimitSchemeOptions {
 };
 
 inline const std::map<std::string, SchemeKind>& limit_schemes() {
-    static const std::map<std::string, SchemeKind> names{
-        {"catmull-clark", SchemeKind::CatmullClark}, {"loop", SchemeKind::Loop}, {"doo-sabin", SchemeKind::DooSabin}};
+    static const std::map<std::string, SchemeKind> names{{"catmull-clark", SchemeKind::CatmullClark},
+                                                         {"loop", SchemeKind::Loop},
+                                                         {"doo-sabin", SchemeKind::DooSabin},
+                                                         {"c2g0", SchemeKind::C2g0}};
     return names;
 }
 inline const std::map<std::string, BoundaryInterpolation>& boundary_names() {

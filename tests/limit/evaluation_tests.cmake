@@ -7,3 +7,14 @@ if(TARGET limsurf::peer_opensubdiv)
 endif()
 # Published limit masks (regular and extraordinary Catmull–Clark, Loop, boundary curve).
 limsurf_add_test(limit_published_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_published_test.cpp LABELS published)
+# C2g0 (c2g0-sphere-scheme-biomembranes §3.1): identities, the refined-control-point limit through
+# refine_c2g0, C² at valence-3 vertices, refusals (docs/c2g0_limit.md).
+limsurf_add_test(c2g0_limit_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/c2g0_limit_test.cpp LABELS identity)
+target_include_directories(c2g0_limit_test PRIVATE ${PROJECT_SOURCE_DIR}/src)
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+# The generated C2g0 regular patch table is what tools/make_c2g0_patch.py computes, and satisfies
+# partition of unity, linear reproduction and the refinement equation of the mask (1.3).
+add_test(NAME c2g0_patch_table.reproducible
+    COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/tools/make_c2g0_patch.py --check
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(c2g0_patch_table.reproducible PROPERTIES LABELS identity)

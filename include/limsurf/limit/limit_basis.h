@@ -12,13 +12,16 @@
 //   Loop: each triangle is one ptex face, (0,0)=v0, (1,0)=v1, (0,1)=v2, u,v >= 0, u+v <= 1.
 //   Doo–Sabin: the ptex faces of Catmull–Clark; region (face, corner k) is the patch of
 //     the first-level Doo–Sabin vertex of that corner (docs/doo_sabin_limit.md).
+//   C2g0: as Loop, each triangle one ptex face, (0,0)=v0, (1,0)=v1, (0,1)=v2
+//     (docs/c2g0_limit.md).
 //
 // Exactness (iga-with-catmull-clark §4, c2g0 §3.1): the surface over a face
 // is subdivided locally until the point lies in a regular tile (bicubic
 // B-spline / quartic box spline, with phantom points beyond boundaries and
-// infinitely sharp creases); around an extraordinary vertex (also on a
-// boundary or a crease) the local subdivision matrix becomes stationary and is
-// applied as a matrix power, so the cost does not grow with the depth.
+// infinitely sharp creases; C2g0: the degree-7 box spline of its type-0
+// triangles); around an extraordinary vertex (also on a boundary or a crease)
+// the local subdivision matrix becomes stationary and is applied as a matrix
+// power, so the cost does not grow with the depth.
 #pragma once
 
 #include <memory>
@@ -87,20 +90,23 @@ enum class LimitEvaluation {
 /// matrices, so the cost grows like n³ (n = 128: about a second for every ptex face of a 128-gon).
 constexpr Index max_limit_size = 128;
 
-/// @brief The exact limit basis of a control topology under Catmull–Clark, Loop or Doo–Sabin.
+/// @brief The exact limit basis of a control topology under Catmull–Clark, Loop, Doo–Sabin or C2g0.
 ///
 /// Construction is cheap; the local patches around irregular faces are built
 /// on first use and cached. evaluate() is thread-safe.
 class LimitBasis {
   public:
     /// @param topology control topology (copied); sharpness tags are honoured
-    /// @param scheme   CatmullClark, Loop or DooSabin (Doo–Sabin: closed interior faces only, see
-    ///   docs/doo_sabin_limit.md)
+    /// @param scheme   CatmullClark, Loop, DooSabin (Doo–Sabin: closed interior faces only, see
+    ///   docs/doo_sabin_limit.md) or C2g0 (closed triangle meshes with valences 3 and 6 whose
+    ///   valence-3 vertices are pairwise at distance >= 2; those at distance 2 or 3 are evaluated
+    ///   through one refinement; c2g0-sphere-scheme-biomembranes §3.1, docs/c2g0_limit.md)
     /// @param options  boundary rule, creasing method, triangle rule
     /// @param weights  tuned Catmull–Clark weights, per valence or per vertex (weights that change a
     ///   regular interior valence-4 vertex are refused: they change the regular patches)
     /// @throws UnsupportedError for other schemes, Loop on non-triangles, tuned weights at valence 4,
-    ///   a face or vertex beyond max_limit_size (naming it)
+    ///   a face or vertex beyond max_limit_size (naming it); C2g0: what require_c2g0_topology refuses
+    ///   (naming the face or vertex), tuned weights
     LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options = {},
                const TunedWeights& weights = {}, LimitEvaluation evaluation = LimitEvaluation::Stationary);
     ~LimitBasis();

@@ -22,6 +22,7 @@
 
 #include <Eigen/LU>
 
+#include "c2g0_limit.h"
 #include "doo_sabin_limit.h"
 #include "limsurf/core/error.h"
 #include "limsurf/limit/patch_basis.h"
@@ -185,6 +186,7 @@ struct LimitBasis::Impl {
     std::vector<Index> first_ptex;  // #F + 1
     std::vector<PtexFace> ptex;
     std::unique_ptr<detail::DooSabinLimit> doo_sabin;  // Doo–Sabin: its own evaluator (dual patches)
+    std::unique_ptr<detail::C2g0Limit> c2g0;           // C2g0: its own evaluator (docs/c2g0_limit.md)
     /// Regular ptex faces whose patch points are plain control vertices (most faces of a
     /// typical mesh), found in the constructor and stored flat: evaluating them is one
     /// look-up, no tree. fast_index[p] is the entry of ptex face p, or -1.
@@ -611,6 +613,10 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, int rows_needed, Limi
         doo_sabin->evaluate(point.face, point.u, point.v, out.vertices, out.w);
         return;
     }
+    if (c2g0) {
+        c2g0->evaluate(point.face, point.u, point.v, rows_needed, out.vertices, out.w, out.at_extraordinary_vertex);
+        return;
+    }
     const Root& r = root(point.face);
     LIMSURF_CHECK(r.has_limit, InputError, "ptex face ", point.face, " (control face ",
                   ptex[at(point.face)].control_face, ") has no limit surface (a hole, or a boundary face under ",
@@ -633,9 +639,10 @@ Eigen::Matrix<double, 6, 3> LimitWeights::apply(const Points& X) const {
 LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const SchemeOptions& options,
                        const TunedWeights& weights, LimitEvaluation evaluation)
     : impl_(std::make_unique<Impl>()) {
-    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin,
+    LIMSURF_CHECK(scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop || scheme == SchemeKind::DooSabin ||
+                      scheme == SchemeKind::C2g0,
                   UnsupportedError, "limit evaluation: scheme ", to_string(scheme),
-                  " has no limit evaluation (catmull-clark, loop, doo-sabin)");
+                  " has no limit evaluation (catmull-clark, loop, doo-sabin, c2g0)");
     require_local_size(topology, max_limit_size, "the limit basis");
     const VertexRuleWeights plain = TunedWeights().at(invalid_index, 4);
     const VertexRuleWeights four = weights.at(invalid_index, 4);
@@ -667,6 +674,19 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
                 m.ptex.push_back(m.doo_sabin->ptex_face(first + k));
             }
             m.first_ptex.push_back(static_cast<Index>(m.ptex.size()));
+        }
+        return;
+    }
+    if (scheme == SchemeKind::C2g0) {
+        // Closed triangle meshes with valences 3 and 6 (require_c2g0_topology), one ptex face per
+        // triangle as Loop; tuned weights are Catmull–Clark's and do not apply.
+        LIMSURF_CHECK(weights.is_catmull_clark(), UnsupportedError, "tuned weights apply to Catmull–Clark only");
+        m.quad = false;
+        m.c2g0 = std::make_unique<detail::C2g0Limit>(topology, evaluation);
+        m.first_ptex.push_back(0);
+        for (Index f = 0; f < topology.num_faces(); ++f) {
+            m.ptex.push_back({f, -1});
+            m.first_ptex.push_back(f + 1);
         }
         return;
     }
@@ -721,6 +741,9 @@ bool LimitBasis::has_limit_surface(Index p) const {
     (void)ptex_face(p);
     if (impl_->doo_sabin) {
         return impl_->doo_sabin->has_limit_surface(p);
+    }
+    if (impl_->c2g0) {
+        return true;  // closed meshes only
     }
     return impl_->root(p).has_limit;
 }
