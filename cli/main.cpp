@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     add_measure_command(app, status);
     add_volume_command(app, status);
     add_poisson_command(app, status);
+    add_eigen_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -20,6 +20,7 @@ LAYERS = {
     "quadrature": {"core", "mesh", "scheme", "refine", "limit"},
     "volume": {"core", "mesh", "scheme", "refine"},
     "sec": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
+    "analysis": {"core", "mesh", "scheme", "refine", "limit"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 
