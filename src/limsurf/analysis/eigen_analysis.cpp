@@ -26,6 +26,8 @@ std::size_t at(Index i) {
 constexpr double cluster_tolerance = 1e-6;
 /// Singular values below this (relative to 1: S is stochastic) count as zero in ranks.
 constexpr double rank_tolerance = 1e-6;
+/// Largest neighbourhood analysed (S is dense: 4096² doubles are 128 MiB).
+constexpr Index max_neighbourhood = 4096;
 /// Eigenvalues equal for the verdicts (λ₁ = λ₂, λ₃ = λ²) when closer than this.
 constexpr double equality_tolerance = 1e-8;
 
@@ -123,26 +125,79 @@ Neighbourhood order_neighbourhood(const detail::LocalComplex& complex, const std
     return out;
 }
 
-/// The DFT basis of frequency k: columns over the sector-major neighbourhood.
-Eigen::MatrixXcd fourier_basis(const Neighbourhood& n, int k) {
-    const Index size = static_cast<Index>(n.order.size());
-    const Index columns = (k == 0 ? n.fixed : 0) + n.orbits;
-    Eigen::MatrixXcd E = Eigen::MatrixXcd::Zero(size, columns);
-    Index c = 0;
-    if (k == 0) {
-        for (; c < n.fixed; ++c) {
-            E(c, c) = 1.0;
+/// e^{2πi·jk/n}.
+Complex phase(Index j, int k, int n) {
+    return std::polar(1.0, 2.0 * std::numbers::pi * static_cast<double>((j * k) % n) / static_cast<double>(n));
+}
+
+/// @brief The Fourier block B_k = E_kᴴ S E_k of frequency k, where E_k's columns are the fixed
+///   vertices (k = 0 only) and, per orbit m, Σ_j e^{2πijk/n} e_{sector j, m} / √n. S is block
+///   circulant in sector-major order, so B_k(m, m') = Σ_d S(sector 0 m, sector d m') e^{2πidk/n}:
+///   O(n·M²) per block, not the O(N²·M) of the products.
+Eigen::MatrixXcd fourier_block(const Eigen::MatrixXd& S, const Neighbourhood& n, int k) {
+    const Index F = k == 0 ? n.fixed : 0;
+    const Index M = n.orbits;
+    const double root = std::sqrt(static_cast<double>(n.sectors));
+    const auto index = [&](Index j, Index m) { return n.fixed + j * M + m; };
+    Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(F + M, F + M);
+    for (Index f = 0; f < F; ++f) {
+        for (Index g = 0; g < F; ++g) {
+            B(f, g) = S(f, g);
+        }
+        for (Index m = 0; m < M; ++m) {
+            double row = 0.0;
+            for (Index j = 0; j < n.sectors; ++j) {
+                row += S(f, index(j, m));
+            }
+            B(f, F + m) = row / root;
+            B(F + m, f) = root * S(index(0, m), f);
         }
     }
-    const double scale = 1.0 / std::sqrt(static_cast<double>(n.sectors));
-    for (Index m = 0; m < n.orbits; ++m, ++c) {
-        for (int j = 0; j < n.sectors; ++j) {
-            const double angle =
-                2.0 * std::numbers::pi * static_cast<double>(j * k % n.sectors) / static_cast<double>(n.sectors);
-            E(n.fixed + static_cast<Index>(j) * n.orbits + m, c) = std::polar(scale, angle);
+    for (Index d = 0; d < n.sectors; ++d) {
+        const Complex w = phase(d, k, n.sectors);
+        for (Index m = 0; m < M; ++m) {
+            for (Index mm = 0; mm < M; ++mm) {
+                B(F + m, F + mm) += S(index(0, m), index(d, mm)) * w;
+            }
         }
     }
-    return E;
+    return B;
+}
+
+/// Maps block coordinates back to the neighbourhood (E_k y, or y itself without symmetry).
+struct BlockBasis {
+    const Neighbourhood* n = nullptr;  ///< null: the identity
+    int frequency = 0;
+    [[nodiscard]] Eigen::VectorXcd expand(const Eigen::VectorXcd& y) const {
+        if (n == nullptr) {
+            return y;
+        }
+        const Index F = frequency == 0 ? n->fixed : 0;
+        Eigen::VectorXcd x = Eigen::VectorXcd::Zero(static_cast<Index>(n->order.size()));
+        x.head(F) = y.head(F);
+        const double root = std::sqrt(static_cast<double>(n->sectors));
+        for (Index j = 0; j < n->sectors; ++j) {
+            x.segment(n->fixed + j * n->orbits, n->orbits) =
+                y.tail(n->orbits) * (phase(j, frequency, n->sectors) / root);
+        }
+        return x;
+    }
+};
+
+/// max |S(ρa, ρb) − S(a, b)| / max |S| for the rotation ρ of the sector-major order.
+double symmetry_residual(const Eigen::MatrixXd& S, const Neighbourhood& n) {
+    const Index N = S.rows();
+    std::vector<Index> rotate(at(N));
+    for (Index i = 0; i < N; ++i) {
+        rotate[at(i)] = i < n.fixed ? i : n.fixed + ((i - n.fixed) + n.orbits) % (N - n.fixed);
+    }
+    double worst = 0.0;
+    for (Index a = 0; a < N; ++a) {
+        for (Index b = 0; b < N; ++b) {
+            worst = std::max(worst, std::abs(S(rotate[at(a)], rotate[at(b)]) - S(a, b)));
+        }
+    }
+    return worst / S.cwiseAbs().maxCoeff();
 }
 
 /// Rank of @p A: singular values above rank_tolerance.
@@ -155,16 +210,20 @@ Index numerical_rank(const Eigen::MatrixXcd& A) {
 }
 
 /// The eigenvalues of one block, clustered, with multiplicities, Jordan blocks and eigenvectors.
-void analyse_block(const Eigen::MatrixXcd& B, const Eigen::MatrixXcd& E, int frequency,
-                   std::vector<EigenvalueEntry>& out) {
+void analyse_block(const Eigen::MatrixXcd& B, const BlockBasis& E, int frequency, std::vector<EigenvalueEntry>& out) {
     const Index d = B.rows();
     if (d == 0) {
         return;
     }
-    Eigen::VectorXcd values = Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(B, false).eigenvalues();
-    std::vector<Complex> sorted(values.data(), values.data() + d);
-    std::sort(sorted.begin(), sorted.end(), [](Complex a, Complex b) {
-        return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : std::arg(a) < std::arg(b);
+    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(B, true);
+    std::vector<Index> sorted(static_cast<std::size_t>(d));
+    for (Index i = 0; i < d; ++i) {
+        sorted[at(i)] = i;
+    }
+    const auto& values = solver.eigenvalues();
+    std::sort(sorted.begin(), sorted.end(), [&](Index a, Index b) {
+        const double ma = std::abs(values[a]), mb = std::abs(values[b]);
+        return ma != mb ? ma > mb : std::arg(values[a]) < std::arg(values[b]);
     });
     std::vector<bool> used(sorted.size(), false);
     for (std::size_t i = 0; i < sorted.size(); ++i) {
@@ -173,9 +232,9 @@ void analyse_block(const Eigen::MatrixXcd& B, const Eigen::MatrixXcd& E, int fre
         }
         std::vector<Complex> cluster;
         for (std::size_t j = i; j < sorted.size(); ++j) {
-            if (!used[j] && std::abs(sorted[j] - sorted[i]) <= cluster_tolerance) {
+            if (!used[j] && std::abs(values[sorted[j]] - values[sorted[i]]) <= cluster_tolerance) {
                 used[j] = true;
-                cluster.push_back(sorted[j]);
+                cluster.push_back(values[sorted[j]]);
             }
         }
         Complex mean = 0.0;
@@ -187,6 +246,13 @@ void analyse_block(const Eigen::MatrixXcd& B, const Eigen::MatrixXcd& E, int fre
         entry.value = mean;
         entry.frequency = frequency;
         entry.algebraic = static_cast<int>(cluster.size());
+        if (entry.algebraic == 1) {  // simple: the solver's own eigenvector
+            entry.jordan_blocks = {1};
+            const Eigen::VectorXcd x = E.expand(solver.eigenvectors().col(sorted[i]));
+            entry.eigenvectors = x.normalized();
+            out.push_back(std::move(entry));
+            continue;
+        }
         // The generalised eigenspace: the `algebraic` smallest right singular vectors of
         // (B − μI)^algebraic; on it, N = B − μI is nilpotent and its ranks give the Jordan blocks.
         const Eigen::MatrixXcd shifted = B - mean * Eigen::MatrixXcd::Identity(d, d);
@@ -213,9 +279,13 @@ void analyse_block(const Eigen::MatrixXcd& B, const Eigen::MatrixXcd& E, int fre
             }
         }
         const Eigen::JacobiSVD<Eigen::MatrixXcd> kernel(N, Eigen::ComputeFullV);
-        entry.eigenvectors = E * Q * kernel.matrixV().rightCols(entry.geometric);
-        for (Index c = 0; c < entry.eigenvectors.cols(); ++c) {
-            entry.eigenvectors.col(c).normalize();
+        const Eigen::MatrixXcd y = Q * kernel.matrixV().rightCols(entry.geometric);
+        for (Index c = 0; c < y.cols(); ++c) {
+            const Eigen::VectorXcd x = E.expand(y.col(c));
+            if (c == 0) {
+                entry.eigenvectors.resize(x.size(), y.cols());
+            }
+            entry.eigenvectors.col(c) = x.normalized();
         }
         out.push_back(std::move(entry));
     }
@@ -242,23 +312,6 @@ Eigen::MatrixXd local_matrix(const Level& level, const Neighbourhood& n, const s
         }
     }
     return S;
-}
-
-/// The rotation matrix P (P x moves sector j's values to sector j + 1) in sector-major order.
-Eigen::MatrixXd rotation_matrix(const Neighbourhood& n) {
-    const Index size = static_cast<Index>(n.order.size());
-    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(size, size);
-    for (Index i = 0; i < n.fixed; ++i) {
-        P(i, i) = 1.0;
-    }
-    for (int j = 0; j < n.sectors; ++j) {
-        for (Index m = 0; m < n.orbits; ++m) {
-            const Index from = n.fixed + j * n.orbits + m;
-            const Index to = n.fixed + ((j + 1) % n.sectors) * n.orbits + m;
-            P(to, from) = 1.0;
-        }
-    }
-    return P;
 }
 
 /// Samples the characteristic map on the ring segment around the centre vertex.
@@ -501,8 +554,12 @@ SchemeSpectrum analyse_scheme(const EigenRequest& request) {
     if (request.weights) {
         weights.set_vertex(complex.centre[0], *request.weights);
     }
-    const Level level = refine(t, request.scheme, request.options, weights);
     const std::vector<int> ring = detail::face_rings(t, complex.centre, rings);
+    const auto size = std::count_if(ring.begin(), ring.end(), [](int r) { return r >= 0; });
+    LIMSURF_CHECK(size <= max_neighbourhood, InputError, "eigen-analysis: ", rings, " rings at valence ",
+                  request.valence, " hold ", size, " vertices, more than the ", max_neighbourhood,
+                  " the dense analysis takes: use fewer rings");
+    const Level level = refine(t, request.scheme, request.options, weights);
     // Every vertex of the neighbourhood has its whole one-ring in the complex (it has a ring more).
     const auto inside = [&](Index v) { return ring[at(v)] >= 0 && ring[at(v)] <= rings; };
 
@@ -547,18 +604,14 @@ SchemeSpectrum analyse_scheme(const EigenRequest& request) {
     out.sector = n.sector;
 
     if (sectors > 1) {
-        const Eigen::MatrixXd P = rotation_matrix(n);
-        out.symmetry_residual = (out.S * P - P * out.S).norm() / out.S.norm();
+        out.symmetry_residual = symmetry_residual(out.S, n);
         LIMSURF_CHECK(out.symmetry_residual <= 1e-12, NumericalError,
                       "eigen-analysis: S does not commute with the rotation (residual ", out.symmetry_residual, ")");
         for (int k = 0; k < sectors; ++k) {
-            const Eigen::MatrixXcd E = fourier_basis(n, k);
-            const Eigen::MatrixXcd B = E.adjoint() * out.S.cast<Complex>() * E;
-            analyse_block(B, E, k, out.eigenvalues);
+            analyse_block(fourier_block(out.S, n, k), BlockBasis{&n, k}, k, out.eigenvalues);
         }
     } else {
-        const Index size = out.S.rows();
-        analyse_block(out.S.cast<Complex>(), Eigen::MatrixXcd::Identity(size, size), -1, out.eigenvalues);
+        analyse_block(out.S.cast<Complex>(), BlockBasis{}, -1, out.eigenvalues);
     }
     // By decreasing modulus (equal to 1e-9 counts as equal), then frequency.
     const auto key = [](const EigenvalueEntry& e) {

@@ -130,6 +130,7 @@ def commands(mesh, out_dir, is_huge):
         ("subdivide loop", ["subdivide", mesh, "--scheme", "loop", "--levels", "1", "-o", o("l.obj")], [o("l.obj")]),
         ("subdivide doo-sabin", ["subdivide", mesh, "--scheme", "doo-sabin", "--levels", "1", "-o", o("d.ply")],
          [o("d.ply")]),
+        ("subdivide c2g0", ["subdivide", mesh, "--scheme", "c2g0", "--levels", "1", "-o", o("g.obj")], [o("g.obj")]),
     ]
     if is_huge:
         return runs + [
@@ -143,6 +144,7 @@ def commands(mesh, out_dir, is_huge):
                                 "--json"], [o("s2.obj")]),
         ("eval catmull-clark", ["eval", mesh, "--scheme", "catmull-clark", "--grid", "2"], []),
         ("eval loop json", ["eval", mesh, "--scheme", "loop", "--grid", "2", "--json"], []),
+        ("eval c2g0", ["eval", mesh, "--scheme", "c2g0", "--grid", "1", "--json"], []),
         ("eval doo-sabin to file", ["eval", mesh, "--scheme", "doo-sabin", "--grid", "1", "-o", o("e.json")],
          [o("e.json")]),
         ("measure catmull-clark", ["measure", mesh, "--scheme", "catmull-clark", "--degree", "6", "--tiles", "4"], []),
