@@ -186,6 +186,17 @@ SharpnessTags child_sharpness(const Topology& parent, const EffectiveSharpness& 
     return tags;
 }
 
+Index opposite_vertex(const Topology& parent, Index f, Index e) {
+    const auto edges = parent.face_edges(f);
+    const auto verts = parent.face_vertices(f);
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (edges[k] == e) {
+            return verts[(k + 2) % 3];
+        }
+    }
+    return invalid_index;
+}
+
 void require_triangles(const Topology& parent, const char* scheme) {
     for (Index f = 0; f < parent.num_faces(); ++f) {
         const Index degree = parent.face_degree(f);

@@ -62,6 +62,9 @@ struct ChildFaces {
 /// @throws UnsupportedError "face 3 has 4 vertices: <scheme> needs triangles"
 void require_triangles(const Topology& parent, const char* scheme);
 
+/// The corner of triangle @p f that is not an end of its edge @p e (invalid_index if e is not f's).
+[[nodiscard]] Index opposite_vertex(const Topology& parent, Index f, Index e);
+
 /// Builds a row-major sparse matrix row by row, in order, without triplets:
 /// duplicates within a row are merged and the row is sorted before it is appended.
 class SparseRowBuilder {

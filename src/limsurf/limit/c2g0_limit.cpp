@@ -18,6 +18,7 @@
 #include <Eigen/LU>
 
 #include "limsurf/core/error.h"
+#include "limsurf/detail/c2g0_stencils.h"
 #include "limsurf/refine/refine.h"
 #include "limsurf/scheme/c2g0.h"
 #include "parameter_maps.h"
@@ -29,7 +30,7 @@ namespace {
 
 using Rows = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 using Dense = Eigen::MatrixXd;
-using Row = std::vector<std::pair<Index, double>>;
+using Row = C2g0Row;
 
 std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
@@ -67,109 +68,17 @@ bool is_regular(const Topology& t, Index v) {
     return !t.is_boundary_vertex(v) && t.valence(v) == 6;
 }
 
-// --- the C2g0 rules as rows (the stencils of src/limsurf/refine/c2g0.cpp, read off any topology
-// whose vertices in the stencil have complete one-rings) ----------------------------------------
-
-/// The corner of triangle f that is not an end of edge e.
-Index opposite_vertex(const Topology& t, Index f, Index e) {
-    const auto edges = t.face_edges(f);
-    const auto verts = t.face_vertices(f);
-    for (std::size_t k = 0; k < 3; ++k) {
-        if (edges[k] == e) {
-            return verts[(k + 2) % 3];
-        }
-    }
-    return invalid_index;
-}
-
-/// The third corner of the triangle across edge (a, b) from c.
-Index across(const Topology& t, Index a, Index b, Index c) {
-    const Index e = t.find_edge(a, b);
-    for (const Index f : t.edge_faces(e)) {
-        const Index o = opposite_vertex(t, f, e);
-        if (o != c) {
-            return o;
-        }
-    }
-    return invalid_index;
-}
-
-struct Valence3Stencil {
-    std::array<Index, 3> r{};
-    std::array<Index, 3> t{};
-    std::array<Index, 3> u{};
-};
-
-Valence3Stencil valence3_stencil(const Topology& t, Index c) {
-    Valence3Stencil s;
-    const auto ring = ring_of(t, c);
-    for (std::size_t i = 0; i < 3; ++i) {
-        s.r[i] = ring[i];
-    }
-    for (std::size_t i = 0; i < 3; ++i) {
-        const auto around = ring_of(t, s.r[i]);
-        s.t[i] = around[at(mod6(index_in(around, c) + 3))];
-        s.u[i] = across(t, s.r[i], s.r[(i + 1) % 3], c);
-    }
-    return s;
-}
-
-void add(Row& row, Index v, const Rational& w) {
-    row.emplace_back(v, w.value());
-}
-
+/// The C2g0 rules as rows (detail/c2g0_stencils.h, the ones refine_c2g0 applies), read off any
+/// topology whose vertices in the stencil have complete one-rings.
 Row vertex_row(const Topology& t, Index v) {
     Row row;
-    if (t.valence(v) == 6) {
-        const C2g0RegularRules regular;
-        add(row, v, regular.vertex_self);
-        for (const Index w : ring_of(t, v)) {
-            add(row, w, regular.vertex_neighbour);
-        }
-        return row;
-    }
-    const C2g0Valence3Rules ev;
-    const Valence3Stencil s = valence3_stencil(t, v);
-    add(row, v, ev.z);
-    for (std::size_t i = 0; i < 3; ++i) {
-        add(row, s.r[i], ev.s);
-        add(row, s.t[i], ev.t);
-        add(row, s.u[i], ev.u);
-    }
+    c2g0_vertex_row(t, v, row);
     return row;
 }
 
 Row edge_row(const Topology& t, Index p, Index q) {
     Row row;
-    if (t.valence(p) == 3 || t.valence(q) == 3) {
-        const C2g0Valence3Rules ev;
-        const Index c = t.valence(p) == 3 ? p : q;
-        const Index other = c == p ? q : p;
-        const Valence3Stencil s = valence3_stencil(t, c);
-        const auto i = static_cast<std::size_t>(std::find(s.r.begin(), s.r.end(), other) - s.r.begin());
-        add(row, c, ev.a);
-        add(row, s.r[i], ev.b);
-        add(row, s.r[(i + 1) % 3], ev.c);
-        add(row, s.r[(i + 2) % 3], ev.c);
-        add(row, s.t[i], ev.e);
-        add(row, s.u[i], ev.d);
-        add(row, s.u[(i + 2) % 3], ev.d);
-        return row;
-    }
-    const C2g0RegularRules regular;
-    const Index e = t.find_edge(p, q);
-    add(row, p, regular.edge_end);
-    add(row, q, regular.edge_end);
-    for (const Index f : t.edge_faces(e)) {
-        add(row, opposite_vertex(t, f, e), regular.edge_opposite);
-    }
-    for (const auto& [end, other] : {std::pair{p, q}, std::pair{q, p}}) {
-        const auto ring = ring_of(t, end);
-        const int k = index_in(ring, other);
-        add(row, ring[at(mod6(k + 2))], regular.edge_side);
-        add(row, ring[at(mod6(k + 4))], regular.edge_side);
-        add(row, ring[at(mod6(k + 3))], regular.edge_far);
-    }
+    c2g0_edge_row(t, p, q, row);
     return row;
 }
 

@@ -5,6 +5,7 @@ target_sources(limsurf_subdiv PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/bilinear.cpp
     ${CMAKE_CURRENT_LIST_DIR}/linear.cpp
     ${CMAKE_CURRENT_LIST_DIR}/c2g0.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/../detail/c2g0_stencils.cpp
     ${CMAKE_CURRENT_LIST_DIR}/../detail/refine_face_split.cpp)
 # Form subdivision (S1, S2) for Loop and Catmull–Clark.
 target_sources(limsurf_subdiv PRIVATE

@@ -13,18 +13,6 @@ std::size_t at(Index i) {
     return static_cast<std::size_t>(i);
 }
 
-/// The corner of triangle f that is not an end of edge e.
-Index opposite_vertex(const Topology& parent, Index f, Index e) {
-    const auto edges = parent.face_edges(f);
-    const auto verts = parent.face_vertices(f);
-    for (std::size_t k = 0; k < 3; ++k) {
-        if (edges[k] == e) {
-            return verts[(k + 2) % 3];
-        }
-    }
-    return invalid_index;
-}
-
 }  // namespace
 
 Level refine_loop(const Topology& parent, const SchemeOptions& options) {
@@ -72,7 +60,7 @@ Level refine_loop(const Topology& parent, const SchemeOptions& options) {
         rows.add(ends[0], vertex_weight);
         rows.add(ends[1], vertex_weight);
         for (const Index f : parent.edge_faces(e)) {
-            rows.add(opposite_vertex(parent, f, e), face_weight);
+            rows.add(detail::opposite_vertex(parent, f, e), face_weight);
         }
         rows.end_row();
     }
