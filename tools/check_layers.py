@@ -21,6 +21,7 @@ LAYERS = {
     "volume": {"core", "mesh", "scheme", "refine"},
     "sec": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
     "analysis": {"core", "mesh", "scheme", "refine", "limit"},
+    "fem": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "limsurf/analysis/eigen_analysis.h"
+#include "limsurf/fem/galerkin.h"
 #include "limsurf/core/error.h"
 #include "limsurf/core/types.h"
 #include "limsurf/core/version.h"

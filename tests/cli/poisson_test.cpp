@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "limsurf/io/mesh_io.h"
 #include "support/mesh_zoo.h"
 #include "support/paths.h"
 
@@ -49,6 +50,33 @@ TEST(CliPoisson, SecIsCloserThanDecToTheFineReference) {
     const double sec = reference_l2("sec");
     EXPECT_LT(sec, dec / 10.0) << "dec " << dec << " sec " << sec;
     EXPECT_LT(reference_l2("decsnap"), dec);
+}
+
+// --method iga (Galerkin with the limit basis) on the same problem: as close to the reference as
+// SEC (both are far below DEC; the level-4 DEC reference limits what can be seen).
+TEST(CliPoisson, IgaIsAsCloseAsSecToTheFineReference) {
+    const double dec = reference_l2("dec");
+    const double iga = reference_l2("iga");
+    EXPECT_LT(iga, dec / 10.0) << "dec " << dec << " iga " << iga;
+}
+
+// The patch test through the command: f = 0 and a linear boundary function give that linear
+// function's control values everywhere (the limit basis reproduces it).
+TEST(CliPoisson, IgaReproducesALinearFunctionOnAnOpenMesh) {
+    const CliRun run =
+        limsurf({"poisson", mesh("disk_ev5_quads"), "--scheme", "catmull-clark", "--method", "iga", "--rhs", "0",
+                 "--boundary-value", "1+2*x", "--degree", "12", "--tiles", "10", "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto out = nlohmann::json::parse(run.out);
+    const BuildResult built = read_mesh(mesh("disk_ev5_quads"));
+    const Eigen::VectorXd u = 1.0 + 2.0 * built.mesh.positions().col(0).array();
+    EXPECT_NEAR(out.at("u_min").get<double>(), u.minCoeff(), 1e-9);
+    EXPECT_NEAR(out.at("u_max").get<double>(), u.maxCoeff(), 1e-9);
+    EXPECT_EQ(out.at("quadrature").at("degree").get<int>(), 12);
+    const CliRun lumped = limsurf(
+        {"poisson", mesh("disk_ev5_quads"), "--scheme", "catmull-clark", "--method", "iga", "--rhs", "0", "--lumped"});
+    EXPECT_EQ(lumped.exit_code, 1);
+    EXPECT_NE(lumped.err.find("--lumped"), std::string::npos) << lumped.err;
 }
 
 TEST(CliPoisson, OpenMeshWritesTheSolution) {

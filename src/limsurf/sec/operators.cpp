@@ -12,7 +12,7 @@
 #include "limsurf/core/magnitude.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
-#include "limsurf/sec/sparse_cholesky.h"
+#include "limsurf/detail/sparse_cholesky.h"
 
 namespace limsurf {
 

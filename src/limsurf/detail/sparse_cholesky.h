@@ -1,4 +1,4 @@
-// One sparse symmetric positive-definite solver for the sec layer: CHOLMOD (SuiteSparse,
+// One sparse symmetric positive-definite solver for the sec and fem layers: CHOLMOD (SuiteSparse,
 // supernodal) when limsurf is built with it, Eigen's SimplicialLDLT otherwise. Both are used
 // through Eigen's wrappers, on column-major copies.
 #pragma once
