@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     add_volume_command(app, status);
     add_poisson_command(app, status);
     add_eigen_command(app, status);
+    add_plate_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

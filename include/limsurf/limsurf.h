@@ -3,6 +3,7 @@
 
 #include "limsurf/analysis/eigen_analysis.h"
 #include "limsurf/fem/galerkin.h"
+#include "limsurf/fem/plate.h"
 #include "limsurf/core/error.h"
 #include "limsurf/core/types.h"
 #include "limsurf/core/version.h"

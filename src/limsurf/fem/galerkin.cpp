@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "element_assembly.h"
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
 
@@ -41,18 +41,6 @@ Metric metric_at(const LimitSampler& sampler, const Points& X, Index s) {
     return m;
 }
 
-/// Consecutive samples of one ptex face: the elements.
-std::vector<Index> element_offsets(const LimitSampler& sampler) {
-    std::vector<Index> offsets{0};
-    for (Index s = 1; s < sampler.num_samples(); ++s) {
-        if (sampler.point(s).face != sampler.point(s - 1).face) {
-            offsets.push_back(s);
-        }
-    }
-    offsets.push_back(sampler.num_samples());
-    return offsets;
-}
-
 void require_size(const LimitSampler& sampler, const Points& X) {
     LIMSURF_CHECK(X.rows() == sampler.num_vertices() && X.cols() == 3, InputError, "Galerkin assembly: X has ",
                   X.rows(), " rows, the control mesh ", sampler.num_vertices(), " vertices");
@@ -62,77 +50,28 @@ void require_size(const LimitSampler& sampler, const Points& X) {
 
 GalerkinMatrices assemble_laplace_beltrami(const LimitSampler& sampler, const Points& X) {
     require_size(sampler, X);
-    const std::vector<Index> offsets = element_offsets(sampler);
-    const Index num_elements = static_cast<Index>(offsets.size()) - 1;
-    using Triplets = std::vector<Eigen::Triplet<double>>;
-    std::vector<Triplets> mass_parts;
-    std::vector<Triplets> stiffness_parts;
-    std::mutex gather;
-    parallel_ranges(num_elements, sampler.options().num_threads, [&](Index begin, Index end) {
-        Triplets mass;
-        Triplets stiffness;
-        std::vector<Index> support;
-        std::vector<Index> local(at(sampler.num_vertices()), invalid_index);
-        for (Index e = begin; e < end; ++e) {
-            // The element's control vertices: the union over its samples.
-            support.clear();
-            for (Index s = offsets[at(e)]; s < offsets[at(e + 1)]; ++s) {
-                for (const Index v : sampler.vertices(s)) {
-                    if (local[at(v)] == invalid_index) {
-                        local[at(v)] = static_cast<Index>(support.size());
-                        support.push_back(v);
-                    }
-                }
-            }
-            const Index k = static_cast<Index>(support.size());
-            Eigen::MatrixXd Me = Eigen::MatrixXd::Zero(k, k);
-            Eigen::MatrixXd Ke = Eigen::MatrixXd::Zero(k, k);
-            Eigen::VectorXd phi(k);
-            Eigen::Matrix<double, 2, Eigen::Dynamic> dphi(2, k);
-            for (Index s = offsets[at(e)]; s < offsets[at(e + 1)]; ++s) {
-                const Metric m = metric_at(sampler, X, s);
-                const double w = sampler.weight(s) * m.area_element;
-                const auto W = sampler.limit_weights(s);
-                const auto verts = sampler.vertices(s);
-                phi.setZero();
-                dphi.setZero();
-                for (std::size_t j = 0; j < verts.size(); ++j) {
-                    const Index l = local[at(verts[j])];
-                    phi(l) += W(Value, static_cast<Index>(j));
-                    dphi(0, l) += W(Du, static_cast<Index>(j));
-                    dphi(1, l) += W(Dv, static_cast<Index>(j));
-                }
-                Me.noalias() += w * phi * phi.transpose();
-                Ke.noalias() += w * dphi.transpose() * m.inverse * dphi;
-            }
-            for (Index a = 0; a < k; ++a) {
-                for (Index b = 0; b < k; ++b) {
-                    mass.emplace_back(support[at(a)], support[at(b)], Me(a, b));
-                    stiffness.emplace_back(support[at(a)], support[at(b)], Ke(a, b));
-                }
-            }
-            for (const Index v : support) {
-                local[at(v)] = invalid_index;
-            }
-        }
-        const std::lock_guard<std::mutex> lock(gather);
-        mass_parts.push_back(std::move(mass));
-        stiffness_parts.push_back(std::move(stiffness));
-    });
-    const auto gathered = [&](std::vector<Triplets>& parts) {
-        Triplets all;
-        for (Triplets& p : parts) {
-            all.insert(all.end(), p.begin(), p.end());
-            Triplets().swap(p);
-        }
-        SparseMatrix A(sampler.num_vertices(), sampler.num_vertices());
-        A.setFromTriplets(all.begin(), all.end());
-        // Symmetric by construction up to rounding in the sums: make it exactly symmetric.
-        return SparseMatrix(0.5 * (A + SparseMatrix(A.transpose())));
-    };
     GalerkinMatrices out;
-    out.mass = gathered(mass_parts);
-    out.stiffness = gathered(stiffness_parts);
+    out.mass = detail::assemble_elements(sampler, [&](Index s, std::span<const Index> local, Eigen::MatrixXd& Me) {
+        const double w = sampler.weight(s) * metric_at(sampler, X, s).area_element;
+        const auto W = sampler.limit_weights(s);
+        for (std::size_t i = 0; i < local.size(); ++i) {
+            for (std::size_t j = 0; j < local.size(); ++j) {
+                Me(local[i], local[j]) += w * W(Value, static_cast<Index>(i)) * W(Value, static_cast<Index>(j));
+            }
+        }
+    });
+    out.stiffness = detail::assemble_elements(sampler, [&](Index s, std::span<const Index> local, Eigen::MatrixXd& Ke) {
+        const Metric m = metric_at(sampler, X, s);
+        const double w = sampler.weight(s) * m.area_element;
+        const auto W = sampler.limit_weights(s);
+        const Eigen::Matrix<double, 2, Eigen::Dynamic> d = W.middleRows<2>(Du);
+        const Eigen::MatrixXd local_k = w * d.transpose() * m.inverse * d;
+        for (std::size_t i = 0; i < local.size(); ++i) {
+            for (std::size_t j = 0; j < local.size(); ++j) {
+                Ke(local[i], local[j]) += local_k(static_cast<Index>(i), static_cast<Index>(j));
+            }
+        }
+    });
     return out;
 }
 
@@ -254,6 +193,36 @@ GalerkinPoissonSolution solve_galerkin_poisson(const Topology& topology, const G
             }
         }
     }
+    auto [solved, residual] =
+        detail::solve_with_fixed_values(matrices.stiffness, b, fixed, u, "the Galerkin stiffness matrix");
+    u = std::move(solved);
+    out.residual = residual;
+    if (closed) {
+        u.array() -= mass_of_one.dot(u) / area;  // ∫ u_h dA = 0
+    }
+    LIMSURF_CHECK(u.allFinite(), NumericalError, "Galerkin Poisson: the solution is not finite");
+    out.u = std::move(u);
+    return out;
+}
+
+namespace detail {
+
+std::vector<Index> element_offsets(const LimitSampler& sampler) {
+    std::vector<Index> offsets{0};
+    for (Index s = 1; s < sampler.num_samples(); ++s) {
+        if (sampler.point(s).face != sampler.point(s - 1).face) {
+            offsets.push_back(s);
+        }
+    }
+    offsets.push_back(sampler.num_samples());
+    return offsets;
+}
+
+std::pair<Eigen::VectorXd, double> solve_with_fixed_values(const SparseMatrix& A, const Eigen::VectorXd& b,
+                                                           const std::vector<bool>& fixed,
+                                                           const Eigen::VectorXd& values, const char* what) {
+    const Index V = A.rows();
+    Eigen::VectorXd u = values;
     std::vector<Index> free_index(at(V), invalid_index);
     Index num_free = 0;
     for (Index v = 0; v < V; ++v) {
@@ -272,9 +241,9 @@ GalerkinPoissonSolution solve_galerkin_poisson(const Topology& topology, const G
         if (fixed[at(r)]) {
             continue;
         }
-        for (SparseMatrix::InnerIterator it(matrices.stiffness, r); it; ++it) {
+        for (SparseMatrix::InnerIterator it(A, r); it; ++it) {
             if (fixed[at(it.col())]) {
-                rhs(free_index[at(r)]) -= it.value() * u(it.col());
+                rhs(free_index[at(r)]) -= it.value() * values(it.col());
             } else {
                 entries.emplace_back(free_index[at(r)], free_index[at(it.col())], it.value());
             }
@@ -282,21 +251,17 @@ GalerkinPoissonSolution solve_galerkin_poisson(const Topology& topology, const G
     }
     SparseMatrix K(num_free, num_free);
     K.setFromTriplets(entries.begin(), entries.end());
-    const detail::SparseCholesky solver(K, "the Galerkin stiffness matrix");
+    const SparseCholesky solver(K, what);
     const Eigen::VectorXd x = solver.solve(rhs);
     const double scale = rhs.norm();
-    out.residual = scale > 0.0 ? (K * x - rhs).norm() / scale : (K * x - rhs).norm();
+    const double residual = scale > 0.0 ? (K * x - rhs).norm() / scale : (K * x - rhs).norm();
     for (Index v = 0; v < V; ++v) {
         if (!fixed[at(v)]) {
             u(v) = x(free_index[at(v)]);
         }
     }
-    if (closed) {
-        u.array() -= mass_of_one.dot(u) / area;  // ∫ u_h dA = 0
-    }
-    LIMSURF_CHECK(u.allFinite(), NumericalError, "Galerkin Poisson: the solution is not finite");
-    out.u = std::move(u);
-    return out;
+    return {u, residual};
 }
 
+}  // namespace detail
 }  // namespace limsurf

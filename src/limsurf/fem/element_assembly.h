@@ -1,0 +1,86 @@
+// Per-control-face assembly (private to src/limsurf/fem): the samples of one ptex face form an
+// element; its dense matrix over the control vertices the surface there depends on is computed in
+// parallel with the other elements and gathered into one CSR matrix (docs/fem.md "Assembly").
+#pragma once
+
+#include <mutex>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "limsurf/core/types.h"
+#include "limsurf/quadrature/sampler.h"
+
+namespace limsurf::detail {
+
+/// Consecutive samples of one ptex face: the elements (offsets into the samples, #elements + 1).
+std::vector<Index> element_offsets(const LimitSampler& sampler);
+
+/// @brief Assembles Σ_elements of the dense matrices @p add_sample fills: add_sample(s, local, Ke)
+///   adds sample s's contribution to Ke (k × k over the element's vertices), where local[j] is the
+///   element row of sampler.vertices(s)[j]. The result is symmetrised exactly.
+template <class AddSample>
+SparseMatrix assemble_elements(const LimitSampler& sampler, const AddSample& add_sample) {
+    const std::vector<Index> offsets = element_offsets(sampler);
+    const Index num_elements = static_cast<Index>(offsets.size()) - 1;
+    using Triplets = std::vector<Eigen::Triplet<double>>;
+    std::vector<Triplets> parts;
+    std::mutex gather;
+    const auto at = [](Index i) { return static_cast<std::size_t>(i); };
+    parallel_ranges(num_elements, sampler.options().num_threads, [&](Index begin, Index end) {
+        Triplets triplets;
+        std::vector<Index> support;
+        std::vector<Index> slot(at(sampler.num_vertices()), invalid_index);
+        std::vector<Index> local;
+        for (Index e = begin; e < end; ++e) {
+            support.clear();
+            for (Index s = offsets[at(e)]; s < offsets[at(e + 1)]; ++s) {
+                for (const Index v : sampler.vertices(s)) {
+                    if (slot[at(v)] == invalid_index) {
+                        slot[at(v)] = static_cast<Index>(support.size());
+                        support.push_back(v);
+                    }
+                }
+            }
+            const Index k = static_cast<Index>(support.size());
+            Eigen::MatrixXd Ke = Eigen::MatrixXd::Zero(k, k);
+            for (Index s = offsets[at(e)]; s < offsets[at(e + 1)]; ++s) {
+                const auto verts = sampler.vertices(s);
+                local.resize(verts.size());
+                for (std::size_t j = 0; j < verts.size(); ++j) {
+                    local[j] = slot[at(verts[j])];
+                }
+                add_sample(s, std::span<const Index>(local), Ke);
+            }
+            for (Index a = 0; a < k; ++a) {
+                for (Index b = 0; b < k; ++b) {
+                    triplets.emplace_back(support[at(a)], support[at(b)], Ke(a, b));
+                }
+            }
+            for (const Index v : support) {
+                slot[at(v)] = invalid_index;
+            }
+        }
+        const std::lock_guard<std::mutex> lock(gather);
+        parts.push_back(std::move(triplets));
+    });
+    Triplets all;
+    for (Triplets& p : parts) {
+        all.insert(all.end(), p.begin(), p.end());
+        Triplets().swap(p);
+    }
+    SparseMatrix A(sampler.num_vertices(), sampler.num_vertices());
+    A.setFromTriplets(all.begin(), all.end());
+    return SparseMatrix(0.5 * (A + SparseMatrix(A.transpose())));
+}
+
+/// @brief Solves A u = b with the vertices where @p fixed holds set to @p values (their rows and
+///   columns eliminated; A restricted to the free vertices must be positive definite).
+/// @return u (#V) and the relative residual of the reduced system
+std::pair<Eigen::VectorXd, double> solve_with_fixed_values(const SparseMatrix& A, const Eigen::VectorXd& b,
+                                                           const std::vector<bool>& fixed,
+                                                           const Eigen::VectorXd& values, const char* what);
+
+}  // namespace limsurf::detail
