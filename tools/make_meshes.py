@@ -415,6 +415,24 @@ def make_c2g0_torus(nu, nv):
                 vs, split_quads(quads), 1, 0, 1, "volume", (6,))
 
 
+def make_plate_ev35():
+    """The plate [0 10]^2 as a 4x4 grid whose central 2x2 block is re-quadded around its centre to
+    the block's corners: four interior vertices of valence 3 and four of valence 5, symmetric."""
+    n = 4
+    vs, quads = plane_grid(n, 0.0, 10.0)
+
+    def vid(i, j):
+        return j * (n + 1) + i
+
+    quads = [q for q in quads if not all(1 <= (v % (n + 1)) <= 3 and 1 <= (v // (n + 1)) <= 3 for v in q)]
+    ring = [vid(1, 1), vid(2, 1), vid(3, 1), vid(3, 2), vid(3, 3), vid(2, 3), vid(1, 3), vid(1, 2)]
+    c = vid(2, 2)
+    quads += [(c, ring[k], ring[k + 1], ring[(k + 2) % 8]) for k in range(0, 8, 2)]
+    return Mesh("plate_ev35", "the plate [0 10]^2 (the seed's L = 10): a 4x4 quad grid whose central 2x2 "
+                "block is re-quadded to give four interior vertices of valence 3 and four of valence 5",
+                vs, quads, 0, 1, 1, "plus_z", (3, 5))
+
+
 def make_cube_ngons():
     t = 0.25
     vs = [v for v in cube_verts() if v != (0.5, 0.5, 0.5)]
@@ -697,6 +715,7 @@ def all_meshes():
     meshes += [make_tri_valence(k) for k in range(3, 13)]
     meshes += [make_tetra_sphere(j) for j in range(0, 5)]
     meshes += [make_c2g0_torus(4, 5), make_c2g0_torus(8, 10)]
+    meshes += [make_plate_ev35()]
     return meshes
 
 

@@ -166,7 +166,7 @@ int run_plate(const PlateOptions& options) {
                 }
             }
             if (level == 0) {
-                rectangle = std::abs(area - box.a * box.b) <= 1e-9 * box.a * box.b;
+                rectangle = std::abs(area - box.a * box.b) <= 1e-6 * box.a * box.b;  // quadrature-accurate
             }
             nlohmann::json entry{{"level", level},
                                  {"vertices", t.num_vertices()},
