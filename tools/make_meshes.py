@@ -428,8 +428,15 @@ def make_plate_ev35():
     ring = [vid(1, 1), vid(2, 1), vid(3, 1), vid(3, 2), vid(3, 3), vid(2, 3), vid(1, 3), vid(1, 2)]
     c = vid(2, 2)
     quads += [(c, ring[k], ring[k + 1], ring[(k + 2) % 8]) for k in range(0, 8, 2)]
+    # The valence-3 vertices (the block's edge midpoints) would make straight angles in the new
+    # quads: move them half a unit towards the plate's edges (still symmetric).
+    vs = list(vs)
+    for k in range(1, 8, 2):
+        x, y, z = vs[ring[k]]
+        vs[ring[k]] = (x + 0.2 * (x - 5.0), y + 0.2 * (y - 5.0), z)
     return Mesh("plate_ev35", "the plate [0 10]^2 (the seed's L = 10): a 4x4 quad grid whose central 2x2 "
-                "block is re-quadded to give four interior vertices of valence 3 and four of valence 5",
+                "block is re-quadded to give four interior vertices of valence 3 (moved outwards by 0.5) and four "
+                "of valence 5",
                 vs, quads, 0, 1, 1, "plus_z", (3, 5))
 
 

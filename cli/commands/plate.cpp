@@ -15,11 +15,11 @@
 #include <optional>
 #include <string>
 
-#include <muParser.h>
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "formula.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
@@ -47,29 +47,6 @@ struct PlateOptions {
 struct Rectangle {
     double x0 = 0, y0 = 0, a = 0, b = 0;
 };
-
-/// Values of a formula in x, y (muParser; pi known) at the rows of P.
-Eigen::VectorXd formula_values(const std::string& expression, const Points& P) {
-    Eigen::VectorXd out(P.rows());
-    try {
-        mu::Parser parser;
-        double x = 0.0, y = 0.0, z = 0.0;
-        parser.DefineVar("x", &x);
-        parser.DefineVar("y", &y);
-        parser.DefineVar("z", &z);
-        parser.DefineConst("pi", std::numbers::pi);
-        parser.SetExpr(expression);
-        for (Index i = 0; i < P.rows(); ++i) {
-            x = P(i, 0);
-            y = P(i, 1);
-            z = P(i, 2);
-            out(i) = parser.Eval();
-        }
-    } catch (const mu::Parser::exception_type& e) {
-        throw InputError(detail::concat("--load '", expression, "': ", e.GetMsg()));
-    }
-    return out;
-}
 
 int run_plate(const PlateOptions& options) {
     if (!options.output.empty()) {
@@ -107,7 +84,7 @@ int run_plate(const PlateOptions& options) {
             waves = 1;
             load = sine(1);
         } else {
-            load = [&](const Points& P) { return formula_values(options.load, P); };
+            load = [&](const Points& P) { return evaluate_formula("--load", options.load, P); };
         }
         const double D = material.bending_rigidity();
         const bool navier = support == PlateSupport::SimplySupported &&

@@ -12,11 +12,11 @@
 #include <optional>
 #include <string>
 
-#include <muParser.h>
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "formula.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
@@ -44,32 +44,6 @@ struct PoissonCommandOptions {
     std::string output;
     bool json = false;
 };
-
-/// Values of the formula @p expression (variables x, y, z; constant pi) at the rows of @p X.
-/// @throws InputError naming the formula and muParser's message
-Eigen::VectorXd evaluate_formula(const std::string& what, const std::string& expression, const Points& X) {
-    Eigen::VectorXd out(X.rows());
-    try {
-        mu::Parser parser;
-        double x = 0.0, y = 0.0, z = 0.0;
-        parser.DefineVar("x", &x);
-        parser.DefineVar("y", &y);
-        parser.DefineVar("z", &z);
-        parser.DefineConst("pi", 3.141592653589793238462643383279502884);
-        parser.SetExpr(expression);
-        for (Eigen::Index v = 0; v < X.rows(); ++v) {
-            x = X(v, 0);
-            y = X(v, 1);
-            z = X(v, 2);
-            out(v) = parser.Eval();
-            LIMSURF_CHECK(std::isfinite(out(v)), InputError, what, " '", expression, "' is not finite at (x, y, z) = (",
-                          x, ", ", y, ", ", z, ")");
-        }
-    } catch (const mu::Parser::exception_type& e) {
-        throw InputError(detail::concat(what, " '", expression, "': ", e.GetMsg()));
-    }
-    return out;
-}
 
 int solve_and_report(const BuildResult& built, const PoissonCommandOptions& options) {
     const ControlMesh& mesh = built.mesh;
