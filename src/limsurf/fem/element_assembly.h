@@ -3,6 +3,7 @@
 // parallel with the other elements and gathered into one CSR matrix (docs/fem.md "Assembly").
 #pragma once
 
+#include <array>
 #include <mutex>
 #include <span>
 #include <vector>
@@ -18,19 +19,21 @@ namespace limsurf::detail {
 /// Consecutive samples of one ptex face: the elements (offsets into the samples, #elements + 1).
 std::vector<Index> element_offsets(const LimitSampler& sampler);
 
-/// @brief Assembles Σ_elements of the dense matrices @p add_sample fills: add_sample(s, local, Ke)
-///   adds sample s's contribution to Ke (k × k over the element's vertices), where local[j] is the
-///   element row of sampler.vertices(s)[j]. The result is symmetrised exactly.
-template <class AddSample>
-SparseMatrix assemble_elements(const LimitSampler& sampler, const AddSample& add_sample) {
+/// @brief Assembles N matrices in one pass, each Σ_elements of the dense matrices @p add_sample
+///   fills: add_sample(s, local, Ke) adds sample s's contributions to Ke[0..N-1] (k × k over the
+///   element's vertices), where local[j] is the element row of sampler.vertices(s)[j]; one pass,
+///   so what a sample costs (its metric) is computed once for all N. Each result is symmetrised
+///   exactly.
+template <std::size_t N, class AddSample>
+std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const AddSample& add_sample) {
     const std::vector<Index> offsets = element_offsets(sampler);
     const Index num_elements = static_cast<Index>(offsets.size()) - 1;
     using Triplets = std::vector<Eigen::Triplet<double>>;
-    std::vector<Triplets> parts;
+    std::vector<std::array<Triplets, N>> parts;
     std::mutex gather;
     const auto at = [](Index i) { return static_cast<std::size_t>(i); };
     parallel_ranges(num_elements, sampler.options().num_threads, [&](Index begin, Index end) {
-        Triplets triplets;
+        std::array<Triplets, N> triplets;
         std::vector<Index> support;
         std::vector<Index> slot(at(sampler.num_vertices()), invalid_index);
         std::vector<Index> local;
@@ -45,7 +48,10 @@ SparseMatrix assemble_elements(const LimitSampler& sampler, const AddSample& add
                 }
             }
             const Index k = static_cast<Index>(support.size());
-            Eigen::MatrixXd Ke = Eigen::MatrixXd::Zero(k, k);
+            std::array<Eigen::MatrixXd, N> Ke;
+            for (Eigen::MatrixXd& m : Ke) {
+                m.setZero(k, k);
+            }
             for (Index s = offsets[at(e)]; s < offsets[at(e + 1)]; ++s) {
                 const auto verts = sampler.vertices(s);
                 local.resize(verts.size());
@@ -54,9 +60,11 @@ SparseMatrix assemble_elements(const LimitSampler& sampler, const AddSample& add
                 }
                 add_sample(s, std::span<const Index>(local), Ke);
             }
-            for (Index a = 0; a < k; ++a) {
-                for (Index b = 0; b < k; ++b) {
-                    triplets.emplace_back(support[at(a)], support[at(b)], Ke(a, b));
+            for (std::size_t m = 0; m < N; ++m) {
+                for (Index a = 0; a < k; ++a) {
+                    for (Index b = 0; b < k; ++b) {
+                        triplets[m].emplace_back(support[at(a)], support[at(b)], Ke[m](a, b));
+                    }
                 }
             }
             for (const Index v : support) {
@@ -66,14 +74,18 @@ SparseMatrix assemble_elements(const LimitSampler& sampler, const AddSample& add
         const std::lock_guard<std::mutex> lock(gather);
         parts.push_back(std::move(triplets));
     });
-    Triplets all;
-    for (Triplets& p : parts) {
-        all.insert(all.end(), p.begin(), p.end());
-        Triplets().swap(p);
+    std::array<SparseMatrix, N> out;
+    for (std::size_t m = 0; m < N; ++m) {
+        Triplets all;
+        for (auto& p : parts) {
+            all.insert(all.end(), p[m].begin(), p[m].end());
+            Triplets().swap(p[m]);
+        }
+        SparseMatrix A(sampler.num_vertices(), sampler.num_vertices());
+        A.setFromTriplets(all.begin(), all.end());
+        out[m] = SparseMatrix(0.5 * (A + SparseMatrix(A.transpose())));
     }
-    SparseMatrix A(sampler.num_vertices(), sampler.num_vertices());
-    A.setFromTriplets(all.begin(), all.end());
-    return SparseMatrix(0.5 * (A + SparseMatrix(A.transpose())));
+    return out;
 }
 
 /// @brief Solves A u = b with the vertices where @p fixed holds set to @p values (their rows and

@@ -50,28 +50,25 @@ void require_size(const LimitSampler& sampler, const Points& X) {
 
 GalerkinMatrices assemble_laplace_beltrami(const LimitSampler& sampler, const Points& X) {
     require_size(sampler, X);
+    // One pass: the metric of each quadrature point serves both matrices.
+    auto [mass, stiffness] = detail::assemble_elements<2>(
+        sampler, [&](Index s, std::span<const Index> local, std::array<Eigen::MatrixXd, 2>& Ke) {
+            const Metric m = metric_at(sampler, X, s);
+            const double w = sampler.weight(s) * m.area_element;
+            const auto W = sampler.limit_weights(s);
+            const Eigen::Matrix<double, 2, Eigen::Dynamic> d = W.middleRows<2>(Du);
+            const Eigen::MatrixXd local_k = w * d.transpose() * m.inverse * d;
+            for (std::size_t i = 0; i < local.size(); ++i) {
+                for (std::size_t j = 0; j < local.size(); ++j) {
+                    const auto ii = static_cast<Index>(i), jj = static_cast<Index>(j);
+                    Ke[0](local[i], local[j]) += w * W(Value, ii) * W(Value, jj);
+                    Ke[1](local[i], local[j]) += local_k(ii, jj);
+                }
+            }
+        });
     GalerkinMatrices out;
-    out.mass = detail::assemble_elements(sampler, [&](Index s, std::span<const Index> local, Eigen::MatrixXd& Me) {
-        const double w = sampler.weight(s) * metric_at(sampler, X, s).area_element;
-        const auto W = sampler.limit_weights(s);
-        for (std::size_t i = 0; i < local.size(); ++i) {
-            for (std::size_t j = 0; j < local.size(); ++j) {
-                Me(local[i], local[j]) += w * W(Value, static_cast<Index>(i)) * W(Value, static_cast<Index>(j));
-            }
-        }
-    });
-    out.stiffness = detail::assemble_elements(sampler, [&](Index s, std::span<const Index> local, Eigen::MatrixXd& Ke) {
-        const Metric m = metric_at(sampler, X, s);
-        const double w = sampler.weight(s) * m.area_element;
-        const auto W = sampler.limit_weights(s);
-        const Eigen::Matrix<double, 2, Eigen::Dynamic> d = W.middleRows<2>(Du);
-        const Eigen::MatrixXd local_k = w * d.transpose() * m.inverse * d;
-        for (std::size_t i = 0; i < local.size(); ++i) {
-            for (std::size_t j = 0; j < local.size(); ++j) {
-                Ke(local[i], local[j]) += local_k(static_cast<Index>(i), static_cast<Index>(j));
-            }
-        }
-    });
+    out.mass = std::move(mass);
+    out.stiffness = std::move(stiffness);
     return out;
 }
 

@@ -78,16 +78,17 @@ SparseMatrix assemble_plate_bending(const LimitSampler& sampler, const Points& X
     Eigen::Matrix3d C;
     C << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
     C *= D;
-    return detail::assemble_elements(sampler, [&](Index s, std::span<const Index> local, Eigen::MatrixXd& Ke) {
-        double dA = 0.0;
-        const Eigen::Matrix<double, 3, Eigen::Dynamic> B = curvatures(sampler, X, s, dA);
-        const Eigen::MatrixXd k = (sampler.weight(s) * dA) * B.transpose() * C * B;
-        for (std::size_t i = 0; i < local.size(); ++i) {
-            for (std::size_t j = 0; j < local.size(); ++j) {
-                Ke(local[i], local[j]) += k(static_cast<Index>(i), static_cast<Index>(j));
+    return detail::assemble_elements<1>(
+        sampler, [&](Index s, std::span<const Index> local, std::array<Eigen::MatrixXd, 1>& Ke) {
+            double dA = 0.0;
+            const Eigen::Matrix<double, 3, Eigen::Dynamic> B = curvatures(sampler, X, s, dA);
+            const Eigen::MatrixXd k = (sampler.weight(s) * dA) * B.transpose() * C * B;
+            for (std::size_t i = 0; i < local.size(); ++i) {
+                for (std::size_t j = 0; j < local.size(); ++j) {
+                    Ke[0](local[i], local[j]) += k(static_cast<Index>(i), static_cast<Index>(j));
+                }
             }
-        }
-    });
+        })[0];
 }
 
 PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler, const Points& X,
