@@ -53,8 +53,8 @@ struct PlateSolution {
 /// @brief Solves a(w, v) = ∫ p v dA for all v with the edge conditions of @p support on every
 ///   boundary vertex (essential conditions through the boundary rows of the basis: exact, since the
 ///   data are zero and the limit boundary depends on the boundary rows only).
-/// @throws InputError for a closed mesh, a mesh whose boundary is not a single loop... as
-///   assemble_plate_bending and galerkin_load
+/// @throws InputError for a closed mesh; as assemble_plate_bending and galerkin_load; NumericalError
+///   when the reduced stiffness is not positive definite
 [[nodiscard]] PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler, const Points& X,
                                         const PlateMaterial& material, PlateSupport support,
                                         const SurfaceFunction& load);
