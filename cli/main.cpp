@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
     add_poisson_command(app, status);
     add_eigen_command(app, status);
     add_plate_command(app, status);
+    add_shell_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -99,7 +99,8 @@ class Mesh:
         self.boundary_loops = boundary_loops
         self.components = components
         # "volume" (closed: signed volume > 0 per component), "plus_z" (planar,
-        # normals +z), or "radial_z" (tube about the z axis, normals outward).
+        # normals +z), "radial_y"/"radial_z" (about the y/z axis, normals outward) or
+        # "radial_o" (about the origin, normals outward).
         self.orientation = orientation
         # Valences the construction guarantees to be present (e.g. the poles).
         self.required_valences = tuple(required_valences)
@@ -440,6 +441,40 @@ def make_plate_ev35():
                 vs, quads, 0, 1, 1, "plus_z", (3, 5))
 
 
+def make_plate_asym():
+    """The plate [0 10]^2 as an asymmetric partition into six polygons (a hexagon, three pentagons,
+    a quad and a triangle) split Catmull-Clark style into quads (face point, edge midpoints), so the
+    face points have valences 6, 5, 5, 5, 4, 3 and four interior corners of the partition valence 3.
+    Every square corner lies in one face; the corners were placed for the fine quads' angles (35-146
+    degrees)."""
+    p = {"P0": (0.0, 0.0), "P1": (3.2, 0.0), "P2": (10.0, 0.0), "P3": (10.0, 3.2), "P4": (10.0, 10.0),
+         "P5": (6.6, 10.0), "P6": (0.0, 10.0), "P7": (0.0, 6.2),
+         "A": (3.8, 2.8), "K": (5.4, 4.2), "B": (7.8, 4.5), "C": (6.1, 8.5), "E": (2.3, 6.0)}
+    polygons = [("P7", "P0", "P1", "A", "E"), ("P1", "P2", "P3", "B", "K", "A"), ("P3", "P4", "P5", "C", "B"),
+                ("P5", "P6", "P7", "E", "C"), ("A", "K", "E"), ("K", "B", "C", "E")]
+    b = Builder()
+    for name, (x, y) in p.items():  # the partition's corners first: vertices 1-13 of the OBJ
+        b.vertex(("V", name), (x, y, 0.0))
+
+    def corner(name):
+        x, y = p[name]
+        return b.vertex(("V", name), (x, y, 0.0))
+
+    def midpoint(u, v):
+        (x0, y0), (x1, y1) = p[u], p[v]
+        return b.vertex(("E",) + tuple(sorted((u, v))), ((x0 + x1) / 2, (y0 + y1) / 2, 0.0))
+
+    for k, poly in enumerate(polygons):
+        n = len(poly)
+        centre = b.vertex(("F", k), (sum(p[v][0] for v in poly) / n, sum(p[v][1] for v in poly) / n, 0.0))
+        for i in range(n):
+            b.face((corner(poly[i]), midpoint(poly[i], poly[(i + 1) % n]), centre, midpoint(poly[i - 1], poly[i])))
+    return Mesh("plate_asym", "the plate [0 10]^2 (the seed's L = 10) without symmetry: six polygons (a hexagon; "
+                "three pentagons; a quad; a triangle) split into quads; interior valences 3 (five) and 5 (three) "
+                "and 6 (one); boundary regular; each square corner in one face",
+                b.verts, b.faces, 0, 1, 1, "plus_z", (3, 5, 6))
+
+
 def make_cube_ngons():
     t = 0.25
     vs = [v for v in cube_verts() if v != (0.5, 0.5, 0.5)]
@@ -709,6 +744,72 @@ def make_tri_valence(k, rings=3):
                 b.verts, b.faces, 0, 0, 1, "volume", (k,))
 
 
+# The shell obstacle course (limsurf shell, docs/fem.md "Shells"): points of the exact surfaces, for
+# `limsurf shell --interpolate` (the control points are moved so that the limit surface passes
+# through them). The load and probe points are vertices: their limit points stay put under refinement.
+
+def make_shell_scordelis_lo():
+    """Scordelis-Lo roof: a cylindrical panel of radius 25 about the y axis, length 50, opening
+    angle 2 x 40 degrees, z up; 8 x 8 quads, so that the midpoint of each free edge is a vertex."""
+    radius, length, half_angle, n_phi, n_y = 25.0, 50.0, math.radians(40.0), 8, 8
+    vs = []
+    for j in range(n_y + 1):
+        for i in range(n_phi + 1):
+            phi = -half_angle + 2.0 * half_angle * i / n_phi
+            vs.append((radius * math.sin(phi), -0.5 * length + length * j / n_y, radius * math.cos(phi)))
+
+    def vid(i, j):
+        return j * (n_phi + 1) + i
+
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)) for j in range(n_y) for i in range(n_phi)]
+    return Mesh("shell_scordelis_lo", "Scordelis-Lo roof (shell obstacle course): points of the cylinder of radius "
+                "25 about the y axis; y in [-25 25]; angle +-40 degrees from +z; 8 x 8 quads",
+                vs, quads, 0, 1, 1, "radial_y", (2, 3, 4))
+
+
+def make_shell_pinched_cylinder():
+    """Pinched cylinder: radius 300 about the z axis, length 600 (z in [-300 300]); 16 quads around
+    x 8 along, so that (+-300, 0, 0) are vertices."""
+    radius, length, n_around, n_along = 300.0, 600.0, 16, 8
+    vs = []
+    for j in range(n_along + 1):
+        for i in range(n_around):
+            a = 2.0 * math.pi * i / n_around
+            vs.append((radius * math.cos(a), radius * math.sin(a), -0.5 * length + length * j / n_along))
+
+    def vid(i, j):
+        return j * n_around + (i % n_around)
+
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1))
+             for j in range(n_along) for i in range(n_around)]
+    return Mesh("shell_pinched_cylinder", "pinched cylinder (shell obstacle course): points of the cylinder of "
+                "radius 300 about the z axis; z in [-300 300]; 16 quads around x 8 along; two boundary loops",
+                vs, quads, 0, 2, 1, "radial_z", (3, 4))
+
+
+def make_shell_hemisphere():
+    """Pinched hemisphere with an 18 degree hole: radius 10, polar angle 18 to 90 degrees, z up;
+    16 quads around x 8 rows, so that the four load points (+-10, 0, 0), (0, +-10, 0) are vertices."""
+    radius, n_around, n_rows = 10.0, 16, 8
+    top, bottom = math.radians(18.0), math.radians(90.0)
+    vs = []
+    for j in range(n_rows + 1):  # from the equator up, so that faces are counter-clockwise from outside
+        polar = bottom + (top - bottom) * j / n_rows
+        for i in range(n_around):
+            a = 2.0 * math.pi * i / n_around
+            vs.append((radius * math.sin(polar) * math.cos(a), radius * math.sin(polar) * math.sin(a),
+                       radius * math.cos(polar)))
+
+    def vid(i, j):
+        return j * n_around + (i % n_around)
+
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1))
+             for j in range(n_rows) for i in range(n_around)]
+    return Mesh("shell_hemisphere", "pinched hemisphere with an 18 degree hole (shell obstacle course): points of "
+                "the sphere of radius 10; polar angle 18 to 90 degrees; 16 quads around x 8 rows; two boundary loops",
+                vs, quads, 0, 2, 1, "radial_o", (3, 4))
+
+
 def all_meshes():
     meshes = [
         make_cube(), make_cube_creases(), make_tetrahedron(), make_octahedron(), make_icosahedron(), make_dodecahedron(),
@@ -722,7 +823,8 @@ def all_meshes():
     meshes += [make_tri_valence(k) for k in range(3, 13)]
     meshes += [make_tetra_sphere(j) for j in range(0, 5)]
     meshes += [make_c2g0_torus(4, 5), make_c2g0_torus(8, 10)]
-    meshes += [make_plate_ev35()]
+    meshes += [make_plate_ev35(), make_plate_asym()]
+    meshes += [make_shell_scordelis_lo(), make_shell_pinched_cylinder(), make_shell_hemisphere()]
     return meshes
 
 
@@ -908,7 +1010,9 @@ def check_orientation(mesh, comp_of, closed):
                 area += p[0] * q[1] - q[0] * p[1]
             if not area > 1e-9:
                 fail(mesh, "face %r is not counter-clockwise about +z" % (f,))
-    elif mesh.orientation == "radial_z":
+    elif mesh.orientation in ("radial_y", "radial_z", "radial_o"):
+        # Away from the y or z axis, or from the origin.
+        keep = {"radial_y": (1.0, 0.0, 1.0), "radial_z": (1.0, 1.0, 0.0), "radial_o": (1.0, 1.0, 1.0)}[mesh.orientation]
         for f in mesh.faces:
             c = (0.0, 0.0, 0.0)
             for v in f:
@@ -916,8 +1020,8 @@ def check_orientation(mesh, comp_of, closed):
             c = vscale(c, 1.0 / len(f))
             p0, p1, p2 = mesh.verts[f[0]], mesh.verts[f[1]], mesh.verts[f[2]]
             n = cross(vsub(p1, p0), vsub(p2, p0))
-            if not dot(n, (c[0], c[1], 0.0)) > 1e-9:
-                fail(mesh, "face %r does not face away from the z axis" % (f,))
+            if not dot(n, (c[0] * keep[0], c[1] * keep[1], c[2] * keep[2])) > 1e-9:
+                fail(mesh, "face %r does not face outwards (%s)" % (f, mesh.orientation))
     else:
         fail(mesh, "unknown orientation check %r" % mesh.orientation)
 
@@ -962,6 +1066,24 @@ checks this, and that V - E + F = 2c - 2g - b, before writing anything.
 
 Scale: the cube has edge 1; the tetrahedron, octahedron, icosahedron,
 dodecahedron and all spheres have unit circumradius.
+
+Plates (`limsurf plate`, docs/fem.md "Plates"): `plate_ev35` (symmetric) and
+`plate_asym` (no symmetry; valences 3, 5 and 6 inside) stand in for the seed's
+Fig. 8 meshes of the square [0 10]^2. Their boundary control points lie on the
+square's edges, so the limit boundary is the square, and each square corner is
+a corner of one face only (a corner shared by two faces converges only like h).
+`plate_asym` is a partition of the square into a hexagon, three pentagons, a
+quad and a triangle, each split into quads about its centroid through its edge
+midpoints; the partition's corners were placed for the fine quads' angles
+(35 to 146 degrees).
+
+Shells (`limsurf shell`, docs/fem.md "Shells", docs/guide/shell.md): the shell
+obstacle course. `shell_scordelis_lo`, `shell_pinched_cylinder` and
+`shell_hemisphere` are points of the exact surfaces (a cylindrical roof of
+radius 25, a cylinder of radius 300, a hemisphere of radius 10 with an 18-degree
+hole) on coarse grids whose load and probe points are vertices; use them with
+`--surface` (or `--interpolate`), which fits the control points so that the
+limit surface passes through them.
 
 Columns: V, E, F; χ = V - E + F; g genus; b boundary loops; c components;
 face degrees as `degree×count`; valences (edges per vertex) as

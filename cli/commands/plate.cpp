@@ -1,25 +1,33 @@
-// limsurf plate MESH --load uniform|sinusoidal|single-wave|FORMULA [--pressure P] --support simply|clamped
-//   [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--json] [-o deflection.vtk]:
+// limsurf plate MESH (--load uniform|sinusoidal|single-wave|FORMULA [--pressure P] | --load-file FILE)
+//   --support simply|clamped [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--json]
+//   [-o deflection.vtk]:
 // Kirchhoff–Love bending of the planar plate bounded by the limit surface of a planar Catmull–Clark
 // control mesh (fem/plate.h). For each level 0..L (the control mesh refined l times: the same
 // plate) it reports the deflection at the centre and at (a/4, b/4) of the bounding box, the largest
 // deflection, and, for a simply supported rectangle under the uniform or sine loads, the relative
-// errors against the Navier solution (centre, L2 and energy norm).
+// errors against the Navier solution (centre, L2 and energy norm). --load-file reads one load value
+// per control vertex, taken as control values of the load: p_h = Σ p_i φ_i, so b = M p with the
+// mass matrix M of the limit basis; at level l the values are carried by the subdivision matrices,
+// p_l = S0 p_{l−1}, so every level sees the same load p_h.
 #include "limsurf/fem/plate.h"
 
 #include <cmath>
+#include <cstddef>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "formula.h"
+#include "limsurf/core/error.h"
+#include "limsurf/fem/galerkin.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
@@ -32,6 +40,7 @@ namespace {
 struct PlateOptions {
     std::string input;
     std::string load = "uniform";
+    std::string load_file;  ///< one load value per control vertex (control values of p), or empty
     double pressure = 1e4;
     std::string support = "simply";
     int levels = 0;
@@ -50,11 +59,11 @@ struct Rectangle {
 
 int run_plate(const PlateOptions& options) {
     if (!options.output.empty()) {
-        refuse_overwriting_inputs(options.output, {options.input});
+        refuse_overwriting_inputs(options.output, {options.input, options.load_file});
     }
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
-    return naming_file(built.source, {options.output}, [&] {
+    return naming_file(built.source, {options.load_file, options.output}, [&] {
         const PlateMaterial material{options.E, options.nu, options.thickness};
         const PlateSupport support =
             options.support == "clamped" ? PlateSupport::Clamped : PlateSupport::SimplySupported;
@@ -75,7 +84,13 @@ int run_plate(const PlateOptions& options) {
         };
         SurfaceFunction load;
         int waves = 0;
-        if (options.load == "uniform") {
+        const bool per_vertex = !options.load_file.empty();
+        // Control values of the load on the current level (--load-file): read for the control mesh,
+        // carried to each refined level by its S0.
+        Eigen::VectorXd load_values;
+        if (per_vertex) {
+            load_values = read_vertex_values(options.load_file, built.mesh.topology().num_vertices());
+        } else if (options.load == "uniform") {
             load = [&](const Points& P) { return Eigen::VectorXd::Constant(P.rows(), p); };
         } else if (options.load == "sinusoidal") {
             waves = 2;
@@ -87,7 +102,7 @@ int run_plate(const PlateOptions& options) {
             load = [&](const Points& P) { return evaluate_formula("--load", options.load, P); };
         }
         const double D = material.bending_rigidity();
-        const bool navier = support == PlateSupport::SimplySupported &&
+        const bool navier = !per_vertex && support == PlateSupport::SimplySupported &&
                             (options.load == "uniform" || waves > 0);  // the rectangle is checked below
         const auto exact = [&](double x, double y) {
             return waves == 0 ? navier_uniform(box.a, box.b, D, p, x - box.x0, y - box.y0, 1e-10)
@@ -102,11 +117,16 @@ int run_plate(const PlateOptions& options) {
             if (level > 0) {
                 Level next = refine(t, SchemeKind::CatmullClark);
                 X = next.S0 * X;
+                if (per_vertex) {
+                    load_values = next.S0 * load_values;
+                }
                 t = std::move(next.topology);
             }
             const LimitBasis basis(t, SchemeKind::CatmullClark);
             const LimitSampler sampler(basis, SamplerOptions{options.degree, 6, 0});
-            const PlateSolution solution = solve_plate(t, sampler, X, material, support, load);
+            const PlateSolution solution =
+                per_vertex ? solve_plate(t, sampler, X, material, support, load_values)
+                           : solve_plate(t, sampler, X, material, support, load);
             const auto deflection_at = [&](double x, double y) -> std::optional<double> {
                 SurfacePoint point;
                 if (!locate_planar_point(basis, X, x, y, point)) {
@@ -171,8 +191,8 @@ int run_plate(const PlateOptions& options) {
             levels.push_back(entry);
             last_w = solution.w;
         }
-        nlohmann::json out{{"load", options.load},
-                           {"pressure", p},
+        nlohmann::json out{{"load", per_vertex ? "file" : options.load},
+                           {"pressure", per_vertex ? nlohmann::json(nullptr) : nlohmann::json(p)},
                            {"support", options.support},
                            {"E", options.E},
                            {"nu", options.nu},
@@ -180,13 +200,19 @@ int run_plate(const PlateOptions& options) {
                            {"bending_rigidity", D},
                            {"rectangle", {{"x0", box.x0}, {"y0", box.y0}, {"a", box.a}, {"b", box.b}}},
                            {"levels", levels}};
+        if (per_vertex) {
+            out["load_file"] = options.load_file;
+        }
         if (navier && !rectangle) {
             out["navier"] = "not compared: the plate is not its bounding rectangle";
         }
         require_finite(out);
         if (!options.output.empty()) {
             ControlMesh finest(t, X);
-            const std::vector<VertexField> fields{{"w", last_w}};
+            std::vector<VertexField> fields{{"w", last_w}};
+            if (per_vertex) {
+                fields.push_back({"p", load_values});  // the load's control values on the finest level
+            }
             write_vertex_data(options.output, to_polygon_soup(finest), fields);
             out["output"] = options.output;
         }
@@ -194,8 +220,8 @@ int run_plate(const PlateOptions& options) {
             print_json(out);
             return exit_ok;
         }
-        std::cout << std::setprecision(8) << "plate       " << options.support << ", load " << options.load
-                  << ", D = " << D << "\n";
+        std::cout << std::setprecision(8) << "plate       " << options.support << ", load "
+                  << (per_vertex ? options.load_file : options.load) << ", D = " << D << "\n";
         for (const auto& entry : out["levels"]) {
             std::cout << "level " << entry["level"] << " (" << entry["faces"] << " faces): centre "
                       << entry["centre_deflection"] << ", (a/4, b/4) " << entry["quarter_deflection"] << ", max "
@@ -218,9 +244,15 @@ void add_plate_command(CLI::App& app, CommandStatus& status) {
     CLI::App* cmd = app.add_subcommand(
         "plate", "Kirchhoff-Love plate bending on the limit surface of a planar catmull-clark control mesh");
     cmd->add_option("input", options->input, "Planar control mesh (z = 0; .obj, .off, .ply)")->required();
-    cmd->add_option("--load", options->load,
-                    "uniform, sinusoidal (p sin(2pi x/a) sin(2pi y/b), Table 2), single-wave, or a formula in x, y");
-    cmd->add_option("--pressure", options->pressure, "Load amplitude p (default 1e4)");
+    auto* load = cmd->add_option(
+        "--load", options->load,
+        "uniform, sinusoidal (p sin(2pi x/a) sin(2pi y/b), Table 2), single-wave, or a formula in x, y");
+    auto* load_file = cmd->add_option("--load-file", options->load_file,
+                                      "Load as control values: one value per control vertex of MESH, one per line "
+                                      "(as poisson --rhs-file); carried to refined levels by S0");
+    load->excludes(load_file);
+    auto* pressure = cmd->add_option("--pressure", options->pressure, "Load amplitude p (default 1e4)");
+    pressure->excludes(load_file);
     cmd->add_option("--support", options->support, "simply or clamped (default simply)")
         ->check(CLI::IsMember({"simply", "clamped"}));
     cmd->add_option("--levels", options->levels, "Also solve on the control mesh refined 1..L times (0..6)")

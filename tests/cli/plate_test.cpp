@@ -1,8 +1,10 @@
 // `limsurf plate`: the simply supported square against Navier through the command (uniform load,
-// Table 2's two-wave load with its zero centre), clamped support, and refusals.
+// Table 2's two-wave load with its zero centre), clamped support, loads from per-vertex values, and
+// refusals.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -85,6 +87,87 @@ TEST(CliPlate, BadInputIsRefused) {
     run = limsurf({"plate", square_plate(), "--load", "sin("});
     EXPECT_EQ(run.exit_code, 1);
     run = limsurf({"plate", square_plate(), "--support", "glued"});
+    EXPECT_EQ(run.exit_code, 2);
+}
+
+/// One value per vertex of square_plate() (vertex j * 5 + i at (2.5 i, 2.5 j)), from value(x, y).
+template <class Value>
+std::string plate_values(const std::string& name, Value value) {
+    const fs::path path = temp_dir() / name;
+    std::ofstream out(path);
+    out << "# one load value per control vertex\n";
+    out.precision(17);
+    for (int j = 0; j <= 4; ++j) {
+        for (int i = 0; i <= 4; ++i) {
+            out << value(2.5 * i, 2.5 * j) << '\n';
+        }
+    }
+    return path.string();
+}
+
+/// The deflections of every level of two runs agree to @p tolerance (relative).
+void expect_same_deflections(const nlohmann::json& a, const nlohmann::json& b, double tolerance) {
+    ASSERT_EQ(a.at("levels").size(), b.at("levels").size());
+    for (std::size_t l = 0; l < a.at("levels").size(); ++l) {
+        for (const char* key : {"centre_deflection", "quarter_deflection", "max_deflection"}) {
+            const double x = a.at("levels")[l].at(key).get<double>();
+            const double y = b.at("levels")[l].at(key).get<double>();
+            EXPECT_NEAR(x, y, tolerance * std::abs(y)) << "level " << l << ' ' << key;
+        }
+    }
+}
+
+// Per-vertex load values are control values of the load, p_h = Σ p_i φ_i (b = M p), carried to
+// each level by S0: a constant field is the uniform load and the control points' own x (the limit
+// map reproduces it) is the load x, both exactly, so the deflections agree with --load to rounding.
+TEST(CliPlate, LoadFromPerVertexValues) {
+    const std::string constant = plate_values("constant.txt", [](double, double) { return 1e4; });
+    const fs::path vtk = temp_dir() / "w_p.vtk";
+    const CliRun file =
+        limsurf({"plate", square_plate(), "--load-file", constant, "--levels", "2", "--json", "-o", vtk.string()});
+    ASSERT_EQ(file.exit_code, 0) << file.err;
+    const CliRun uniform = limsurf({"plate", square_plate(), "--load", "uniform", "--levels", "2", "--json"});
+    ASSERT_EQ(uniform.exit_code, 0) << uniform.err;
+    const auto out = nlohmann::json::parse(file.out);
+    EXPECT_EQ(out.at("load"), "file");
+    EXPECT_FALSE(out.at("levels")[0].contains("navier"));  // not compared: any load may come from a file
+    expect_same_deflections(out, nlohmann::json::parse(uniform.out), 1e-10);
+    std::ifstream written(vtk);
+    const std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("SCALARS p"), std::string::npos);
+    EXPECT_NE(text.find("SCALARS w"), std::string::npos);
+
+    const std::string linear = plate_values("linear.txt", [](double x, double) { return 1000.0 * x; });
+    const CliRun from_file = limsurf({"plate", square_plate(), "--load-file", linear, "--levels", "2", "--json"});
+    ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
+    const CliRun formula = limsurf({"plate", square_plate(), "--load", "1000*x", "--levels", "2", "--json"});
+    ASSERT_EQ(formula.exit_code, 0) << formula.err;
+    expect_same_deflections(nlohmann::json::parse(from_file.out), nlohmann::json::parse(formula.out), 1e-10);
+}
+
+TEST(CliPlate, BadLoadFilesAreRefused) {
+    const fs::path short_file = temp_dir() / "short_load.txt";
+    std::ofstream(short_file) << "1\n2\n";
+    CliRun run = limsurf({"plate", square_plate(), "--load-file", short_file.string()});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("short_load.txt"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("25 vertices"), std::string::npos) << run.err;
+    const fs::path nan_file = temp_dir() / "nan_load.txt";
+    {
+        std::ofstream out(nan_file);
+        for (int v = 0; v < 25; ++v) {
+            out << (v == 2 ? "nan" : "1") << '\n';
+        }
+    }
+    run = limsurf({"plate", square_plate(), "--load-file", nan_file.string()});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("nan_load.txt:3"), std::string::npos) << run.err;
+    run = limsurf({"plate", square_plate(), "--load-file", (temp_dir() / "missing.txt").string()});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("missing.txt"), std::string::npos) << run.err;
+    run = limsurf({"plate", square_plate(), "--load", "uniform", "--load-file", short_file.string()});
+    EXPECT_EQ(run.exit_code, 2);
+    run = limsurf({"plate", square_plate(), "--pressure", "5", "--load-file", short_file.string()});
     EXPECT_EQ(run.exit_code, 2);
 }
 

@@ -18,3 +18,5 @@ add_test(NAME c2g0_patch_table.reproducible
     COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/tools/make_c2g0_patch.py --check
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 set_tests_properties(c2g0_patch_table.reproducible PROPERTIES LABELS identity)
+# Interpolating control points (prescribed limit positions) and the projection onto implicit surfaces.
+limsurf_add_test(interpolation_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/interpolation_test.cpp LABELS identity)

@@ -23,8 +23,9 @@ std::vector<Index> element_offsets(const LimitSampler& sampler);
 ///   fills: add_sample(s, local, Ke) adds sample s's contributions to Ke[0..N-1] (k × k over the
 ///   element's vertices), where local[j] is the element row of sampler.vertices(s)[j]; one pass,
 ///   so what a sample costs (its metric) is computed once for all N. Each result is symmetrised
-///   exactly.
-template <std::size_t N, class AddSample>
+///   exactly. @p Block unknowns per vertex (3 for displacements): Ke is (Block k) × (Block k), the
+///   unknown c of local vertex j is row Block j + c, and the result's row Block v + c.
+template <std::size_t N, Index Block = 1, class AddSample>
 std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const AddSample& add_sample) {
     const std::vector<Index> offsets = element_offsets(sampler);
     const Index num_elements = static_cast<Index>(offsets.size()) - 1;
@@ -47,7 +48,7 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
                     }
                 }
             }
-            const Index k = static_cast<Index>(support.size());
+            const Index k = Block * static_cast<Index>(support.size());
             std::array<Eigen::MatrixXd, N> Ke;
             for (Eigen::MatrixXd& m : Ke) {
                 m.setZero(k, k);
@@ -63,7 +64,8 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
             for (std::size_t m = 0; m < N; ++m) {
                 for (Index a = 0; a < k; ++a) {
                     for (Index b = 0; b < k; ++b) {
-                        triplets[m].emplace_back(support[at(a)], support[at(b)], Ke[m](a, b));
+                        triplets[m].emplace_back(Block * support[at(a / Block)] + a % Block,
+                                                 Block * support[at(b / Block)] + b % Block, Ke[m](a, b));
                     }
                 }
             }
@@ -81,7 +83,7 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
             all.insert(all.end(), p[m].begin(), p[m].end());
             Triplets().swap(p[m]);
         }
-        SparseMatrix A(sampler.num_vertices(), sampler.num_vertices());
+        SparseMatrix A(Block * sampler.num_vertices(), Block * sampler.num_vertices());
         A.setFromTriplets(all.begin(), all.end());
         out[m] = SparseMatrix(0.5 * (A + SparseMatrix(A.transpose())));
     }

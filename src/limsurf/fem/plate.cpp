@@ -9,7 +9,9 @@
 
 #include <Eigen/Dense>
 
+#include "boundary_samples.h"
 #include "element_assembly.h"
+#include "material.h"
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
 
@@ -21,11 +23,7 @@ std::size_t at(Index i) {
 }
 
 void check_material(const PlateMaterial& m) {
-    LIMSURF_CHECK(std::isfinite(m.E) && m.E > 0.0, InputError, "plate: E must be > 0, got ", m.E);
-    LIMSURF_CHECK(std::isfinite(m.nu) && m.nu > -1.0 && m.nu < 0.5, InputError, "plate: nu must be in (-1, 0.5), got ",
-                  m.nu);
-    LIMSURF_CHECK(std::isfinite(m.thickness) && m.thickness > 0.0, InputError, "plate: the thickness must be > 0, got ",
-                  m.thickness);
+    detail::check_thin_material("plate", m.E, m.nu, m.thickness);
 }
 
 void check_planar(const Points& X) {
@@ -34,23 +32,31 @@ void check_planar(const Points& X) {
                   "plate: the control mesh must lie in the plane z = 0");
 }
 
-/// Curvatures (w_xx, w_yy, 2 w_xy) of every basis function at sample s: 3 × k.
-Eigen::Matrix<double, 3, Eigen::Dynamic> curvatures(const LimitSampler& sampler, const Points& X, Index s,
-                                                    double& area_element) {
-    const Eigen::Matrix<double, 6, 3> D = sampler.evaluate(X, s);
-    Eigen::Matrix2d J;  // columns ∂/∂u, ∂/∂v of (x, y)
+/// Derivatives in x, y of the basis functions at one point of the plate.
+struct PlanarDerivatives {
+    Eigen::Matrix<double, 2, Eigen::Dynamic> gradient;   ///< (φ_x, φ_y), 2 × k
+    Eigen::Matrix<double, 3, Eigen::Dynamic> curvature;  ///< (φ_xx, φ_yy, 2 φ_xy), 3 × k
+    Eigen::Matrix2d J;                                   ///< columns ∂/∂u, ∂/∂v of (x, y)
+};
+
+/// The basis functions with ptex weights @p W (6 × k) where the map has derivatives @p D (rows as
+/// LimitWeights): ∇φ = J⁻ᵀ ∇_uv φ and ∇²φ = J⁻ᵀ (∇²_uv φ − Σ_c ∂φ/∂x_c ∇²_uv x_c) J⁻¹.
+PlanarDerivatives planar_derivatives(const Eigen::Matrix<double, 6, 3>& D,
+                                     const Eigen::Ref<const Eigen::Matrix<double, 6, Eigen::Dynamic>>& W,
+                                     Index ptex_face) {
+    PlanarDerivatives out;
+    Eigen::Matrix2d& J = out.J;
     J << D(Du, 0), D(Dv, 0), D(Du, 1), D(Dv, 1);
     const double det = J.determinant();
     LIMSURF_CHECK(std::isfinite(det) && std::abs(det) > 1e-14 * J.squaredNorm(), NumericalError,
-                  "plate: the map of the plate is degenerate at a quadrature point of ptex face ",
-                  sampler.point(s).face);
-    area_element = std::abs(det);
+                  "plate: the map of the plate is degenerate at a quadrature point of ptex face ", ptex_face);
     const Eigen::Matrix2d Jinv = J.inverse();
-    const auto W = sampler.limit_weights(s);
     const Index k = W.cols();
-    Eigen::Matrix<double, 3, Eigen::Dynamic> B(3, k);
+    out.gradient.resize(2, k);
+    out.curvature.resize(3, k);
     for (Index j = 0; j < k; ++j) {
-        const Eigen::Vector2d grad = Jinv.transpose() * Eigen::Vector2d(W(Du, j), W(Dv, j));  // (φ_x, φ_y)
+        const Eigen::Vector2d grad = Jinv.transpose() * Eigen::Vector2d(W(Du, j), W(Dv, j));
+        out.gradient.col(j) = grad;
         Eigen::Matrix2d H;
         H << W(Duu, j), W(Duv, j), W(Duv, j), W(Dvv, j);
         for (int c = 0; c < 2; ++c) {  // minus ∂φ/∂x_c times the map's second derivatives
@@ -59,43 +65,78 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> curvatures(const LimitSampler& sampler,
             H -= grad(c) * Hx;
         }
         const Eigen::Matrix2d Hxy = Jinv.transpose() * H * Jinv;
-        B(0, j) = Hxy(0, 0);
-        B(1, j) = Hxy(1, 1);
-        B(2, j) = 2.0 * Hxy(0, 1);
+        out.curvature(0, j) = Hxy(0, 0);
+        out.curvature(1, j) = Hxy(1, 1);
+        out.curvature(2, j) = 2.0 * Hxy(0, 1);
     }
-    return B;
+    return out;
 }
 
-}  // namespace
-
-SparseMatrix assemble_plate_bending(const LimitSampler& sampler, const Points& X, const PlateMaterial& material) {
-    check_material(material);
-    LIMSURF_CHECK(X.rows() == sampler.num_vertices() && X.cols() == 3, InputError, "plate: X has ", X.rows(),
-                  " rows, the control mesh ", sampler.num_vertices(), " vertices");
+void check_points(const Points& X, Index num_vertices) {
+    LIMSURF_CHECK(X.rows() == num_vertices && X.cols() == 3, InputError, "plate: X has ", X.rows(), " rows and ",
+                  X.cols(), " columns, the control mesh ", num_vertices, " vertices");
     check_planar(X);
-    const double D = material.bending_rigidity();
-    const double nu = material.nu;
-    Eigen::Matrix3d C;
-    C << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
-    C *= D;
-    return detail::assemble_elements<1>(
-        sampler, [&](Index s, std::span<const Index> local, std::array<Eigen::MatrixXd, 1>& Ke) {
-            double dA = 0.0;
-            const Eigen::Matrix<double, 3, Eigen::Dynamic> B = curvatures(sampler, X, s, dA);
-            const Eigen::MatrixXd k = (sampler.weight(s) * dA) * B.transpose() * C * B;
-            for (std::size_t i = 0; i < local.size(); ++i) {
-                for (std::size_t j = 0; j < local.size(); ++j) {
-                    Ke[0](local[i], local[j]) += k(static_cast<Index>(i), static_cast<Index>(j));
-                }
-            }
-        })[0];
 }
 
-PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler, const Points& X,
-                          const PlateMaterial& material, PlateSupport support, const SurfaceFunction& load) {
-    LIMSURF_CHECK(topology.has_boundary(), InputError, "plate: the control mesh is closed: a plate needs a boundary");
-    const SparseMatrix K = assemble_plate_bending(sampler, X, material);
-    const Eigen::VectorXd b = galerkin_load(sampler, X, load);
+/// The Nitsche terms at one boundary sample, added to @p entries over the vertices of @p W.
+void add_clamping_sample(const detail::BoundarySample& b, const LimitWeights& W, const Points& X,
+                         const PlateMaterial& material, double penalty, std::vector<Eigen::Triplet<double>>& entries) {
+    const Eigen::Matrix<double, 6, 3> D = W.apply(X);
+    const PlanarDerivatives d = planar_derivatives(D, W.w, b.point.face);
+    const Eigen::Vector2d along = d.J.col(b.along_u ? 0 : 1);
+    const Eigen::Vector2d across = b.inward * d.J.col(b.along_u ? 1 : 0);  // points into the face
+    Eigen::Vector2d n(along.y(), -along.x());
+    n /= along.norm();
+    if (n.dot(across) > 0.0) {  // outward whatever the orientation of the control mesh
+        n = -n;
+    }
+    const double ds = b.weight * along.norm();
+    const double h = std::abs(n.dot(across));  // = |det J| / |∂x/∂t|, the extent across the edge
+    const double Dr = material.bending_rigidity();
+    const Eigen::VectorXd dn = d.gradient.transpose() * n;
+    const Eigen::Vector3d moment_row =
+        Dr * Eigen::Vector3d((1.0 - material.nu) * n.x() * n.x() + material.nu,
+                             (1.0 - material.nu) * n.y() * n.y() + material.nu, (1.0 - material.nu) * n.x() * n.y());
+    const Eigen::VectorXd Mnn = d.curvature.transpose() * moment_row;  // D[(1−ν) n·∇²φ·n + ν Δφ]
+    const double c = penalty * Dr / h;
+    for (Index i = 0; i < W.size(); ++i) {
+        for (Index j = 0; j < W.size(); ++j) {
+            const double value = ds * (c * dn(i) * dn(j) - (Mnn(i) * dn(j) + dn(i) * Mnn(j)));
+            entries.emplace_back(W.vertices[at(i)], W.vertices[at(j)], value);
+        }
+    }
+}
+
+/// The sampler's first sample evaluated by @p basis: a sampler of another basis (scheme, options,
+/// topology) is caught here, before the edge integrals mix two surfaces.
+void check_sampler_matches(const LimitBasis& basis, const LimitSampler& sampler) {
+    LIMSURF_CHECK(basis.topology().num_vertices() == sampler.num_vertices() && basis.domain() == sampler.domain(),
+                  InputError, "plate: the sampler was built on another basis");
+    if (sampler.num_samples() == 0) {
+        return;
+    }
+    const LimitWeights W = basis.evaluate(sampler.point(0), DerivativeOrder::Second);
+    const auto vertices = sampler.vertices(0);
+    const auto weights = sampler.limit_weights(0);
+    bool same = W.size() == static_cast<Index>(vertices.size());
+    for (Index j = 0; same && j < W.size(); ++j) {
+        same = W.vertices[at(j)] == vertices[at(j)] && (W.w.col(j) - weights.col(j)).cwiseAbs().maxCoeff() <=
+                                                           1e-9 * (1.0 + weights.col(j).cwiseAbs().maxCoeff());
+    }
+    LIMSURF_CHECK(same, InputError, "plate: the sampler was built on another basis");
+}
+
+/// The reduced solve: K (+ the Nitsche terms @p clamping when not empty) with w = 0 on the boundary
+/// control values, and on their neighbours for Clamped.
+PlateSolution solve_with_supports(const Topology& topology, const LimitSampler& sampler, const Points& X,
+                                  const PlateMaterial& material, PlateSupport support, const Eigen::VectorXd& b,
+                                  const SparseMatrix& clamping) {
+    LIMSURF_CHECK(topology.num_vertices() == sampler.num_vertices(), InputError, "plate: the topology has ",
+                  topology.num_vertices(), " vertices, the sampler ", sampler.num_vertices());
+    SparseMatrix K = assemble_plate_bending(sampler, X, material);
+    if (clamping.size() > 0) {
+        K += clamping;
+    }
     const Index V = topology.num_vertices();
     std::vector<bool> fixed(at(V), false);
     for (Index v = 0; v < V; ++v) {
@@ -104,7 +145,8 @@ PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler,
         }
         fixed[at(v)] = true;
         if (support == PlateSupport::Clamped) {
-            // ∂w/∂n on the boundary reads the boundary row and the next one: fix both to zero.
+            // ∂w/∂n on the boundary reads the boundary row and the next one: with w = 0 there, ∂w/∂n = 0
+            // on the whole edge is the next row zero.
             for (const Index e : topology.vertex_edges(v)) {
                 fixed[at(topology.other_vertex(e, v))] = true;
             }
@@ -119,6 +161,88 @@ PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler,
     out.residual = residual;
     out.energy = b.dot(out.w);
     return out;
+}
+
+}  // namespace
+
+SparseMatrix assemble_plate_bending(const LimitSampler& sampler, const Points& X, const PlateMaterial& material) {
+    check_material(material);
+    check_points(X, sampler.num_vertices());
+    const double D = material.bending_rigidity();
+    const double nu = material.nu;
+    Eigen::Matrix3d C;
+    C << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
+    C *= D;
+    return detail::assemble_elements<1>(
+        sampler, [&](Index s, std::span<const Index> local, std::array<Eigen::MatrixXd, 1>& Ke) {
+            const PlanarDerivatives d =
+                planar_derivatives(sampler.evaluate(X, s), sampler.limit_weights(s), sampler.point(s).face);
+            const double dA = std::abs(d.J.determinant());
+            const Eigen::MatrixXd k = (sampler.weight(s) * dA) * d.curvature.transpose() * C * d.curvature;
+            for (std::size_t i = 0; i < local.size(); ++i) {
+                for (std::size_t j = 0; j < local.size(); ++j) {
+                    Ke[0](local[i], local[j]) += k(static_cast<Index>(i), static_cast<Index>(j));
+                }
+            }
+        })[0];
+}
+
+SparseMatrix assemble_plate_clamping(const LimitBasis& basis, const Points& X, const PlateMaterial& material,
+                                     const SamplerOptions& rule, double penalty) {
+    check_material(material);
+    check_points(X, basis.topology().num_vertices());
+    LIMSURF_CHECK(std::isfinite(penalty) && penalty > 0.0, InputError, "plate: the Nitsche penalty must be > 0, got ",
+                  penalty);
+    std::vector<Eigen::Triplet<double>> entries;
+    LimitWeights W;
+    for (const detail::BoundarySample& b : detail::boundary_samples(basis, rule)) {
+        basis.evaluate(b.point, W, DerivativeOrder::Second);
+        add_clamping_sample(b, W, X, material, penalty, entries);
+    }
+    const Index V = basis.topology().num_vertices();
+    SparseMatrix N(V, V);
+    N.setFromTriplets(entries.begin(), entries.end());
+    return SparseMatrix(0.5 * (N + SparseMatrix(N.transpose())));
+}
+
+PlateSolution solve_plate(const LimitBasis& basis, const LimitSampler& sampler, const Points& X,
+                          const PlateMaterial& material, PlateSupport support, const SurfaceFunction& load,
+                          double penalty) {
+    LIMSURF_CHECK(basis.topology().has_boundary(), InputError,
+                  "plate: the control mesh is closed: a plate needs a boundary");
+    check_sampler_matches(basis, sampler);
+    SparseMatrix clamping;
+    if (support == PlateSupport::ClampedNitsche) {
+        clamping = assemble_plate_clamping(basis, X, material, sampler.options(), penalty);
+    }
+    return solve_with_supports(basis.topology(), sampler, X, material, support, galerkin_load(sampler, X, load),
+                               clamping);
+}
+
+PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler, const Points& X,
+                          const PlateMaterial& material, PlateSupport support, const SurfaceFunction& load) {
+    LIMSURF_CHECK(topology.has_boundary(), InputError, "plate: the control mesh is closed: a plate needs a boundary");
+    if (support == PlateSupport::ClampedNitsche) {
+        const LimitBasis basis(topology, SchemeKind::CatmullClark);
+        return solve_plate(basis, sampler, X, material, support, load, default_clamping_penalty);
+    }
+    return solve_with_supports(topology, sampler, X, material, support, galerkin_load(sampler, X, load),
+                               SparseMatrix());
+}
+
+PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler, const Points& X,
+                          const PlateMaterial& material, PlateSupport support, const Eigen::VectorXd& load_values) {
+    LIMSURF_CHECK(topology.has_boundary(), InputError, "plate: the control mesh is closed: a plate needs a boundary");
+    LIMSURF_CHECK(load_values.size() == topology.num_vertices() && load_values.allFinite(), InputError, "plate: ",
+                  load_values.size(), " load values for ", topology.num_vertices(), " control vertices, or not finite");
+    const Eigen::VectorXd b = assemble_laplace_beltrami(sampler, X).mass * load_values;
+    SparseMatrix clamping;
+    if (support == PlateSupport::ClampedNitsche) {
+        const LimitBasis basis(topology, SchemeKind::CatmullClark);
+        check_sampler_matches(basis, sampler);
+        clamping = assemble_plate_clamping(basis, X, material, sampler.options(), default_clamping_penalty);
+    }
+    return solve_with_supports(topology, sampler, X, material, support, b, clamping);
 }
 
 bool locate_planar_point(const LimitBasis& basis, const Points& X, double x, double y, SurfacePoint& out) {

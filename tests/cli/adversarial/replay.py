@@ -160,6 +160,9 @@ def commands(mesh, out_dir, is_huge):
         ("poisson catmull-clark huge boundary", ["poisson", mesh, "--scheme", "catmull-clark", "--method", "dec",
                                                  "--rhs", "1", "--boundary-value", "1e308", "-o", o("q.vtu")],
          [o("q.vtu")]),
+        ("plate", ["plate", mesh, "--json", "-o", o("w.vtk")], [o("w.vtk")]),
+        ("shell free pressure", ["shell", mesh, "--pressure", "1e300", "--interpolate", "-o", o("u.vtk")],
+         [o("u.vtk")]),
     ]
 
 
