@@ -12,7 +12,6 @@
 #include "limsurf/fem/plate.h"
 
 #include <cmath>
-#include <cstddef>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -26,8 +25,6 @@
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "formula.h"
-#include "limsurf/core/error.h"
-#include "limsurf/fem/galerkin.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"

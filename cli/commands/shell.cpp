@@ -122,10 +122,9 @@ int run_shell(const ShellOptions& options) {
         if (gravity != 0.0 || pressure != 0.0) {
             // Self-weight along −z and a pressure along the normal (positive: outwards for an
             // outward-oriented surface, as an internal pressure).
-            problem.traction = [gravity, pressure](const Points& P, const Points& N) {
+            problem.traction = [gravity, pressure](const Points&, const Points& N) {
                 Points t = pressure * N;
                 t.col(2).array() -= gravity;
-                (void)P;
                 return t;
             };
         }

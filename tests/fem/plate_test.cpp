@@ -98,6 +98,13 @@ Grid disk(Index m, Index layers, double a) {
     return g;
 }
 
+/// The control mesh (t, X) refined once by Catmull–Clark: the same plate, a finer space.
+void refine_once(Topology& t, Points& X) {
+    limsurf::Level next = refine(t, SchemeKind::CatmullClark);
+    X = next.S0 * X;
+    t = std::move(next.topology);
+}
+
 TEST(Plate, NavierSeriesMatchesTimoshenkosTable) {
     // Timoshenko and Woinowsky-Krieger, Table 8 (b/a = 1): w_max = 0.00406 p a⁴ / D.
     EXPECT_NEAR(navier_uniform(1.0, 1.0, 1.0, 1.0, 0.5, 0.5), 0.00406235, 5e-8);
@@ -185,9 +192,7 @@ TEST(Plate, UnstructuredMeshReachesNavierAtLevelFour) {
     std::vector<double> errors;
     for (int level = 0; level <= 4; ++level) {
         if (level > 0) {
-            limsurf::Level next = refine(t, SchemeKind::CatmullClark);
-            X = next.S0 * X;
-            t = std::move(next.topology);
+            refine_once(t, X);
         }
         const LimitBasis basis(t, SchemeKind::CatmullClark);
         const LimitSampler sampler(basis, SamplerOptions{6, 6, 0});
@@ -371,9 +376,7 @@ TEST(Plate, ClampedDiskMatchesTheCircularPlate) {
     std::vector<double> error;
     for (int level = 0; level <= 2; ++level) {
         if (level > 0) {
-            limsurf::Level next = refine(t, SchemeKind::CatmullClark);
-            X = next.S0 * X;
-            t = std::move(next.topology);
+            refine_once(t, X);
         }
         const LimitBasis basis(t, SchemeKind::CatmullClark);
         const LimitSampler sampler(basis, SamplerOptions{6, 6, 0});
@@ -481,9 +484,7 @@ TEST(Plate, AsymmetricMeshReachesNavierAtLevelFour) {
     std::vector<double> uniform_errors, table2_errors;
     for (int level = 0; level <= 4; ++level) {
         if (level > 0) {
-            limsurf::Level next = refine(t, SchemeKind::CatmullClark);
-            X = next.S0 * X;
-            t = std::move(next.topology);
+            refine_once(t, X);
         }
         const LimitBasis basis(t, SchemeKind::CatmullClark);
         const LimitSampler sampler(basis, SamplerOptions{6, 6, 0});

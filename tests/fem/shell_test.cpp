@@ -15,9 +15,7 @@
 #include "limsurf/fem/plate.h"
 #include "limsurf/fem/shell.h"
 #include "limsurf/io/mesh_io.h"
-#include "limsurf/limit/interpolation.h"
 #include "limsurf/limit/limit_basis.h"
-#include "limsurf/refine/refine.h"
 #include "support/mesh_zoo.h"
 
 namespace limsurf::test {
@@ -25,32 +23,15 @@ namespace {
 
 const double pi = std::numbers::pi;
 
-/// A control mesh whose limit surface interpolates the bundled mesh's points, refined @p levels times.
-struct Shell {
-    Topology topology;
-    Points X;
-};
-
-Shell interpolated(const std::string& name, SchemeKind scheme, int levels,
-                   const std::function<Eigen::RowVector3d(const Eigen::RowVector3d&)>& project = nullptr) {
-    const BuildResult built = read_mesh(find_bundled(name).path);
-    Topology t = built.mesh.topology();
-    Points targets = built.mesh.positions();
-    Points X = interpolating_control_points(LimitBasis(t, scheme), targets);
-    for (int l = 0; l < levels; ++l) {
-        Level next = refine(t, scheme);
-        t = std::move(next.topology);
-        if (project) {  // the refined points moved onto the exact surface, then interpolated again
-            targets = next.S0 * targets;
-            for (Index v = 0; v < targets.rows(); ++v) {
-                targets.row(v) = project(targets.row(v));
-            }
-            X = interpolating_control_points(LimitBasis(t, scheme), targets);
-        } else {
-            X = next.S0 * X;
+/// A projection applied to each point.
+std::function<Points(const Points&)> pointwise(std::function<Eigen::Vector3d(const Eigen::Vector3d&)> f) {
+    return [f = std::move(f)](const Points& P) {
+        Points out(P.rows(), 3);
+        for (Index v = 0; v < P.rows(); ++v) {
+            out.row(v) = f(P.row(v).transpose()).transpose();
         }
-    }
-    return Shell{std::move(t), std::move(X)};
+        return out;
+    };
 }
 
 double relative_asymmetry(const SparseMatrix& K) {
@@ -117,41 +98,29 @@ TEST(Shell, PressurisedSphereExpandsAsTheClosedForm) {
     const double R = 1.0, p = 1.0;
     const ShellMaterial m{1e3, 0.3, 0.02};
     const double exact = p * R * R * (1 - m.nu) / (2 * m.E * m.thickness) / (1 + m.thickness * m.thickness / (12 * R * R));
+    ShellProblem problem;
+    problem.material = m;
+    problem.traction = [p](const Points&, const Points& normals) { return Points(p * normals); };
+    problem.project = pointwise([R](const Eigen::Vector3d& x) { return Eigen::Vector3d(R * x.normalized()); });
+    problem.quadrature = SamplerOptions{6, 6, 0};
+    const BuildResult built = read_mesh(find_bundled("sphere_quads").path);
     std::vector<double> errors;
-    for (int level = 0; level <= 2; ++level) {
-        Shell s = interpolated("sphere_quads", SchemeKind::CatmullClark, level,
-                               [](const Eigen::RowVector3d& q) { return Eigen::RowVector3d(q.normalized()); });
-        const LimitBasis basis(s.topology, SchemeKind::CatmullClark);
-        const LimitSampler sampler(basis, 6, 6);
-        const SparseMatrix K = assemble_shell_stiffness(sampler, s.X, m);
-        const Eigen::VectorXd f =
-            shell_area_load(sampler, s.X, [&](const Points&, const Points& normals) { return Points(p * normals); });
-        const ShellSolution sol = solve_shell(K, f, s.X, std::vector<bool>(static_cast<std::size_t>(3 * s.X.rows())));
-        EXPECT_EQ(sol.free_rigid_motions, 6);
-        EXPECT_LT(sol.residual, 1e-9);
+    for (const ShellLevel& l : solve_shell_levels(built.mesh.topology(), built.mesh.positions(), problem, 2)) {
+        EXPECT_EQ(l.solution.free_rigid_motions, 6);
+        EXPECT_LT(l.solution.residual, 1e-9);
         // The radial displacement at every vertex's limit point.
-        const Points L = basis.vertex_limit_matrix() * s.X;
-        const Points U = basis.vertex_limit_matrix() * sol.displacements();
+        const SparseMatrix P = LimitBasis(l.topology, SchemeKind::CatmullClark).vertex_limit_matrix();
+        const Points L = P * l.X;
+        const Points U = P * l.solution.displacements();
         double worst = 0.0;
         for (Index v = 0; v < L.rows(); ++v) {
             worst = std::max(worst, std::abs(U.row(v).dot(L.row(v).normalized()) / exact - 1.0));
         }
-        std::printf("sphere level %d: largest relative error of the radial displacement %.3e\n", level, worst);
+        std::printf("sphere level %d: largest relative error of the radial displacement %.3e\n", l.level, worst);
         errors.push_back(worst);
     }
     EXPECT_LT(errors.back(), 1e-3);
     EXPECT_LT(errors[2], errors[0]);
-}
-
-/// A projection applied to each point.
-std::function<Points(const Points&)> pointwise(std::function<Eigen::Vector3d(const Eigen::Vector3d&)> f) {
-    return [f = std::move(f)](const Points& P) {
-        Points out(P.rows(), 3);
-        for (Index v = 0; v < P.rows(); ++v) {
-            out.row(v) = f(P.row(v).transpose()).transpose();
-        }
-        return out;
-    };
 }
 
 /// The bundled obstacle-course mesh with the geometry refined with the mesh (projected onto the
