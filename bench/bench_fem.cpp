@@ -8,6 +8,7 @@
 // (base_MiB: the mesh, and the sampler where it uses one) and the peak during it (peak_MiB, the
 // process's VmHWM reset before the loop). One thread throughout.
 // docs/BENCHMARKS.md "Galerkin assembly".
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/fem/plate.h"
+#include "limsurf/fem/shell.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/sec/operators.h"
 
@@ -102,6 +104,25 @@ void BM_plate_bending_assembly(benchmark::State& state) {
     const MemoryWatch memory;
     for (auto _ : state) {
         const limsurf::SparseMatrix K = limsurf::assemble_plate_bending(s, plate().X, limsurf::PlateMaterial{});
+        benchmark::DoNotOptimize(K.nonZeros());
+    }
+    state.counters["points_per_s"] =
+        benchmark::Counter(static_cast<double>(s.num_samples()), benchmark::Counter::kIsIterationInvariantRate);
+    memory.report(state);
+}
+
+/// The shell stiffness (membrane + bending, 3 unknowns per vertex) of the same grid rolled onto a
+/// cylinder of radius 10 (a curved surface: every term of the strains is non-zero).
+void BM_shell_stiffness_assembly(benchmark::State& state) {
+    const auto& s = sampler();
+    Points X = plate().X;
+    for (Index v = 0; v < X.rows(); ++v) {
+        const double angle = X(v, 0) / 10.0;
+        X.row(v) << 10.0 * std::sin(angle), X(v, 1), 10.0 * std::cos(angle);
+    }
+    const MemoryWatch memory;
+    for (auto _ : state) {
+        const limsurf::SparseMatrix K = limsurf::assemble_shell_stiffness(s, X, limsurf::ShellMaterial{});
         benchmark::DoNotOptimize(K.nonZeros());
     }
     state.counters["points_per_s"] =
@@ -215,6 +236,7 @@ void BM_plate_solve(benchmark::State& state) {
 BENCHMARK(BM_sampler_setup)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_laplace_beltrami_assembly)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_plate_bending_assembly)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_shell_stiffness_assembly)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_sec_inner_products)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_sec_laplacian)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_laplace_beltrami_solve)->Unit(benchmark::kMillisecond)->UseRealTime();
