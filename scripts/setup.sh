@@ -22,6 +22,13 @@ packages=(
     libtinyobjloader-dev
     # bundled-mesh reproducibility test (tools/make_meshes.py --check)
     python3
+    # pictures: PNG writing (stb_image_write) for limsurf render
+    libstb-dev
+    # the Python module (pybind11 against Debian's python3 with numpy and scipy) and its tests,
+    # the studies' plots (matplotlib)
+    python3-dev pybind11-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-matplotlib
+    # test-only peer: an independent glTF reader (tinygltf) for the .glb export
+    libtinygltf-dev
 )
 
 # `setup.sh --fuzz` adds what the libFuzzer targets need (make fuzz).
