@@ -112,6 +112,31 @@ TEST(C2g0Limit, StationaryAndSubdivisionPathsAgree) {
     }
 }
 
+/// Lattice points k/N of the ptex triangle (N = 3..24), where rounding once chose a lattice triangle of
+/// ring 1 at (2/3, 1/3) and the lookup read past its table (a crash in Release): every point evaluates,
+/// finite, and agrees with the level-by-level path.
+TEST(C2g0Limit, LatticePointsOfEveryThirdEvaluate) {
+    const ControlMesh mesh = load("tetra_3");
+    const LimitBasis tables(mesh.topology(), SchemeKind::C2g0);
+    const LimitBasis levels(mesh.topology(), SchemeKind::C2g0, {}, {}, LimitEvaluation::Subdivision);
+    double worst = 0.0;
+    for (const int n : {3, 6, 9, 12, 24}) {
+        for (int i = 0; i <= n; ++i) {
+            for (int j = 0; i + j <= n; ++j) {
+                const SurfacePoint point{0, static_cast<double>(i) / n, static_cast<double>(j) / n};
+                const auto a = tables.evaluate(mesh.positions(), point);
+                ASSERT_TRUE(a.allFinite()) << n << ": " << i << ", " << j;
+                if (tables.evaluate(point, DerivativeOrder::Value).at_extraordinary_vertex) {
+                    continue;
+                }
+                const auto b = levels.evaluate(mesh.positions(), point);
+                worst = std::max(worst, (a - b).topRows(3).cwiseAbs().maxCoeff() / scale(a, 0, 3));
+            }
+        }
+    }
+    EXPECT_LT(worst, 1e-12);
+}
+
 /// f-chart coordinates of corner j of the ptex triangle.
 Eigen::Vector2d corner(int j) {
     static const Eigen::Vector2d c[3] = {{0, 0}, {1, 0}, {0, 1}};

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <mutex>
 #include <span>
 #include <vector>
@@ -30,7 +31,9 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
     const std::vector<Index> offsets = element_offsets(sampler);
     const Index num_elements = static_cast<Index>(offsets.size()) - 1;
     using Triplets = std::vector<Eigen::Triplet<double>>;
-    std::vector<std::array<Triplets, N>> parts;
+    // Keyed by the first element of each range, so that the triplets are summed in one order
+    // whichever thread finishes first: the same input gives the same bits on every run.
+    std::map<Index, std::array<Triplets, N>> parts;
     std::mutex gather;
     const auto at = [](Index i) { return static_cast<std::size_t>(i); };
     parallel_ranges(num_elements, sampler.options().num_threads, [&](Index begin, Index end) {
@@ -74,12 +77,12 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
             }
         }
         const std::lock_guard<std::mutex> lock(gather);
-        parts.push_back(std::move(triplets));
+        parts.emplace(begin, std::move(triplets));
     });
     std::array<SparseMatrix, N> out;
     for (std::size_t m = 0; m < N; ++m) {
         Triplets all;
-        for (auto& p : parts) {
+        for (auto& [first, p] : parts) {
             all.insert(all.end(), p[m].begin(), p[m].end());
             Triplets().swap(p[m]);
         }

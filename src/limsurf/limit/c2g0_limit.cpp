@@ -585,7 +585,11 @@ void C2g0Limit::Impl::evaluate_mesh(Index f, double u, double v, std::vector<Ind
     } else {
         const int a0 = static_cast<int>(std::floor(xm.x()));
         const int b0 = static_cast<int>(std::floor(xm.y()));
-        if (xm.x() - a0 + xm.y() - b0 < 1.0) {
+        // The lower triangle (rings a0 + b0 and one more) or the upper one (rings a0 + b0 + 1 and one
+        // more). Rounding can put xm just across a lattice line from where a0 + b0 says, e.g. (2/3, 1/3)
+        // at level 1 lands on ring 1 or 2 by one ulp: keep to rings 2..4 whatever the rounding.
+        const int ring = a0 + b0;
+        if (ring >= 3 || (ring >= 2 && xm.x() - a0 + xm.y() - b0 < 1.0)) {
             q0 = {a0, b0};
             q1 = {a0 + 1, b0};
             q2 = {a0, b0 + 1};
@@ -604,7 +608,9 @@ void C2g0Limit::Impl::evaluate_mesh(Index f, double u, double v, std::vector<Ind
     chain(b, L, r);
     const auto found =
         patches.find({complex_id(6, face.sector, q0[0], q0[1]), complex_id(6, face.sector, q1[0], q1[1])});
-    LIMSURF_ASSERT(found != patches.end(), "C2g0 limit evaluation: no type-0 triangle of K_6 at the point");
+    // Checked in every build: a missed lattice case must be an error, never a read through end().
+    LIMSURF_CHECK(found != patches.end(), NumericalError, "C2g0 limit evaluation: no type-0 triangle of K_6 at (",
+                  x.x(), ", ", x.y(), ") (a limsurf bug: please report the mesh and point)");
     const std::array<Index, 27>& ids = found->second;
     const int n = m - 1;
     Rows local = Rows::Zero(6, complex_size(4));

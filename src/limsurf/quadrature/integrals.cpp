@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <mutex>
 
 #include <Eigen/Geometry>
@@ -19,16 +20,22 @@ template <int N, class F>
 Eigen::Matrix<double, N, 1> reduce(const LimitSampler& sampler, const Points& X, F term) {
     LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "control points have ", X.rows(),
                   " rows, the sampler ", sampler.num_vertices(), " vertices");
-    Eigen::Matrix<double, N, 1> total = Eigen::Matrix<double, N, 1>::Zero();
-    std::mutex total_mutex;
+    // Partial sums keyed by their range and added in that order, not in the order the threads
+    // finish: the same input gives the same bits on every run, with any number of threads.
+    std::map<Index, Eigen::Matrix<double, N, 1>> partials;
+    std::mutex partials_mutex;
     parallel_ranges(sampler.num_samples(), sampler.options().num_threads, [&](Index begin, Index end) {
         Eigen::Matrix<double, N, 1> partial = Eigen::Matrix<double, N, 1>::Zero();
         for (Index s = begin; s < end; ++s) {
             partial += term(sampler.weight(s), sampler.evaluate(X, s));
         }
-        const std::lock_guard lock(total_mutex);
-        total += partial;
+        const std::lock_guard lock(partials_mutex);
+        partials.emplace(begin, partial);
     });
+    Eigen::Matrix<double, N, 1> total = Eigen::Matrix<double, N, 1>::Zero();
+    for (const auto& [begin, partial] : partials) {
+        total += partial;
+    }
     return total;
 }
 
