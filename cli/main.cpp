@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     add_eigen_command(app, status);
     add_plate_command(app, status);
     add_shell_command(app, status);
+    add_render_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -20,5 +20,6 @@ void add_poisson_command(CLI::App& app, CommandStatus& status);
 void add_eigen_command(CLI::App& app, CommandStatus& status);
 void add_plate_command(CLI::App& app, CommandStatus& status);
 void add_shell_command(CLI::App& app, CommandStatus& status);
+void add_render_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

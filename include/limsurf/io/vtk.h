@@ -1,9 +1,13 @@
-// VTK output for visualising per-vertex data (ParaView, VisIt, PyVista).
+// VTK output for visualising per-vertex data (ParaView, VisIt, PyVista), and reading one
+// per-point scalar back (a solution to render, say).
 #pragma once
 
 #include <filesystem>
 #include <ostream>
 #include <span>
+#include <string>
+
+#include <Eigen/Core>
 
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
@@ -28,5 +32,17 @@ void write_vtu(std::ostream& out, const PolygonSoup& soup, std::span<const Verte
 /// @throws InputError for another extension, invalid fields, or a failed write
 void write_vertex_data(const std::filesystem::path& path, const PolygonSoup& soup, std::span<const VertexField> fields,
                        const WriteOptions& options = {});
+
+/// @brief Reads the per-point scalar called @p name from a legacy ASCII VTK file: `SCALARS name type`
+///   (one component) with its `LOOKUP_TABLE` line under POINT_DATA, as write_vtk() writes it, or a
+///   one-component array of a FIELD there. Other sections (POINTS, cells, vectors, cell data, ...) are
+///   skipped by their counts; reading stops at the array asked for.
+/// @return one value per point (the count of POINT_DATA)
+/// @throws InputError "FILE:LINE: ..." for a file that cannot be opened, a header other than
+///   "# vtk DataFile Version ...", BINARY data, a malformed section, a POINT_DATA count that differs from
+///   POINTS, a section it does not know (before the array), an array of that name with more than one
+///   component or under CELL_DATA, a value that is not a number or not finite (naming the point), or
+///   no such array (listing the point scalars the file has)
+[[nodiscard]] Eigen::VectorXd read_vtk_point_scalar(const std::filesystem::path& path, const std::string& name);
 
 }  // namespace limsurf
