@@ -22,6 +22,10 @@ LAYERS = {
     "sec": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
     "analysis": {"core", "mesh", "scheme", "refine", "limit"},
     "fem": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
+    "render": {"core", "mesh", "io", "scheme", "refine", "limit", "quadrature"},
+    # drivers shared by the CLI and the Python module: may stand on every library layer
+    "apps": {"core", "mesh", "io", "scheme", "refine", "limit", "quadrature", "volume", "sec", "analysis", "fem",
+             "render"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 
@@ -32,6 +36,29 @@ def layer_of(path, root):
     if len(parts) >= 4 and parts[1] == "limsurf" and parts[2] in LAYERS:
         return parts[2]
     return None
+
+
+# The front ends stand on the library's public headers only: the CLI (cli/) and the Python module
+# (python/src/) may include any layer's include/limsurf/<layer>/ header, never src/limsurf/detail,
+# and the library never includes a front end (pybind11, CLI11).
+FRONT_ENDS = ("cli", "python/src")
+FRONT_END_INCLUDE = re.compile(r'^\s*#\s*include\s+[<"](pybind11/|CLI/|commands/)')
+
+
+def front_end_problems(root):
+    problems = []
+    for front_end in FRONT_ENDS:
+        for path in sorted((root / front_end).rglob("*.[ch]*")):
+            for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+                match = INCLUDE.match(line)
+                if match and match.group(1) == "detail":
+                    problems.append("%s:%d: a front end may include public headers only, not limsurf/detail"
+                                    % (path.relative_to(root), number))
+    for path in sorted(list((root / "include").rglob("*.h")) + list((root / "src").rglob("*.[ch]*"))):
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+            if FRONT_END_INCLUDE.match(line):
+                problems.append("%s:%d: the library may not include a front end" % (path.relative_to(root), number))
+    return problems
 
 
 def main():
@@ -56,6 +83,7 @@ def main():
             if match.group(1) != "detail" or path.relative_to(root).parts[0] != "src":
                 problems.append("%s:%d: %s may not include %s" % (path.relative_to(root), number, layer,
                                                                   match.group(1)))
+    problems += front_end_problems(root)
     for problem in problems:
         print(problem, file=sys.stderr)
     if not problems:

@@ -17,12 +17,10 @@
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "formula.h"
-#include "limsurf/fem/galerkin.h"
+#include "limsurf/apps/poisson.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
-#include "limsurf/sec/operators.h"
-#include "limsurf/sec/reference_solution.h"
 #include "output.h"
 
 namespace limsurf::cli {
@@ -48,74 +46,37 @@ struct PoissonCommandOptions {
 int solve_and_report(const BuildResult& built, const PoissonCommandOptions& options) {
     const ControlMesh& mesh = built.mesh;
     const Topology& t = mesh.topology();
-    const SchemeKind scheme = limit_schemes().at(options.scheme);
     LimitSchemeOptions limit_options;
     limit_options.scheme = options.scheme;
-    const SchemeOptions rules = scheme_rules(mesh, limit_options);
-    const bool iga = options.method == "iga";
-    LIMSURF_CHECK(!iga || !options.lumped, InputError,
+    SurfacePoissonOptions poisson;
+    poisson.method = parse_poisson_method(options.method);
+    LIMSURF_CHECK(poisson.method != PoissonMethod::Iga || !options.lumped, InputError,
                   "--lumped applies to the inner products of dec and sec, not to iga");
-    InnerProductOptions ip;
-    if (!iga) {
-        ip.method = parse_inner_product_method(options.method);
-    }
-    ip.level = options.level;
-    ip.lumped = options.lumped;
-    const auto rhs = [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); };
-    const auto boundary = [&](const Points& P) {
-        return evaluate_formula("--boundary-value", options.boundary_value, P);
-    };
-
-    ReferenceProblem reference_problem{options.reference_level, rhs, boundary, rules,
-                                       memory_budget(options.max_memory)};
+    poisson.level = options.level;
+    poisson.lumped = options.lumped;
+    poisson.degree = options.degree;
+    poisson.tiles = options.tiles;
+    poisson.scheme_options = scheme_rules(mesh, limit_options);
     if (options.reference_level >= 0) {
-        // A reference that cannot be had is refused now, not after the main solve.
         LIMSURF_CHECK(options.rhs_file.empty(), InputError,
                       "--reference-level needs --rhs (a formula to evaluate on the fine mesh)");
-        check_reference(t, scheme, reference_problem);
+        poisson.reference_level = options.reference_level;
     }
-    PoissonProblem problem;
-    if (t.has_boundary()) {
-        problem.boundary_values = boundary(mesh.positions());
-    }
-    PoissonSolution solution;
-    if (iga) {
-        // Galerkin with the limit basis (docs/fem.md): f integrated at the quadrature points of the
-        // limit surface; a per-vertex f is taken as control values, f_h = Σ f_i φ_i.
-        const LimitBasis basis = make_limit_basis(mesh, limit_options);
-        const LimitSampler sampler(basis, SamplerOptions{options.degree, options.tiles, 0});
-        const GalerkinMatrices matrices = assemble_laplace_beltrami(sampler, mesh.positions());
-        Eigen::VectorXd load;
-        if (!options.rhs_file.empty()) {
-            problem.f = read_vertex_values(options.rhs_file, t.num_vertices());
-            load = matrices.mass * problem.f;
-        } else {
-            problem.f = rhs(mesh.positions());
-            load = galerkin_load(sampler, mesh.positions(), rhs);
-        }
-        GalerkinPoissonSolution g = solve_galerkin_poisson(t, matrices, load, problem.boundary_values);
-        solution.u = std::move(g.u);
-        solution.residual = g.residual;
-        solution.mean_removed = g.mean_removed;
-        solution.solver = g.solver;
+    poisson.max_memory = memory_budget(options.max_memory);
+    SurfacePoissonData data;
+    if (!options.rhs_file.empty()) {
+        data.f_values = read_vertex_values(options.rhs_file, t.num_vertices());
     } else {
-        // Refuse what the scheme or the form rules cannot do before evaluating anything.
-        const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, rules));
-        if (!options.rhs_file.empty()) {
-            problem.f = read_vertex_values(options.rhs_file, t.num_vertices());
-        } else {
-            problem.f = rhs(mesh.positions());
-            // Integrate f where the inner products live (level L for sec), not at the control points.
-            problem.load = load_vector(t, mesh.positions(), scheme, ip, rhs, rules);
-        }
-        solution = solve_poisson(t, ops, problem);
+        data.f = [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); };
     }
-    std::optional<ReferenceComparison> reference;
-    if (options.reference_level >= 0) {
-        reference = compare_with_reference(t, mesh.positions(), scheme, reference_problem, solution.u);
-    }
+    data.boundary = [&](const Points& P) { return evaluate_formula("--boundary-value", options.boundary_value, P); };
+    const SurfacePoissonResult result =
+        solve_surface_poisson(mesh, limit_schemes().at(options.scheme), poisson, data);
+    const PoissonSolution& solution = result.solution;
+    const std::optional<ReferenceComparison>& reference = result.reference;
+    const bool iga = poisson.method == PoissonMethod::Iga;
     const Eigen::VectorXd& u = solution.u;
-    const bool sec = !iga && (ip.method == InnerProductMethod::Sec || ip.method == InnerProductMethod::SecSnap);
+    const bool sec = poisson.method == PoissonMethod::Sec || poisson.method == PoissonMethod::SecSnap;
     nlohmann::json out{{"scheme", options.scheme},
                        {"method", options.method},
                        {"level", sec ? options.level : 0},
@@ -141,7 +102,7 @@ int solve_and_report(const BuildResult& built, const PoissonCommandOptions& opti
     }
     require_finite(out);  // before anything is written
     if (!options.output.empty()) {
-        const std::vector<VertexField> fields{{"u", solution.u}, {"f", problem.f}};
+        const std::vector<VertexField> fields{{"u", solution.u}, {"f", result.f}};
         write_vertex_data(options.output, to_polygon_soup(mesh), fields);
     }
     if (options.json) {

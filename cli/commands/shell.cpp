@@ -3,8 +3,9 @@
 //   [--probe 'x,y,z']... [--interpolate] [--surface 'F(x,y,z)'] [--degree D --tiles K] [--json] [-o out.vtk]:
 // linear Kirchhoff–Love shells on the limit surface (fem/shell.h). For each level 0..L it reports the
 // displacement at the probes (vector and normal component), the strain energy and the solve's
-// residual. Parsing and printing only: the levels are solve_shell_levels.
-#include "limsurf/fem/shell.h"
+// residual. Parsing and printing only: the problem is shell_problem (apps/shell.h), the levels
+// solve_shell_levels.
+#include "limsurf/apps/shell.h"
 
 #include <cmath>
 #include <iomanip>
@@ -22,7 +23,6 @@
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
-#include "limsurf/limit/interpolation.h"
 #include "output.h"
 
 namespace limsurf::cli {
@@ -98,38 +98,30 @@ int run_shell(const ShellOptions& options) {
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     return naming_file(built.source, {options.output}, [&] {
-        ShellProblem problem;
-        problem.material = ShellMaterial{options.E, options.nu, options.thickness};
-        problem.scheme = options.scheme == "loop" ? SchemeKind::Loop : SchemeKind::CatmullClark;
-        problem.quadrature = SamplerOptions{options.degree, options.tiles, 0};
-        problem.interpolate = options.interpolate || !options.surface.empty();
+        ShellStudyOptions study;
+        study.material = ShellMaterial{options.E, options.nu, options.thickness};
+        study.scheme = options.scheme == "loop" ? SchemeKind::Loop : SchemeKind::CatmullClark;
+        study.levels = options.levels;
+        study.quadrature = SamplerOptions{options.degree, options.tiles, 0};
+        study.interpolate = options.interpolate;
         if (!options.surface.empty()) {
             const std::string F = options.surface;
-            problem.project = [F](const Points& P) {
-                return project_onto_zero_set([&](const Points& Q) { return evaluate_formula("--surface", F, Q); }, P);
-            };
+            study.surface = [F](const Points& Q) { return evaluate_formula("--surface", F, Q); };
         }
         for (const std::string& f : options.fixes) {
-            problem.supports.push_back(parse_fix(f));
+            study.supports.push_back(parse_fix(f));
         }
         for (const std::string& p : options.point_loads) {
-            problem.point_loads.push_back(parse_point_load(p));
+            study.point_loads.push_back(parse_point_load(p));
         }
         for (const std::string& p : options.probes) {
-            problem.probes.push_back(parse_triple("--probe", p));
+            study.probes.push_back(parse_triple("--probe", p));
         }
-        const double gravity = options.gravity, pressure = options.pressure;
-        if (gravity != 0.0 || pressure != 0.0) {
-            // Self-weight along −z and a pressure along the normal (positive: outwards for an
-            // outward-oriented surface, as an internal pressure).
-            problem.traction = [gravity, pressure](const Points&, const Points& N) {
-                Points t = pressure * N;
-                t.col(2).array() -= gravity;
-                return t;
-            };
-        }
-        LIMSURF_CHECK(problem.traction || !problem.point_loads.empty(), InputError,
+        study.gravity = options.gravity;
+        study.pressure = options.pressure;
+        LIMSURF_CHECK(study.gravity != 0.0 || study.pressure != 0.0 || !study.point_loads.empty(), InputError,
                       "shell: no load (give --gravity, --pressure or --point-load)");
+        const ShellProblem problem = shell_problem(built.mesh.topology(), built.mesh.positions(), study);
         const std::vector<ShellLevel> levels =
             solve_shell_levels(built.mesh.topology(), built.mesh.positions(), problem, options.levels);
         nlohmann::json rows = nlohmann::json::array();
@@ -164,10 +156,9 @@ int run_shell(const ShellOptions& options) {
         if (!options.output.empty()) {
             // The finest control topology at its vertices' limit points, with the limit displacement there.
             const ShellLevel& finest = levels.back();
-            const LimitBasis basis(finest.topology, problem.scheme);
-            const SparseMatrix P = basis.vertex_limit_matrix();
-            const Points U = P * finest.solution.displacements();
-            ControlMesh surface(finest.topology, P * finest.X);
+            const ShellVertexLimits limits = shell_vertex_limits(finest, problem.scheme);
+            const Points& U = limits.displacements;
+            ControlMesh surface(finest.topology, limits.positions);
             const std::vector<VertexField> fields{{"displacement", U}, {"displacement_magnitude", U.rowwise().norm()}};
             write_vertex_data(options.output, to_polygon_soup(surface), fields);
             out["output"] = options.output;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "limsurf/analysis/eigen_analysis.h"
+#include "limsurf/apps/poisson.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/fem/plate.h"
 #include "limsurf/fem/shell.h"
@@ -9,6 +10,7 @@
 #include "limsurf/core/types.h"
 #include "limsurf/core/version.h"
 #include "limsurf/io/atomic_file.h"
+#include "limsurf/io/gltf.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/obj.h"
 #include "limsurf/io/off.h"
@@ -31,6 +33,8 @@
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/refine/level.h"
 #include "limsurf/refine/refine.h"
+#include "limsurf/render/render.h"
+#include "limsurf/render/tessellation.h"
 #include "limsurf/scheme/c2g0.h"
 #include "limsurf/scheme/crease.h"
 #include "limsurf/scheme/scheme.h"

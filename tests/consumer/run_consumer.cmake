@@ -22,3 +22,17 @@ if(NOT last_output MATCHES "vertices=8 edges=12 faces=6 genus=0")
     message(FATAL_ERROR "unexpected consumer output: ${last_output}")
 endif()
 message(STATUS "consumer: ${last_output}")
+
+# The Python module, when built: `make install` put it where the prefix's Python finds it.
+if(PYTHON AND PYTHON_DIR)
+    set(ENV{PYTHONPATH} ${prefix}/${PYTHON_DIR})
+    # (no semicolons in the code: run() passes its arguments on as a CMake list)
+    run(${PYTHON} -c "import limsurf, sys
+assert limsurf.__file__.startswith('${prefix}'), limsurf.__file__
+m = limsurf.read_mesh(sys.argv[1])
+print('python', m.num_vertices, m.num_edges, m.num_faces, m.genus)" ${MESH})
+    if(NOT last_output MATCHES "python 8 12 6 0")
+        message(FATAL_ERROR "unexpected output of the installed Python module: ${last_output}")
+    endif()
+    message(STATUS "consumer: ${last_output}")
+endif()

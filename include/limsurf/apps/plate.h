@@ -1,0 +1,111 @@
+// Kirchhoff–Love plates on a planar control mesh and its refinements, with the numbers that check
+// them (docs/guide/plate.md): the deflection at the centre and at the quarter point of the bounding
+// box, the largest deflection over the quadrature points and, for a simply supported rectangle
+// under the uniform or sine loads, the relative errors against the Navier solution (centre,
+// quarter point, L2, energy). The driver behind `limsurf plate` and limsurf.plate in Python, so both
+// give the same numbers.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "limsurf/core/types.h"
+#include "limsurf/fem/galerkin.h"
+#include "limsurf/fem/plate.h"
+#include "limsurf/mesh/topology.h"
+#include "limsurf/quadrature/sampler.h"
+#include "limsurf/scheme/scheme.h"
+
+namespace limsurf {
+
+/// The shape of a plate's load.
+enum class PlateLoadShape {
+    Uniform,     ///< p
+    Sinusoidal,  ///< p sin(2π(x − x0)/a) sin(2π(y − y0)/b) over the bounding box (the seed's Table 2)
+    SingleWave,  ///< p sin(π(x − x0)/a) sin(π(y − y0)/b)
+    Function,    ///< PlateLoad::function, evaluated at the quadrature points
+    /// PlateLoad::values: control values of the load on the control mesh (p_h = Σ p_i φ_i, b = M p),
+    /// carried to each refined level by its S0 (p_l = S0 p_{l−1}) like the positions.
+    Values
+};
+
+/// "uniform", "sinusoidal", "single-wave" (the loads known by name); empty for any other name.
+[[nodiscard]] std::optional<PlateLoadShape> plate_load_shape(const std::string& name);
+/// "uniform", "sinusoidal", "single-wave", "function", "values".
+[[nodiscard]] const char* to_string(PlateLoadShape shape) noexcept;
+
+/// "simply" (PlateSupport::SimplySupported) or "clamped" (PlateSupport::Clamped), as `limsurf plate --support`.
+/// @throws InputError naming the accepted names
+[[nodiscard]] PlateSupport parse_plate_support(const std::string& name);
+
+struct PlateLoad {
+    PlateLoadShape shape = PlateLoadShape::Uniform;
+    double pressure = 1e4;     ///< p of Uniform, Sinusoidal and SingleWave
+    SurfaceFunction function;  ///< Function: the load at rows of positions
+    Eigen::VectorXd values;    ///< Values: one per control vertex of the control mesh
+};
+
+struct PlateStudyOptions {
+    PlateMaterial material;
+    /// SimplySupported or Clamped (ClampedNitsche is refused: the per-vertex load has no penalty).
+    PlateSupport support = PlateSupport::SimplySupported;
+    SchemeKind scheme = SchemeKind::CatmullClark;  ///< of the basis and the refinement (default rules)
+    int levels = 0;                                ///< also solve on the control mesh refined 1..levels times (0..6)
+    SamplerOptions quadrature{6, 6, 0};            ///< degree per tile, tile levels
+};
+
+/// The bounding rectangle [x0, x0 + a] × [y0, y0 + b] of the control points.
+struct PlateRectangle {
+    double x0 = 0, y0 = 0, a = 0, b = 0;
+};
+
+/// A level's deflection against the Navier solution of the simply supported rectangle.
+struct PlateNavierComparison {
+    double centre_deflection = 0.0;   ///< exact, at the centre of the rectangle
+    double quarter_deflection = 0.0;  ///< exact, at (a/4, b/4)
+    /// w_h / w − 1 at the centre; empty at a node of the exact deflection (the centre under the
+    /// sinusoidal load) or where the point is off the plate.
+    std::optional<double> centre_relative_error;
+    std::optional<double> quarter_relative_error;  ///< the same at (a/4, b/4)
+    double l2_relative_error = 0.0;                ///< ‖w_h − w‖_L2 / ‖w‖_L2 by the quadrature
+    /// √((∫ p w dA − a(w_h, w_h)) / ∫ p w dA): the energy norm of the error (Galerkin orthogonality).
+    double energy_relative_error = 0.0;
+};
+
+/// One level of solve_plate_levels.
+struct PlateLevel {
+    int level = 0;
+    Topology topology;
+    Points X;                      ///< control points (S0 applied `level` times)
+    Eigen::VectorXd load_values;   ///< PlateLoadShape::Values: the load's control values here; else empty
+    PlateSolution solution;        ///< w: #V control values of the deflection
+    std::optional<double> centre_deflection;   ///< at the centre of the rectangle; empty off the plate
+    std::optional<double> quarter_deflection;  ///< at (x0 + a/4, y0 + b/4); empty off the plate
+    double max_deflection = 0.0;               ///< max |w_h| over the quadrature points
+    std::optional<PlateNavierComparison> navier;
+};
+
+struct PlateStudy {
+    PlateRectangle rectangle;
+    double bending_rigidity = 0.0;  ///< D = E t³ / (12 (1 − ν²))
+    /// The support and load have a Navier solution (simply supported, uniform or sine load): the
+    /// levels carry the comparison when the plate is its bounding rectangle.
+    bool navier_load = false;
+    /// The plate is its bounding rectangle: the limit surface's area (by the quadrature of level 0)
+    /// is a b within 1e-6 relative.
+    bool rectangle_plate = false;
+    std::vector<PlateLevel> levels;
+};
+
+/// @brief Solves the plate on the planar control mesh (@p topology, @p X, z = 0) refined
+///   0..options.levels times (solve_plate on each) and measures each level's deflection.
+/// @throws InputError for levels outside 0..6, a ClampedNitsche support, load values of the wrong
+///   size, a Function load without a function; otherwise as solve_plate (closed or non-planar mesh,
+///   material out of range, a load that fails or is not finite)
+[[nodiscard]] PlateStudy solve_plate_levels(const Topology& topology, const Points& X, const PlateLoad& load,
+                                            const PlateStudyOptions& options);
+
+}  // namespace limsurf

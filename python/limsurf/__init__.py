@@ -1,0 +1,89 @@
+"""limsurf: exact computation on subdivision surfaces.
+
+Control meshes in and out as numpy arrays, subdivision with its sparse operators (scipy), the exact
+limit surface and its derivatives and curvatures vectorised over points, area, exact enclosed
+volume, moments, Subdivision Exterior Calculus operators, and Galerkin plates and shells on the limit
+surface — the C++ library's numbers, identical to the `limsurf` command's. Tutorial: docs/guide/python.md.
+
+    >>> import limsurf
+    >>> mesh = limsurf.read_mesh("data/meshes/cube.obj")
+    >>> limsurf.volume(mesh, "catmull-clark")          # exact, trilinear forms
+"""
+from ._limsurf import (
+    Error,
+    InputError,
+    LimitBasis,
+    Mesh,
+    MeshWarning,
+    NumericalError,
+    TopologyError,
+    UnsupportedError,
+    __version__,
+    exterior_derivatives,
+    galerkin_load,
+    info,
+    inner_products,
+    laplace_beltrami,
+    measure,
+    operators,
+    plate,
+    plate_bending_matrix,
+    poisson,
+    read_mesh,
+    render,
+    rigid_body_modes,
+    shell,
+    shell_stiffness,
+    tessellate,
+    volume,
+    write_glb,
+    write_mesh,
+)
+from ._limsurf import subdivide as _subdivide
+
+__all__ = [
+    "Error",
+    "InputError",
+    "LimitBasis",
+    "Mesh",
+    "MeshWarning",
+    "NumericalError",
+    "TopologyError",
+    "UnsupportedError",
+    "__version__",
+    "exterior_derivatives",
+    "galerkin_load",
+    "info",
+    "inner_products",
+    "laplace_beltrami",
+    "measure",
+    "operators",
+    "plate",
+    "plate_bending_matrix",
+    "poisson",
+    "read_mesh",
+    "render",
+    "rigid_body_modes",
+    "shell",
+    "shell_stiffness",
+    "subdivide",
+    "tessellate",
+    "volume",
+    "write_glb",
+    "write_mesh",
+]
+
+
+def subdivide(*args, **kwargs):
+    """Refines a mesh uniformly: ``subdivide(mesh, scheme, levels=1, ...)`` or, from arrays,
+    ``subdivide(V, F, scheme, levels=1, ...)``.
+
+    Returns the finest :class:`Mesh`; with ``operators=True`` (or ``forms=True``) a pair
+    ``(mesh, ops)`` with the scipy CSR operators ``ops["S0"]`` (and ``"S1"``, ``"S2"``,
+    ``"steps"``). See ``limsurf._limsurf.subdivide`` for every keyword.
+    """
+    if args and not isinstance(args[0], Mesh):
+        if len(args) < 2:
+            raise TypeError("subdivide(V, F, scheme, levels=1): F is missing")
+        args = (Mesh(args[0], args[1]),) + tuple(args[2:])
+    return _subdivide(*args, **kwargs)

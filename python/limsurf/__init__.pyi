@@ -1,0 +1,209 @@
+# Type stubs of the limsurf Python module (docs/guide/python.md). Keep in step with python/src/*.cpp:
+# tests/python/test_stubs.py checks that every public name has a stub and the other way round.
+import os
+from typing import Callable, Literal, TypedDict, overload
+
+import numpy as np
+import numpy.typing as npt
+import scipy.sparse
+
+__version__: str
+
+Scheme = Literal["catmull-clark", "loop", "doo-sabin", "c2g0", "bilinear", "linear"]
+LimitScheme = Literal["catmull-clark", "loop", "doo-sabin", "c2g0"]
+Boundary = Literal["none", "edge-only", "edge-and-corner"]
+Creasing = Literal["uniform", "chaikin"]
+Triangles = Literal["catmull-clark", "smooth"]
+Method = Literal["dec", "decsnap", "sec", "secsnap"]
+ArrayLike = npt.ArrayLike
+FloatArray = npt.NDArray[np.float64]
+IndexArray = npt.NDArray[np.int32]
+PathLike = str | os.PathLike[str]
+SurfaceFunction = Callable[[FloatArray], ArrayLike]
+
+class Error(RuntimeError): ...
+class InputError(Error, ValueError): ...
+class TopologyError(Error, ValueError): ...
+class NumericalError(Error, ArithmeticError): ...
+class UnsupportedError(Error, NotImplementedError): ...
+class MeshWarning(UserWarning): ...
+
+class Mesh:
+    def __init__(self, V: ArrayLike, F: ArrayLike | list[ArrayLike], *, creases: ArrayLike | None = None,
+                 corners: ArrayLike | None = None, holes: ArrayLike | None = None, boundary: Boundary | None = None,
+                 creasing: Creasing | None = None, triangles: Triangles | None = None,
+                 isolated: Literal["error", "drop"] = "error") -> None: ...
+    @property
+    def V(self) -> FloatArray: ...
+    @property
+    def F(self) -> IndexArray | list[IndexArray]: ...
+    @property
+    def face_offsets(self) -> IndexArray: ...
+    @property
+    def face_vertices(self) -> IndexArray: ...
+    @property
+    def edges(self) -> IndexArray: ...
+    @property
+    def num_vertices(self) -> int: ...
+    @property
+    def num_edges(self) -> int: ...
+    @property
+    def num_faces(self) -> int: ...
+    @property
+    def genus(self) -> int: ...
+    @property
+    def is_closed(self) -> bool: ...
+    @property
+    def boundary_loops(self) -> list[IndexArray]: ...
+    @property
+    def creases(self) -> FloatArray: ...
+    @property
+    def corners(self) -> FloatArray: ...
+    @property
+    def file(self) -> str | None: ...
+    def with_positions(self, V: ArrayLike) -> Mesh: ...
+
+def read_mesh(path: PathLike, *, isolated: Literal["error", "drop"] = "drop") -> Mesh: ...
+def write_mesh(path: PathLike, mesh: Mesh, *, ply_encoding: Literal["ascii", "binary-le", "binary-be"] = "ascii") -> None: ...
+def info(mesh: Mesh) -> dict[str, object]: ...
+
+class SubdivisionOperators(TypedDict, total=False):
+    S0: scipy.sparse.csr_matrix
+    S1: scipy.sparse.csr_matrix
+    S2: scipy.sparse.csr_matrix
+    steps: list[dict[str, scipy.sparse.csr_matrix]]
+
+@overload
+def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: Literal[False] = False,
+              forms: Literal[False] = False, boundary: Boundary | None = None, creasing: Creasing | None = None,
+              triangles: Triangles | None = None) -> Mesh: ...
+@overload
+def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: bool = False, forms: bool = False,
+              boundary: Boundary | None = None, creasing: Creasing | None = None,
+              triangles: Triangles | None = None) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
+@overload
+def subdivide(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Scheme, levels: int = 1, *,
+              operators: bool = False, forms: bool = False, boundary: Boundary | None = None,
+              creasing: Creasing | None = None,
+              triangles: Triangles | None = None) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
+
+class LimitEvaluation(TypedDict, total=False):
+    position: FloatArray
+    du: FloatArray
+    dv: FloatArray
+    duu: FloatArray
+    duv: FloatArray
+    dvv: FloatArray
+    normal: FloatArray
+    mean_curvature: FloatArray
+    gaussian_curvature: FloatArray
+    k1: FloatArray
+    k2: FloatArray
+    curvature_defined: npt.NDArray[np.bool_]
+
+class LimitBasis:
+    def __init__(self, mesh: Mesh, scheme: LimitScheme, *, boundary: Boundary | None = None,
+                 creasing: Creasing | None = None, triangles: Triangles | None = None) -> None: ...
+    @property
+    def num_ptex_faces(self) -> int: ...
+    @property
+    def num_vertices(self) -> int: ...
+    @property
+    def scheme(self) -> str: ...
+    @property
+    def domain(self) -> Literal["quad", "triangle"]: ...
+    @property
+    def mesh(self) -> Mesh: ...
+    def ptex_face(self, p: int) -> tuple[int, int]: ...
+    def has_limit_surface(self) -> npt.NDArray[np.bool_]: ...
+    def evaluate(self, faces: ArrayLike, u: ArrayLike, v: ArrayLike, order: Literal[0, 1, 2] = 2, *,
+                 X: ArrayLike | None = None, threads: int = 0, frames: bool = True) -> LimitEvaluation: ...
+    def weights(self, faces: ArrayLike, u: ArrayLike, v: ArrayLike,
+                order: Literal[0, 1, 2] = 0) -> dict[str, scipy.sparse.csr_matrix]: ...
+    def vertex_limit_matrix(self) -> scipy.sparse.csr_matrix: ...
+    def limit_positions(self, *, X: ArrayLike | None = None) -> FloatArray: ...
+
+def measure(mesh: Mesh, scheme: LimitScheme, *, degree: int = 12, tiles: int = 10, boundary: Boundary | None = None,
+            creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
+@overload
+def volume(mesh: Mesh, scheme: LimitScheme, *, gradient: Literal[False] = False, X: ArrayLike | None = None,
+           boundary: Boundary | None = None, creasing: Creasing | None = None,
+           triangles: Triangles | None = None) -> float: ...
+@overload
+def volume(mesh: Mesh, scheme: LimitScheme, *, gradient: Literal[True], X: ArrayLike | None = None,
+           boundary: Boundary | None = None, creasing: Creasing | None = None,
+           triangles: Triangles | None = None) -> tuple[float, FloatArray]: ...
+
+def exterior_derivatives(mesh: Mesh) -> tuple[scipy.sparse.csr_matrix, scipy.sparse.csr_matrix]: ...
+def inner_products(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int = 3, lumped: bool = False,
+                   boundary: Boundary | None = None, creasing: Creasing | None = None,
+                   triangles: Triangles | None = None) -> dict[str, scipy.sparse.csr_matrix]: ...
+def operators(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int = 3, lumped: bool = False,
+              boundary: Boundary | None = None, creasing: Creasing | None = None,
+              triangles: Triangles | None = None) -> dict[str, scipy.sparse.csr_matrix]: ...
+def poisson(mesh: Mesh, scheme: LimitScheme, rhs: SurfaceFunction | ArrayLike, *,
+            method: Method | Literal["iga"] = "sec", level: int = 3, lumped: bool = False, degree: int = 8,
+            tiles: int = 6, boundary_values: SurfaceFunction | ArrayLike | float | None = None,
+            reference_level: int | None = None, max_memory: int | None = None, boundary: Boundary | None = None,
+            creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
+
+class Tessellation(TypedDict, total=False):
+    positions: FloatArray
+    normals: FloatArray
+    triangles: IndexArray
+    faces: IndexArray
+    u: FloatArray
+    v: FloatArray
+    mean_curvature: FloatArray
+    gaussian_curvature: FloatArray
+    estimated: npt.NDArray[np.bool_]
+    value_weights: scipy.sparse.csr_matrix
+    resolution: int
+
+def tessellate(mesh: Mesh, scheme: LimitScheme, *, resolution: int = 0, curvature: bool = True,
+               X: ArrayLike | None = None, threads: int = 0, boundary: Boundary | None = None,
+               creasing: Creasing | None = None, triangles: Triangles | None = None) -> Tessellation: ...
+def render(mesh: Mesh, scheme: LimitScheme,
+           field: Literal["mean-curvature", "gaussian-curvature"] | ArrayLike | None = None, *,
+           control_mesh: bool = False, isolines: int = 0, view: str | tuple[float, float] = "iso",
+           size: tuple[int, int] = (1200, 900), resolution: int = 0, range: tuple[float, float] | None = None,
+           colormap: Literal["viridis", "coolwarm"] = "viridis", supersampling: int = 2, color_bar: bool = True,
+           output: PathLike | None = None, boundary: Boundary | None = None, creasing: Creasing | None = None,
+           triangles: Triangles | None = None) -> dict[str, object]: ...
+def write_glb(path: PathLike, positions: ArrayLike, triangles: ArrayLike, *, normals: ArrayLike | None = None,
+              colors: ArrayLike | None = None, scalar: ArrayLike | None = None, scalar_name: str = "field") -> None: ...
+
+FemScheme = Literal["catmull-clark", "loop"]
+PlateSupport = Literal["simply", "clamped"]
+PlateLoadName = Literal["uniform", "sinusoidal", "single-wave"]
+ShellTerms = Literal["membrane-and-bending", "membrane", "bending"]
+Vector3 = tuple[float, float, float] | ArrayLike
+SupportSelection = Callable[[FloatArray], ArrayLike] | bool | ArrayLike
+Traction = Callable[[FloatArray, FloatArray], ArrayLike]
+
+class GalerkinMatrices(TypedDict):
+    mass: scipy.sparse.csr_matrix
+    stiffness: scipy.sparse.csr_matrix
+
+def laplace_beltrami(mesh: Mesh, scheme: LimitScheme, *, degree: int = 8, tiles: int = 6,
+                     boundary: Boundary | None = None, creasing: Creasing | None = None,
+                     triangles: Triangles | None = None) -> GalerkinMatrices: ...
+def galerkin_load(mesh: Mesh, scheme: LimitScheme, f: SurfaceFunction, *, degree: int = 8, tiles: int = 6,
+                  boundary: Boundary | None = None, creasing: Creasing | None = None,
+                  triangles: Triangles | None = None) -> FloatArray: ...
+def plate_bending_matrix(mesh: Mesh, scheme: LimitScheme, *, E: float = 2e11, nu: float = 0.3, thickness: float = 0.1,
+                         degree: int = 6, tiles: int = 6, boundary: Boundary | None = None,
+                         creasing: Creasing | None = None, triangles: Triangles | None = None) -> scipy.sparse.csr_matrix: ...
+def shell_stiffness(mesh: Mesh, scheme: LimitScheme, *, E: float = 1.0, nu: float = 0.3, thickness: float = 0.1,
+                    terms: ShellTerms = "membrane-and-bending", degree: int = 6, tiles: int = 4,
+                    boundary: Boundary | None = None, creasing: Creasing | None = None,
+                    triangles: Triangles | None = None) -> scipy.sparse.csr_matrix: ...
+def rigid_body_modes(V: Mesh | ArrayLike) -> FloatArray: ...
+def plate(mesh: Mesh, scheme: FemScheme, load: float | PlateLoadName | SurfaceFunction | ArrayLike, *,
+          support: PlateSupport = "simply", E: float = 2e11, nu: float = 0.3, thickness: float = 0.1, levels: int = 0,
+          pressure: float | None = None, degree: int = 6, tiles: int = 6) -> dict[str, object]: ...
+def shell(mesh: Mesh, scheme: FemScheme, *, levels: int = 0, E: float = 1.0, nu: float = 0.3, thickness: float = 0.1,
+          gravity: float = 0.0, pressure: float = 0.0, traction: Traction | None = None,
+          point_loads: list[tuple[Vector3, Vector3]] = ..., supports: list[tuple[SupportSelection, str]] = ...,
+          probes: list[Vector3] | ArrayLike = ..., interpolate: bool = False, surface: SurfaceFunction | None = None,
+          degree: int = 6, tiles: int = 4) -> dict[str, object]: ...

@@ -1,0 +1,79 @@
+// limsurf.subdivide: uniform refinement, with the sparse subdivision operators on request.
+#include <pybind11/stl.h>
+
+#include "arrays.h"
+#include "common.h"
+#include "limsurf/refine/hierarchy.h"
+
+namespace limsurf::python {
+namespace {
+
+using namespace pybind11::literals;
+
+py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bool operators, bool forms,
+                     const RuleNames& rules) {
+    RefineOptions options;
+    options.scheme = scheme_from(scheme);
+    options.levels = levels;
+    options.scheme_options = rules_for(mesh.mesh, rules);
+    options.forms = forms;
+    return naming_source(mesh, [&]() -> py::object {
+        std::optional<Hierarchy> hierarchy;
+        Points positions;
+        {
+            const py::gil_scoped_release release;
+            hierarchy.emplace(mesh.mesh.topology(), options);
+            positions = hierarchy->positions(levels, mesh.mesh.positions());
+        }
+        py::object finest = py::cast(Mesh{ControlMesh(hierarchy->topology(levels), std::move(positions),
+                                                      mesh.mesh.hints()),
+                                          SourceMap{}, ValidationReport{}});
+        if (!operators && !forms) {
+            return finest;
+        }
+        py::dict ops;
+        ops["S0"] = to_scipy(hierarchy->accumulated(levels));
+        if (forms) {
+            ops["S1"] = to_scipy(hierarchy->accumulated_form(1, levels));
+            ops["S2"] = to_scipy(hierarchy->accumulated_form(2, levels));
+        }
+        py::list steps;
+        for (int level = 1; level <= levels; ++level) {
+            const Level& step = hierarchy->step(level);
+            py::dict one("S0"_a = to_scipy(step.S0));
+            if (forms) {
+                one["S1"] = to_scipy(step.S1);
+                one["S2"] = to_scipy(step.S2);
+            }
+            steps.append(one);
+        }
+        ops["steps"] = steps;
+        return py::make_tuple(finest, ops);
+    });
+}
+
+}  // namespace
+
+void bind_refine(py::module_& m) {
+    m.def(
+        "subdivide",
+        [](const Mesh& mesh, const std::string& scheme, int levels, bool operators, bool forms,
+           std::optional<std::string> boundary, std::optional<std::string> creasing,
+           std::optional<std::string> triangles) {
+            return subdivide(mesh, scheme, levels, operators, forms, RuleNames{boundary, creasing, triangles});
+        },
+        "mesh"_a, "scheme"_a, "levels"_a = 1, py::kw_only(), "operators"_a = false, "forms"_a = false,
+        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        R"(Refines the mesh `levels` times (0..16) by `scheme` ("catmull-clark", "loop", "doo-sabin", "c2g0",
+"bilinear", "linear"). Rules: the keyword arguments, else the mesh's hints, else limsurf's defaults
+(boundary "edge-and-corner", creasing "uniform", triangles "catmull-clark"), as the CLI.
+
+Returns the finest Mesh; with operators=True (or forms=True) a pair (mesh, ops) where ops["S0"] is
+the accumulated vertex operator A (#V_L × #V_0, scipy CSR: mesh.V == A @ V0), ops["steps"] the
+per-step matrices, and with forms=True also ops["S1"] (#E_L × #E_0) and ops["S2"] (#F_L × #F_0),
+the 1- and 2-form subdivision of SEC that commutes with d (Loop and Catmull–Clark).
+Raises InputError beyond the memory budget (checked before any work), UnsupportedError for a
+scheme that cannot refine the mesh (Loop on a quad).)");
+}
+
+}  // namespace limsurf::python

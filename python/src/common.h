@@ -1,0 +1,84 @@
+// What every binding shares: the Python-side mesh (a ControlMesh that remembers where it came
+// from, so that errors name the file and line), scheme names, and error location.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <pybind11/pybind11.h>
+
+#include "limsurf/core/error.h"
+#include "limsurf/fem/galerkin.h"
+#include "limsurf/mesh/control_mesh.h"
+#include "limsurf/scheme/scheme.h"
+
+namespace limsurf::python {
+
+namespace py = pybind11;
+
+/// limsurf.Mesh: a validated control mesh and the provenance of its elements (file and lines when
+/// read from a file, empty for arrays).
+struct Mesh {
+    ControlMesh mesh;
+    SourceMap source;
+    ValidationReport report;  ///< the warnings validation had (errors throw)
+};
+
+/// The scheme named as the CLI names it ("catmull-clark", "loop", "doo-sabin", "c2g0", "bilinear",
+/// "linear"). @throws InputError naming the accepted names
+[[nodiscard]] SchemeKind scheme_from(const std::string& name);
+
+/// Rule overrides as keyword arguments give them: None keeps the mesh's hint, else the default.
+struct RuleNames {
+    std::optional<std::string> boundary;
+    std::optional<std::string> creasing;
+    std::optional<std::string> triangles;
+};
+
+/// Scheme hints of a mesh from names (None: no hint). @throws InputError for an unknown name
+[[nodiscard]] SchemeHints hints_from(const RuleNames& names);
+
+/// The rules: each override, else the mesh file's hint, else limsurf's default (as the CLI).
+/// @throws InputError for an unknown rule name
+[[nodiscard]] SchemeOptions rules_for(const ControlMesh& mesh, const RuleNames& names);
+
+/// A Python callable f(P) -> values as a SurfaceFunction (the library calls it from C++ with the GIL
+/// released around its own work): f is called with the GIL re-acquired, its result checked to be #P
+/// finite values (InputError naming "<name>(P) result"). A Python exception in f propagates as itself.
+[[nodiscard]] SurfaceFunction surface_function(const py::function& f, const std::string& name);
+
+/// The message of @p error prefixed with the file and line of the mesh element it is about (when
+/// the mesh came from a file and the error is about one of its elements), as the CLI does.
+[[nodiscard]] std::string located_message(const Error& error, const SourceMap& source);
+
+/// @brief Runs @p work; a limsurf error from it is rethrown with the same type, naming the file and
+///   line of @p mesh's element it is about (located_message).
+template <class Work>
+auto naming_source(const Mesh& mesh, Work&& work) -> decltype(work()) {
+    try {
+        return work();
+    } catch (const InputError& e) {
+        throw InputError(located_message(e, mesh.source));
+    } catch (const TopologyError& e) {
+        throw TopologyError(located_message(e, mesh.source));
+    } catch (const NumericalError& e) {
+        throw NumericalError(located_message(e, mesh.source));
+    } catch (const UnsupportedError& e) {
+        throw UnsupportedError(located_message(e, mesh.source));
+    } catch (const Error& e) {
+        throw Error(located_message(e, mesh.source));
+    }
+}
+
+// One registration function per layer of the library (module.cpp calls them in order).
+void bind_errors(py::module_& m);
+void bind_mesh(py::module_& m);
+void bind_refine(py::module_& m);
+void bind_limit(py::module_& m);
+void bind_measure(py::module_& m);
+void bind_sec(py::module_& m);
+void bind_fem(py::module_& m);
+void bind_render(py::module_& m);
+
+}  // namespace limsurf::python

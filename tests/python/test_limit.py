@@ -1,0 +1,131 @@
+"""limsurf.LimitBasis: vectorised evaluation equals `limsurf eval`, weights are the evaluation,
+the GIL is released, bad points are named."""
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import limsurf
+
+
+def cli_points(result):
+    faces = np.array([p["face"] for p in result["points"]])
+    u = np.array([p["u"] for p in result["points"]])
+    v = np.array([p["v"] for p in result["points"]])
+    return faces, u, v
+
+
+@pytest.mark.parametrize("name, scheme", [("genus2", "catmull-clark"), ("icosahedron", "loop"),
+                                          ("cube_creases", "catmull-clark"), ("cylinder_open", "catmull-clark"),
+                                          ("tetra_2", "c2g0"), ("cube", "doo-sabin")])
+def test_evaluate_equals_the_cli_exactly(mesh_path, cli, name, scheme):
+    theirs = cli("eval", mesh_path(name), "--scheme", scheme, "--grid", 3, "--json")
+    faces, u, v = cli_points(theirs)
+    basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path(name)), scheme)
+    ours = basis.evaluate(faces, u, v)
+    for key in ("position", "du", "dv", "duu", "duv", "dvv", "normal"):
+        expected = np.array([p[key] for p in theirs["points"]], dtype=float)
+        assert np.array_equal(ours[key], expected), key
+    for key in ("mean_curvature", "gaussian_curvature"):
+        expected = np.array([np.nan if p[key] is None else p[key] for p in theirs["points"]])
+        assert np.array_equal(ours[key], expected, equal_nan=True), key
+    assert np.array_equal(ours["curvature_defined"], ~np.isnan(ours["mean_curvature"]))
+
+
+def test_shapes_dtypes_and_orders(mesh_path):
+    basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("genus2")), "catmull-clark")
+    n = 50
+    rng = np.random.default_rng(1)
+    faces = rng.integers(0, basis.num_ptex_faces, n)
+    u, v = rng.random(n), rng.random(n)
+    r0 = basis.evaluate(faces, u, v, order=0)
+    r2 = basis.evaluate(faces, u, v, order=2)
+    assert set(r0) == {"position"}
+    assert r2["position"].shape == (n, 3) and r2["position"].dtype == np.float64 and r2["position"].flags.c_contiguous
+    assert r2["mean_curvature"].shape == (n,) and r2["curvature_defined"].dtype == bool
+    assert np.allclose(r0["position"], r2["position"], rtol=0, atol=1e-14)
+    assert np.allclose(np.linalg.norm(r2["normal"], axis=1), 1.0)
+    assert np.allclose(r2["k1"] + r2["k2"], 2 * r2["mean_curvature"]) and np.all(r2["k1"] >= r2["k2"])
+
+
+def test_weights_applied_to_V_are_the_evaluation(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    basis = limsurf.LimitBasis(mesh, "catmull-clark")
+    rng = np.random.default_rng(2)
+    faces = rng.integers(0, basis.num_ptex_faces, 40)
+    u, v = rng.random(40), rng.random(40)
+    W = basis.weights(faces, u, v, order=2)
+    r = basis.evaluate(faces, u, v, order=2)
+    for key in ("position", "du", "dv", "duu", "duv", "dvv"):
+        assert W[key].shape == (40, mesh.num_vertices) and W[key].format == "csr"
+        assert np.allclose(W[key] @ mesh.V, r[key], rtol=0, atol=1e-12), key
+    assert np.allclose(W["position"].sum(axis=1), 1.0, atol=1e-14)
+
+
+def test_other_control_points_and_limit_positions(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("sphere_quads"))
+    basis = limsurf.LimitBasis(mesh, "catmull-clark")
+    P = basis.vertex_limit_matrix()
+    assert np.allclose(P @ mesh.V, basis.limit_positions())
+    scaled = basis.evaluate([0, 1], [0.3, 0.7], [0.2, 0.9], order=0, X=2 * mesh.V)
+    plain = basis.evaluate([0, 1], [0.3, 0.7], [0.2, 0.9], order=0)
+    assert np.allclose(scaled["position"], 2 * plain["position"])
+
+
+def test_evaluation_releases_the_gil_and_two_threads_agree(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    fine = limsurf.subdivide(mesh, "catmull-clark", 2)
+    basis = limsurf.LimitBasis(fine, "catmull-clark")
+    n = 200_000
+    rng = np.random.default_rng(3)
+    faces = rng.integers(0, basis.num_ptex_faces, n)
+    u, v = rng.random(n), rng.random(n)
+    serial = basis.evaluate(faces, u, v, order=2, threads=1)
+
+    ticks = []
+    done = threading.Event()
+
+    def ticker():  # runs only while the evaluating thread does not hold the GIL
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    results = [None, None]
+
+    def work(k):
+        results[k] = basis.evaluate(faces, u, v, order=2, threads=1)
+
+    t = threading.Thread(target=ticker)
+    t.start()
+    workers = [threading.Thread(target=work, args=(k,)) for k in range(2)]
+    start = time.perf_counter()
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join()
+    elapsed = time.perf_counter() - start
+    done.set()
+    t.join()
+    for r in results:
+        for key in serial:
+            assert np.array_equal(r[key], serial[key], equal_nan=True), key
+    # With the GIL held for the whole evaluation the ticker would stall; released, it ticks on.
+    assert len(ticks) > 0.3 * elapsed / 0.001 * 0.5, (len(ticks), elapsed)
+
+
+def test_bad_points_are_named(mesh_path):
+    basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("icosahedron")), "loop")
+    with pytest.raises(limsurf.InputError, match=r"point 1: \(u, v\) = \(0.75, 0.5\) is outside the triangle"):
+        basis.evaluate([0, 1], [0.2, 0.75], [0.2, 0.5])
+    with pytest.raises(limsurf.InputError, match=r"faces\[0\] = 20: out of range \[0, 20\)"):
+        basis.evaluate([20], [0.1], [0.1])
+    with pytest.raises(limsurf.InputError, match=r"v: expected 2 values, got 1"):
+        basis.evaluate([0, 1], [0.1, 0.1], [0.1])
+    with pytest.raises(limsurf.InputError, match=r"u\[0\] = nan"):
+        basis.evaluate([0], [np.nan], [0.1])
+    with pytest.raises(limsurf.InputError, match="faces: expected integers"):
+        basis.evaluate([0.5], [0.1], [0.1])
+    # an error about an element of a mesh read from a file names the file and the element's line
+    with pytest.raises(limsurf.UnsupportedError, match=r"cube\.obj:10: Loop limit evaluation: face 0 has 4 corners"):
+        limsurf.LimitBasis(limsurf.read_mesh(mesh_path("cube")), "loop")
