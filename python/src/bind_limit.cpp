@@ -1,5 +1,7 @@
 // limsurf.LimitBasis: exact limit evaluation vectorised over arrays of points (GIL released).
 #include <limits>
+#include <mutex>
+#include <string>
 
 #include <Eigen/Geometry>
 #include <pybind11/numpy.h>
@@ -23,7 +25,8 @@ struct Basis {
 };
 
 
-/// The points (faces[i], u[i], v[i]), each checked as `limsurf eval --points` checks a line.
+/// The points (faces[i], u[i], v[i]), each checked as `limsurf eval --points` checks a line (a face
+/// without a limit surface is refused by LimitBasis::evaluate itself: see evaluate_all).
 std::vector<SurfacePoint> surface_points(const Basis& b, const py::handle& faces, const py::handle& u,
                                          const py::handle& v) {
     const std::vector<Index> face = indices_from(faces, "faces", b.basis.num_ptex_faces());
@@ -38,12 +41,41 @@ std::vector<SurfacePoint> surface_points(const Basis& b, const py::handle& faces
         const bool inside = quad ? x >= 0 && x <= 1 && y >= 0 && y <= 1 : x >= 0 && y >= 0 && x + y <= 1;
         LIMSURF_CHECK(inside, InputError, "point ", i, ": (u, v) = (", x, ", ", y, ") is outside the ",
                       quad ? "unit square" : "triangle u, v >= 0, u + v <= 1", " of ptex face ", face[i]);
-        LIMSURF_CHECK(b.basis.has_limit_surface(face[i]), InputError, "point ", i, ": ptex face ", face[i],
-                      " has no limit surface (a hole, or a boundary under boundary='none')");
         points[static_cast<std::size_t>(i)] = {face[i], x, y};
     }
     return points;
 }
+
+/// Evaluation on several threads that reports the first point (lowest index) that failed, whichever
+/// thread met it: the same message on every run. A point fails when its ptex face has no limit surface
+/// (a hole, a boundary face under 'none'), which LimitBasis::evaluate refuses.
+class FirstFailure {
+  public:
+    /// Evaluates point i into w; false (and the failure noted) when it throws.
+    bool evaluate(const LimitBasis& basis, const std::vector<SurfacePoint>& points, Index i, LimitWeights& w,
+                  DerivativeOrder order) {
+        try {
+            basis.evaluate(points[static_cast<std::size_t>(i)], w, order);
+            return true;
+        } catch (const InputError& e) {
+            const std::lock_guard lock(mutex_);
+            if (index_ == invalid_index || i < index_) {
+                index_ = i;
+                message_ = e.what();
+            }
+            return false;
+        }
+    }
+    /// @throws InputError "point i: ..." for the first failure
+    void rethrow() const {
+        LIMSURF_CHECK(index_ == invalid_index, InputError, "point ", index_, ": ", message_);
+    }
+
+  private:
+    std::mutex mutex_;
+    Index index_ = invalid_index;
+    std::string message_;
+};
 
 Points control_points(const Basis& b, const py::handle& X) {
     if (X.is_none()) {
@@ -96,10 +128,13 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
     const double nan = std::numeric_limits<double>::quiet_NaN();
     {
         const py::gil_scoped_release release;
+        FirstFailure failure;
         parallel_ranges(static_cast<Index>(n), threads, [&](Index begin, Index end) {
             LimitWeights w;
             for (Index i = begin; i < end; ++i) {
-                b.basis.evaluate(points[static_cast<std::size_t>(i)], w, derivative_order);
+                if (!failure.evaluate(b.basis, points, i, w, derivative_order)) {
+                    return;
+                }
                 const Eigen::Matrix<double, 6, 3> d = w.apply(P);
                 for (int r = 0; r < rows; ++r) {
                     for (int c = 0; c < 3; ++c) {
@@ -126,6 +161,7 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
                 }
             }
         });
+        failure.rethrow();
     }
     py::dict result;
     for (int r = 0; r < rows; ++r) {
@@ -155,8 +191,11 @@ py::dict weights(const Basis& b, const py::handle& faces, const py::handle& u, c
         const py::gil_scoped_release release;
         std::vector<std::vector<Eigen::Triplet<double>>> triplets(static_cast<std::size_t>(rows));
         LimitWeights w;
+        FirstFailure failure;
         for (std::size_t i = 0; i < points.size(); ++i) {
-            b.basis.evaluate(points[i], w, static_cast<DerivativeOrder>(order));
+            if (!failure.evaluate(b.basis, points, static_cast<Index>(i), w, static_cast<DerivativeOrder>(order))) {
+                break;
+            }
             for (int r = 0; r < rows; ++r) {
                 for (Index k = 0; k < w.size(); ++k) {
                     triplets[static_cast<std::size_t>(r)].emplace_back(static_cast<Index>(i),
@@ -164,6 +203,7 @@ py::dict weights(const Basis& b, const py::handle& faces, const py::handle& u, c
                 }
             }
         }
+        failure.rethrow();
         for (int r = 0; r < rows; ++r) {
             SparseMatrix A(static_cast<Index>(points.size()), num_vertices);
             A.setFromTriplets(triplets[static_cast<std::size_t>(r)].begin(), triplets[static_cast<std::size_t>(r)].end());

@@ -129,3 +129,18 @@ def test_bad_points_are_named(mesh_path):
     # an error about an element of a mesh read from a file names the file and the element's line
     with pytest.raises(limsurf.UnsupportedError, match=r"cube\.obj:10: Loop limit evaluation: face 0 has 4 corners"):
         limsurf.LimitBasis(limsurf.read_mesh(mesh_path("cube")), "loop")
+
+
+def test_points_on_faces_without_a_limit_surface_are_named(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("quad_grid"))
+    basis = limsurf.LimitBasis(mesh, "catmull-clark", boundary="none")
+    missing = np.nonzero(~basis.has_limit_surface())[0]
+    inside = np.nonzero(basis.has_limit_surface())[0]
+    assert len(missing) and len(inside)
+    faces = np.concatenate([np.repeat(inside[:1], 5000), missing[:1], inside[:1], missing[:1]])
+    n = len(faces)
+    for threads in (1, 2, 4):  # the first bad point, whichever thread meets it
+        with pytest.raises(limsurf.InputError, match=rf"^point 5000: ptex face {missing[0]} .*no limit surface"):
+            basis.evaluate(faces, np.full(n, 0.5), np.full(n, 0.5), threads=threads)
+    with pytest.raises(limsurf.InputError, match=r"^point 5000: "):
+        basis.weights(faces, np.full(n, 0.5), np.full(n, 0.5))
