@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
     add_plate_command(app, status);
     add_shell_command(app, status);
     add_render_command(app, status);
+    add_parameterize_command(app, status);
+    add_geodesic_command(app, status);
+    add_vector_field_command(app, status);
+    add_hodge_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

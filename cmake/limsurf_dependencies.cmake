@@ -1,6 +1,9 @@
 # Every dependency is a Debian package installed by scripts/setup.sh;
 # find_package only: no downloads, no vendored code.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+# Spectra (libspectra-dev): header-only eigensolvers for the apps layer (spectral conformal
+# parameterisation, harmonic forms), used privately.
+find_package(spectra 1.0 REQUIRED CONFIG)
 set_package_properties(Eigen3 PROPERTIES TYPE REQUIRED PURPOSE "dense and sparse linear algebra (libeigen3-dev)")
 
 if(LIMSURF_BUILD_CLI)

@@ -29,6 +29,8 @@ packages=(
     python3-dev pybind11-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-matplotlib
     # test-only peer: an independent glTF reader (tinygltf) for the .glb export
     libtinygltf-dev
+    # SEC applications: Spectra's eigensolvers (spectral conformal parameterisation)
+    libspectra-dev
 )
 
 # `setup.sh --fuzz` adds what the libFuzzer targets need (make fuzz).

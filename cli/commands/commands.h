@@ -21,5 +21,9 @@ void add_eigen_command(CLI::App& app, CommandStatus& status);
 void add_plate_command(CLI::App& app, CommandStatus& status);
 void add_shell_command(CLI::App& app, CommandStatus& status);
 void add_render_command(CLI::App& app, CommandStatus& status);
+void add_parameterize_command(CLI::App& app, CommandStatus& status);
+void add_geodesic_command(CLI::App& app, CommandStatus& status);
+void add_vector_field_command(CLI::App& app, CommandStatus& status);
+void add_hodge_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

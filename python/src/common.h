@@ -80,5 +80,9 @@ void bind_measure(py::module_& m);
 void bind_sec(py::module_& m);
 void bind_fem(py::module_& m);
 void bind_render(py::module_& m);
+void bind_parameterization(py::module_& m);
+void bind_geodesics(py::module_& m);
+void bind_vector_field(py::module_& m);
+void bind_hodge(py::module_& m);
 
 }  // namespace limsurf::python

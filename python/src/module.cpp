@@ -20,4 +20,8 @@ PYBIND11_MODULE(_limsurf, m) {
     limsurf::python::bind_sec(m);
     limsurf::python::bind_fem(m);
     limsurf::python::bind_render(m);
+    limsurf::python::bind_parameterization(m);
+    limsurf::python::bind_geodesics(m);
+    limsurf::python::bind_vector_field(m);
+    limsurf::python::bind_hodge(m);
 }

@@ -1,0 +1,11 @@
+// Placeholder: filled in by the SEC-applications work (issue 16).
+#include "commands/commands.h"
+
+namespace limsurf::cli {
+
+void add_geodesic_command(CLI::App& app, CommandStatus& status) {
+    (void)app;
+    (void)status;
+}
+
+}  // namespace limsurf::cli

@@ -1,0 +1,1 @@
+#include "limsurf/apps/parameterization.h"

@@ -1,0 +1,1 @@
+#include "limsurf/apps/vector_field.h"

@@ -1,0 +1,5 @@
+"""Placeholder: filled in by the SEC-applications work (issue 16)."""
+
+
+def test_placeholder():
+    pass
