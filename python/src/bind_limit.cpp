@@ -1,6 +1,10 @@
 // limsurf.LimitBasis: exact limit evaluation vectorised over arrays of points (GIL released).
+#include <cmath>
 #include <limits>
 #include <mutex>
+#include <sstream>
+#include <type_traits>
+#include <utility>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -25,51 +29,98 @@ struct Basis {
 };
 
 
-/// The points (faces[i], u[i], v[i]), each checked as `limsurf eval --points` checks a line (a face
-/// without a limit surface is refused by LimitBasis::evaluate itself: see evaluate_all).
-std::vector<SurfacePoint> surface_points(const Basis& b, const py::handle& faces, const py::handle& u,
-                                         const py::handle& v) {
-    const std::vector<Index> face = indices_from(faces, "faces", b.basis.num_ptex_faces());
-    const auto n = static_cast<Index>(face.size());
-    const Eigen::VectorXd us = vector_from(u, "u", n);
-    const Eigen::VectorXd vs = vector_from(v, "v", n);
-    const bool quad = b.basis.domain() == ParameterDomain::Quad;
-    std::vector<SurfacePoint> points(face.size());
-    for (Index i = 0; i < n; ++i) {
-        const double x = us(i);
-        const double y = vs(i);
-        const bool inside = quad ? x >= 0 && x <= 1 && y >= 0 && y <= 1 : x >= 0 && y >= 0 && x + y <= 1;
-        LIMSURF_CHECK(inside, InputError, "point ", i, ": (u, v) = (", x, ", ", y, ") is outside the ",
-                      quad ? "unit square" : "triangle u, v >= 0, u + v <= 1", " of ptex face ", face[i]);
-        points[static_cast<std::size_t>(i)] = {face[i], x, y};
-    }
-    return points;
-}
-
-/// Evaluation on several threads that reports the first point (lowest index) that failed, whichever
-/// thread met it: the same message on every run. A point fails when its ptex face has no limit surface
-/// (a hole, a boundary face under 'none'), which LimitBasis::evaluate refuses.
-class FirstFailure {
+/// The point arrays of evaluate(), read in place (no copy when faces is int64 and u, v float64,
+/// C-contiguous): each point is checked as `limsurf eval --points` checks a line when it is evaluated.
+class PointArrays {
   public:
-    /// Evaluates point i into w; false (and the failure noted) when it throws.
-    bool evaluate(const LimitBasis& basis, const std::vector<SurfacePoint>& points, Index i, LimitWeights& w,
-                  DerivativeOrder order) {
-        try {
-            basis.evaluate(points[static_cast<std::size_t>(i)], w, order);
-            return true;
-        } catch (const InputError& e) {
-            const std::lock_guard lock(mutex_);
-            if (index_ == invalid_index || i < index_) {
-                index_ = i;
-                message_ = e.what();
-            }
-            return false;
+    PointArrays(const Basis& b, const py::handle& faces, const py::handle& u, const py::handle& v)
+        : limit_(b.basis.num_ptex_faces()), quad_(b.basis.domain() == ParameterDomain::Quad) {
+        const py::array f = py::array::ensure(faces);
+        LIMSURF_CHECK(f && (f.dtype().kind() == 'i' || f.dtype().kind() == 'u'), InputError,
+                      "faces: expected integers, got ", f ? std::string(py::str(f.dtype())) : "no array");
+        LIMSURF_CHECK(f.ndim() <= 1, InputError, "faces: expected a vector, got ", f.ndim(), " dimensions");
+        faces_ = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(f);
+        u_ = real_vector(u, "u");
+        v_ = real_vector(v, "v");
+        for (const auto& [name, a] : {std::pair{"u", &u_}, std::pair{"v", &v_}}) {
+            LIMSURF_CHECK(a->size() == faces_.size(), InputError, name, ": expected ", faces_.size(),
+                          " values, got ", a->size());
         }
     }
-    /// @throws InputError "point i: ..." for the first failure
-    void rethrow() const {
-        LIMSURF_CHECK(index_ == invalid_index, InputError, "point ", index_, ": ", message_);
+    [[nodiscard]] Index size() const { return static_cast<Index>(faces_.size()); }
+    /// Point i, or an empty message on success / the reason it is refused.
+    [[nodiscard]] SurfacePoint at(Index i, std::string& error) const {
+        const long long face = faces_.data()[i];
+        const double x = u_.data()[i];
+        const double y = v_.data()[i];
+        if (face < 0 || face >= limit_) {
+            error = "faces[" + std::to_string(i) + "] = " + std::to_string(face) + ": out of range [0, " +
+                    std::to_string(limit_) + ")";
+            return {};
+        }
+        for (const auto& [name, value] : {std::pair{"u", x}, std::pair{"v", y}}) {
+            if (!std::isfinite(value)) {
+                std::ostringstream message;
+                message << name << "[" << i << "] = " << value << ": values must be finite";
+                error = message.str();
+                return {};
+            }
+        }
+        const bool inside = quad_ ? x >= 0 && x <= 1 && y >= 0 && y <= 1 : x >= 0 && y >= 0 && x + y <= 1;
+        if (!inside) {
+            std::ostringstream message;
+            message << "point " << i << ": (u, v) = (" << x << ", " << y << ") is outside the "
+                    << (quad_ ? "unit square" : "triangle u, v >= 0, u + v <= 1") << " of ptex face " << face;
+            error = message.str();
+            return {};
+        }
+        return {static_cast<Index>(face), x, y};
     }
+
+  private:
+    static py::array_t<double, py::array::c_style | py::array::forcecast> real_vector(const py::handle& h,
+                                                                                        const char* name) {
+        const py::array a = py::array::ensure(h);
+        const char kind = a ? a.dtype().kind() : '?';
+        LIMSURF_CHECK(kind == 'f' || kind == 'i' || kind == 'u', InputError, name, ": expected real numbers, got ",
+                      a ? std::string(py::str(a.dtype())) : "no array");
+        LIMSURF_CHECK(a.ndim() <= 1, InputError, name, ": expected a vector, got ", a.ndim(), " dimensions");
+        return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    }
+    py::array_t<long long, py::array::c_style | py::array::forcecast> faces_;
+    py::array_t<double, py::array::c_style | py::array::forcecast> u_, v_;
+    Index limit_;
+    bool quad_;
+};
+
+/// Evaluation on several threads that reports the first point (lowest index) that failed, whichever
+/// thread met it: the same message on every run. A point fails when it is outside its face's domain
+/// or its ptex face is out of range or has no limit surface (a hole, a boundary face under 'none'),
+/// which LimitBasis::evaluate refuses.
+class FirstFailure {
+  public:
+    /// Evaluates point i into w; false (and the failure noted) when it is refused.
+    bool evaluate(const LimitBasis& basis, const PointArrays& points, Index i, LimitWeights& w,
+                  DerivativeOrder order) {
+        std::string error;
+        const SurfacePoint p = points.at(i, error);
+        if (error.empty()) {
+            try {
+                basis.evaluate(p, w, order);
+                return true;
+            } catch (const InputError& e) {
+                error = "point " + std::to_string(i) + ": " + e.what();
+            }
+        }
+        const std::lock_guard lock(mutex_);
+        if (index_ == invalid_index || i < index_) {
+            index_ = i;
+            message_ = std::move(error);
+        }
+        return false;
+    }
+    /// @throws InputError with the first failure's message
+    void rethrow() const { LIMSURF_CHECK(index_ == invalid_index, InputError, message_); }
 
   private:
     std::mutex mutex_;
@@ -77,53 +128,82 @@ class FirstFailure {
     std::string message_;
 };
 
-Points control_points(const Basis& b, const py::handle& X) {
-    if (X.is_none()) {
-        return b.mesh.mesh.positions();
+/// The control points evaluate() applies the weights to: the mesh's own (no copy) or X.
+class ControlPoints {
+  public:
+    ControlPoints(const Basis& b, const py::handle& X) {
+        if (X.is_none()) {
+            points_ = &b.mesh.mesh.positions();
+            return;
+        }
+        own_ = points_from(X, "X");
+        LIMSURF_CHECK(own_.rows() == b.basis.topology().num_vertices(), InputError, "X: expected ",
+                      b.basis.topology().num_vertices(), " rows (one per control vertex), got ", own_.rows());
+        points_ = &own_;
     }
-    Points P = points_from(X, "X");
-    LIMSURF_CHECK(P.rows() == b.basis.topology().num_vertices(), InputError, "X: expected ",
-                  b.basis.topology().num_vertices(), " rows (one per control vertex), got ", P.rows());
-    return P;
-}
+    [[nodiscard]] const Points& get() const { return *points_; }
+
+  private:
+    Points own_;
+    const Points* points_ = nullptr;
+};
+
+Points control_points(const Basis& b, const py::handle& X) { return ControlPoints(b, X).get(); }
 
 constexpr const char* row_names[] = {"position", "du", "dv", "duu", "duv", "dvv"};
+constexpr const char* frame_names[] = {"normal", "mean_curvature", "gaussian_curvature", "k1", "k2"};
+
+/// An output array of evaluate(): taken from @p out (a dict of arrays from an earlier call, reused
+/// to save allocating and first-touching fresh memory) or new.
+template <typename T>
+py::array_t<T> output_array(const py::dict& out, const char* key, py::ssize_t n, py::ssize_t cols) {
+    if (!out.contains(key)) {
+        return cols == 0 ? py::array_t<T>(n) : py::array_t<T>({n, cols});
+    }
+    const py::object given = out[key];
+    LIMSURF_CHECK(py::isinstance<py::array_t<T>>(given), InputError, "out['", key, "']: expected a ",
+                  std::is_same_v<T, bool> ? "bool" : "float64", " numpy array");
+    auto a = py::reinterpret_borrow<py::array_t<T>>(given);
+    const bool shape = cols == 0 ? a.ndim() == 1 && a.shape(0) == n : a.ndim() == 2 && a.shape(0) == n && a.shape(1) == cols;
+    LIMSURF_CHECK(shape, InputError, "out['", key, "']: expected shape (", n, cols == 0 ? "" : ", ",
+                  cols == 0 ? std::string() : std::to_string(cols), "), got ", std::string(py::str(a.attr("shape"))));
+    LIMSURF_CHECK((a.flags() & py::array::c_style) && a.writeable(), InputError, "out['", key,
+                  "']: expected a writeable C-contiguous array");
+    return a;
+}
 
 py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, const py::handle& v, int order,
-                  const py::handle& X, int threads, bool frames) {
+                  const py::handle& X, int threads, bool frames, const py::handle& out_handle) {
     LIMSURF_CHECK(order >= 0 && order <= 2, InputError, "order: expected 0, 1 or 2, got ", order);
-    const std::vector<SurfacePoint> points = surface_points(b, faces, u, v);
-    const Points P = control_points(b, X);
+    const PointArrays points(b, faces, u, v);
+    const ControlPoints control(b, X);
+    const Points& P = control.get();
+    LIMSURF_CHECK(out_handle.is_none() || py::isinstance<py::dict>(out_handle), InputError,
+                  "out: expected the dict of an earlier evaluate() call, or None");
+    const py::dict given = out_handle.is_none() ? py::dict() : py::reinterpret_borrow<py::dict>(out_handle);
     const auto n = static_cast<py::ssize_t>(points.size());
     const int rows = order == 0 ? 1 : order == 1 ? 3 : 6;
-    std::vector<py::array_t<double>> derivative;
-    std::vector<double*> out;
-    for (int r = 0; r < rows; ++r) {
-        derivative.push_back(new_array(n, 3));
-        out.push_back(derivative.back().mutable_data());
-    }
-    py::array_t<double> normal;
-    py::array_t<double> mean;
-    py::array_t<double> gauss;
-    py::array_t<double> k1;
-    py::array_t<double> k2;
-    py::array_t<bool> defined;
     const bool normals = frames && order >= 1;
     const bool curvatures = frames && order == 2;
-    if (normals) {
-        normal = new_array(n, 3);
+    py::dict result;
+    std::vector<double*> out;
+    for (int r = 0; r < rows; ++r) {
+        auto a = output_array<double>(given, row_names[r], n, 3);
+        out.push_back(a.mutable_data());
+        result[row_names[r]] = a;
     }
+    double* frame_out[5] = {};
+    for (int k = 0; k < (curvatures ? 5 : normals ? 1 : 0); ++k) {
+        auto a = output_array<double>(given, frame_names[k], n, k == 0 ? 3 : 0);
+        frame_out[k] = a.mutable_data();
+        result[frame_names[k]] = a;
+    }
+    bool* defined_out = nullptr;
     if (curvatures) {
-        mean = new_vector(n);
-        gauss = new_vector(n);
-        k1 = new_vector(n);
-        k2 = new_vector(n);
-        defined = py::array_t<bool>(n);
+        auto a = output_array<bool>(given, "curvature_defined", n, 0);
+        defined_out = a.mutable_data();
+        result["curvature_defined"] = a;
     }
-    double* normal_out = normals ? normal.mutable_data() : nullptr;
-    double* curvature_out[4] = {curvatures ? mean.mutable_data() : nullptr, curvatures ? gauss.mutable_data() : nullptr,
-                                curvatures ? k1.mutable_data() : nullptr, curvatures ? k2.mutable_data() : nullptr};
-    bool* defined_out = curvatures ? defined.mutable_data() : nullptr;
     const auto derivative_order = static_cast<DerivativeOrder>(order);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     {
@@ -148,14 +228,14 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
                 const Eigen::Vector3d nrm = frame ? Eigen::Vector3d(d.row(Du).cross(d.row(Dv)).normalized())
                                                   : Eigen::Vector3d::Constant(nan);
                 for (int c = 0; c < 3; ++c) {
-                    normal_out[3 * i + c] = nrm(c);
+                    frame_out[0][3 * i + c] = nrm(c);
                 }
                 if (curvatures) {
                     const bool ok = frame && !w.at_extraordinary_vertex;
                     const SurfaceFrame f = ok ? surface_frame(d) : SurfaceFrame{};
                     const double values[4] = {f.mean_curvature, f.gaussian_curvature, f.k1, f.k2};
                     for (int k = 0; k < 4; ++k) {
-                        curvature_out[k][i] = ok ? values[k] : nan;
+                        frame_out[k + 1][i] = ok ? values[k] : nan;
                     }
                     defined_out[i] = ok;
                 }
@@ -163,27 +243,13 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
         });
         failure.rethrow();
     }
-    py::dict result;
-    for (int r = 0; r < rows; ++r) {
-        result[row_names[r]] = derivative[static_cast<std::size_t>(r)];
-    }
-    if (normals) {
-        result["normal"] = normal;
-    }
-    if (curvatures) {
-        result["mean_curvature"] = mean;
-        result["gaussian_curvature"] = gauss;
-        result["k1"] = k1;
-        result["k2"] = k2;
-        result["curvature_defined"] = defined;
-    }
     return result;
 }
 
 /// The weights of the points as scipy CSR matrices (#points × #V), one per requested row.
 py::dict weights(const Basis& b, const py::handle& faces, const py::handle& u, const py::handle& v, int order) {
     LIMSURF_CHECK(order >= 0 && order <= 2, InputError, "order: expected 0, 1 or 2, got ", order);
-    const std::vector<SurfacePoint> points = surface_points(b, faces, u, v);
+    const PointArrays points(b, faces, u, v);
     const int rows = order == 0 ? 1 : order == 1 ? 3 : 6;
     const Index num_vertices = b.basis.topology().num_vertices();
     std::vector<SparseMatrix> matrices;
@@ -192,20 +258,19 @@ py::dict weights(const Basis& b, const py::handle& faces, const py::handle& u, c
         std::vector<std::vector<Eigen::Triplet<double>>> triplets(static_cast<std::size_t>(rows));
         LimitWeights w;
         FirstFailure failure;
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            if (!failure.evaluate(b.basis, points, static_cast<Index>(i), w, static_cast<DerivativeOrder>(order))) {
+        for (Index i = 0; i < points.size(); ++i) {
+            if (!failure.evaluate(b.basis, points, i, w, static_cast<DerivativeOrder>(order))) {
                 break;
             }
             for (int r = 0; r < rows; ++r) {
                 for (Index k = 0; k < w.size(); ++k) {
-                    triplets[static_cast<std::size_t>(r)].emplace_back(static_cast<Index>(i),
-                                                                       w.vertices[static_cast<std::size_t>(k)], w.w(r, k));
+                    triplets[static_cast<std::size_t>(r)].emplace_back(i, w.vertices[static_cast<std::size_t>(k)], w.w(r, k));
                 }
             }
         }
         failure.rethrow();
         for (int r = 0; r < rows; ++r) {
-            SparseMatrix A(static_cast<Index>(points.size()), num_vertices);
+            SparseMatrix A(points.size(), num_vertices);
             A.setFromTriplets(triplets[static_cast<std::size_t>(r)].begin(), triplets[static_cast<std::size_t>(r)].end());
             matrices.push_back(std::move(A));
         }
@@ -266,7 +331,7 @@ boundaries, creases and corners (docs/limit_evaluation.md).)")
             },
             "Boolean array over ptex faces: False for holes and for faces touching the boundary under 'none'.")
         .def("evaluate", &evaluate, "faces"_a, "u"_a, "v"_a, "order"_a = 2, py::kw_only(), "X"_a = py::none(),
-             "threads"_a = 0, "frames"_a = true,
+             "threads"_a = 0, "frames"_a = true, "out"_a = py::none(),
              R"(Evaluates the limit surface at the points (faces[i], u[i], v[i]) (arrays of equal length).
 
 order 0: 'position'; 1: also 'du', 'dv', 'normal'; 2: also 'duu', 'duv', 'dvv', 'mean_curvature'
@@ -276,6 +341,9 @@ order 0: 'position'; 1: also 'du', 'dv', 'normal'; 2: also 'duu', 'duv', 'dvv', 
 defined) or where the tangents are parallel (normal NaN too), as `limsurf eval` prints null.
 X: other control points (#V × 3) for the same basis (default the mesh's V). threads: 0 = all cores.
 frames=False leaves out the normal and the curvatures (derivatives only, the cheapest evaluation).
+out: the dict an earlier call returned, for points of the same count: its arrays are filled again in
+place and returned (no allocation; evaluating point batches in a loop this saves a fifth of the time).
+faces as int64 and u, v as float64 C-contiguous arrays are read without a copy.
 The GIL is released while C++ works. Raises InputError naming the first bad point.)")
         .def("weights", &weights, "faces"_a, "u"_a, "v"_a, "order"_a = 0,
              "The limit weights at the points as scipy CSR matrices (#points × #V) under the keys 'position' (and\n"

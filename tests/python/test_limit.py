@@ -114,6 +114,32 @@ def test_evaluation_releases_the_gil_and_two_threads_agree(mesh_path):
     assert len(ticks) > 0.3 * elapsed / 0.001 * 0.5, (len(ticks), elapsed)
 
 
+def test_out_reuses_the_arrays_of_an_earlier_call(mesh_path):
+    basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("genus2")), "catmull-clark")
+    rng = np.random.default_rng(3)
+    faces = rng.integers(0, basis.num_ptex_faces, 500)
+    first = basis.evaluate(faces, rng.random(500), rng.random(500))
+    u, v = rng.random(500), rng.random(500)
+    fresh = basis.evaluate(faces, u, v)
+    arrays = {key: id(a) for key, a in first.items()}
+    again = basis.evaluate(faces, u, v, out=first)
+    assert again is not fresh and set(again) == set(fresh)
+    for key in fresh:
+        assert id(again[key]) == arrays[key], key  # the same array objects, filled again
+        assert np.array_equal(again[key], fresh[key], equal_nan=key != "curvature_defined"), key
+    # int32 faces (converted) give the same numbers as int64 (read in place)
+    converted = basis.evaluate(faces.astype(np.int32), u, v)
+    assert np.array_equal(converted["position"], fresh["position"])
+    with pytest.raises(limsurf.InputError, match=r"out\['position'\]: expected shape \(499, 3\)"):
+        basis.evaluate(faces[:499], u[:499], v[:499], out=first)
+    with pytest.raises(limsurf.InputError, match=r"out\['du'\]: expected a float64 numpy array"):
+        basis.evaluate(faces, u, v, out={"du": np.zeros((500, 3), dtype=np.float32)})
+    with pytest.raises(limsurf.InputError, match=r"out\['position'\]: expected a writeable C-contiguous"):
+        basis.evaluate(faces, u, v, out={"position": np.zeros((3, 500)).T})
+    with pytest.raises(limsurf.InputError, match=r"faces: expected integers, got float64"):
+        basis.evaluate(faces.astype(float), u, v)
+
+
 def test_bad_points_are_named(mesh_path):
     basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("icosahedron")), "loop")
     with pytest.raises(limsurf.InputError, match=r"point 1: \(u, v\) = \(0.75, 0.5\) is outside the triangle"):

@@ -170,15 +170,22 @@ def commands(mesh, out_dir, is_huge):
 
 def check(limsurf, name, label, argv, outputs, out_dir, is_huge):
     """Runs one command; returns a list of problems (empty when it kept the promise)."""
-    for path in os.listdir(out_dir):
-        os.remove(os.path.join(out_dir, path))
-    start = time.monotonic()
     limit = HUGE_SECONDS if is_huge else SLOW_SECONDS
-    try:
-        run = subprocess.run([limsurf] + argv, capture_output=True, timeout=min(max(limit * 3, 10), 300), cwd=out_dir)
-    except subprocess.TimeoutExpired:
-        return ["%s | %s: did not finish (a hang)" % (name, label)]
-    seconds = time.monotonic() - start
+    # A run over its bound is timed once more and the faster run counts: a busy machine (another
+    # build, a noisy neighbour) can push a 0.3 s run past 1 s once, while a hang or a quadratic
+    # blow-up is over the bound every time.
+    for attempt in range(2):
+        for path in os.listdir(out_dir):
+            os.remove(os.path.join(out_dir, path))
+        start = time.monotonic()
+        try:
+            run = subprocess.run([limsurf] + argv, capture_output=True, timeout=min(max(limit * 3, 10), 300),
+                                 cwd=out_dir)
+        except subprocess.TimeoutExpired:
+            return ["%s | %s: did not finish (a hang)" % (name, label)]
+        seconds = time.monotonic() - start
+        if seconds <= limit:
+            break
     problems = []
     where = "%s | %s" % (name, label)
     out = run.stdout.decode("utf-8", "replace")
