@@ -148,6 +148,55 @@ def poisson(mesh: Mesh, scheme: LimitScheme, rhs: SurfaceFunction | ArrayLike, *
             reference_level: int | None = None, max_memory: int | None = None, boundary: Boundary | None = None,
             creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
 
+def parameterize(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec", level: int = 3,
+                 boundary: Literal["free", "circle"] = "free", reference_level: int | None = None,
+                 max_memory: int | None = None, degree: int = 6, tiles: int = 3, threads: int = 0,
+                 boundary_rule: Boundary | None = None, creasing: Creasing | None = None,
+                 triangles: Triangles | None = None) -> dict[str, object]: ...
+def one_form_vectors(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], w: ArrayLike, *, level: int = 2,
+                     boundary: Boundary | None = None, creasing: Creasing | None = None,
+                     triangles: Triangles | None = None) -> dict[str, object]: ...
+def design_vector_field(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *,
+                        sources: list[tuple[int, float] | tuple[int, float, float]] = ...,
+                        sinks: list[tuple[int, float] | tuple[int, float, float]] = ...,
+                        vortices: list[tuple[int, float] | tuple[int, float, float]] = ...,
+                        strokes: list[tuple[list[int], float] | tuple[list[int], float, float]] = ...,
+                        weight: float = 1000.0, method: Method = "sec", level: int = 3, sample_level: int = 2,
+                        reference_level: int | None = None, boundary: Boundary | None = None,
+                        creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
+def hodge_decomposition(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], w: ArrayLike | None = None, *,
+                        random: int | None = None, method: Method = "sec", level: int = 3, basis: bool = True,
+                        reference_level: int | None = None, boundary: Boundary | None = None,
+                        creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
+def harmonic_basis(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec", level: int = 3,
+                   seed: int = 1, boundary: Boundary | None = None, creasing: Creasing | None = None,
+                   triangles: Triangles | None = None) -> dict[str, object]: ...
+def geodesic_distance(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], sources: int | list[int], *,
+                      method: Method = "sec", level: int = 3, gradient_level: int | None = None,
+                      time_factor: float = 1.0, reference_level: int | None = None, max_memory: int | None = None,
+                      boundary: Boundary | None = None, creasing: Creasing | None = None,
+                      triangles: Triangles | None = None) -> dict[str, object]: ...
+
+class HeatGeodesics:
+    def __init__(self, mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec",
+                 level: int = 3, gradient_level: int | None = None, time_factor: float = 1.0,
+                 boundary: Boundary | None = None, creasing: Creasing | None = None,
+                 triangles: Triangles | None = None) -> None: ...
+    def distance(self, sources: int | list[int]) -> FloatArray: ...
+    def source_values(self, phi: ArrayLike, sources: int | list[int]) -> FloatArray: ...
+    @property
+    def time_step(self) -> float: ...
+    @property
+    def mean_edge_length(self) -> float: ...
+    @property
+    def max_edge_length(self) -> float: ...
+    @property
+    def gradient_level(self) -> int: ...
+    @property
+    def setup_seconds(self) -> float: ...
+    @property
+    def factorisation_seconds(self) -> float: ...
+
 class Tessellation(TypedDict, total=False):
     positions: FloatArray
     normals: FloatArray

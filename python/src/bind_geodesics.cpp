@@ -1,10 +1,152 @@
-// Placeholder: filled in by the SEC-applications work (issue 16).
+// Heat-method geodesics (SEC §4.2, apps/geodesics.h): limsurf.geodesic_distance (one field with the
+// report of `limsurf geodesic --json`) and limsurf.HeatGeodesics (set up and factorised once, then
+// one call per source set).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "arrays.h"
 #include "common.h"
+#include "limsurf/apps/geodesics.h"
 
 namespace limsurf::python {
+namespace {
+
+using namespace pybind11::literals;
+
+/// One vertex index or a sequence of them.
+std::vector<Index> sources_from(const py::handle& sources) {
+    if (py::isinstance<py::int_>(sources)) {
+        return {sources.cast<Index>()};
+    }
+    try {
+        return sources.cast<std::vector<Index>>();
+    } catch (const py::cast_error&) {
+        throw InputError("sources must be a vertex index or a sequence of vertex indices");
+    }
+}
+
+HeatGeodesicsOptions heat_options(const Mesh& mesh, const std::string& method, int level,
+                                  std::optional<int> gradient_level, double time_factor, const RuleNames& rules) {
+    HeatGeodesicsOptions options;
+    options.method = parse_inner_product_method(method);
+    options.level = level;
+    options.gradient_level = gradient_level.value_or(-1);
+    options.time_factor = time_factor;
+    options.scheme_options = rules_for(mesh.mesh, rules);
+    return options;
+}
+
+py::dict report(const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
+                const std::vector<Index>& sources, double time_factor, const GeodesicResult& r) {
+    const bool sec = uses_subdivision(parse_inner_product_method(method));
+    py::dict out("scheme"_a = scheme, "method"_a = method, "level"_a = sec ? level : 0,
+                 "gradient_level"_a = r.gradient_level, "vertices"_a = mesh.mesh.num_vertices(),
+                 "closed"_a = mesh.mesh.topology().is_closed(), "sources"_a = sources, "time_factor"_a = time_factor,
+                 "t"_a = r.time_step, "mean_edge_length"_a = r.mean_edge_length,
+                 "max_edge_length"_a = r.max_edge_length, "distance_min"_a = r.distance.minCoeff(),
+                 "distance_max"_a = r.distance.maxCoeff(), "limit_distance_min"_a = r.limit_distance.minCoeff(),
+                 "limit_distance_max"_a = r.limit_distance.maxCoeff(),
+                 "source_values"_a = std::vector<double>(r.source_values.begin(), r.source_values.end()),
+                 "seconds"_a = py::dict("setup"_a = r.setup_seconds, "factorisation"_a = r.factorisation_seconds,
+                                        "solve"_a = r.solve_seconds),
+                 "distance"_a = to_numpy(r.distance), "limit_distance"_a = to_numpy(r.limit_distance));
+    if (r.reference) {
+        out["reference"] =
+            py::dict("level"_a = r.reference->level, "method"_a = "dec", "vertices"_a = r.reference->vertices,
+                     "l2_relative"_a = r.reference->l2, "linf_relative"_a = r.reference->linf);
+    }
+    return out;
+}
+
+}  // namespace
 
 void bind_geodesics(py::module_& m) {
-    (void)m;
+    m.def(
+        "geodesic_distance",
+        [](const Mesh& mesh, const std::string& scheme, const py::handle& sources, const std::string& method, int level,
+           std::optional<int> gradient_level, double time_factor, std::optional<int> reference_level,
+           std::optional<std::int64_t> max_memory, std::optional<std::string> boundary,
+           std::optional<std::string> creasing, std::optional<std::string> triangles) {
+            return naming_source(mesh, [&] {
+                GeodesicOptions options;
+                options.heat = heat_options(mesh, method, level, gradient_level, time_factor,
+                                            RuleNames{boundary, creasing, triangles});
+                options.reference_level = reference_level;
+                options.max_memory = max_memory;
+                const std::vector<Index> list = sources_from(sources);
+                const SchemeKind kind = scheme_from(scheme);
+                GeodesicResult r;
+                {
+                    const py::gil_scoped_release release;
+                    r = geodesic_distance(mesh.mesh, kind, list, options);
+                }
+                return report(mesh, scheme, method, level, list, time_factor, r);
+            });
+        },
+        "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3,
+        "gradient_level"_a = py::none(), "time_factor"_a = 1.0, "reference_level"_a = py::none(),
+        "max_memory"_a = py::none(), "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        R"(Geodesic distance on the limit surface from `sources` (a control vertex or a list of them) by the
+heat method (Crane et al. 2013) with the operators of `method` ('dec', 'decsnap', 'sec', 'secsnap';
+SEC §4.2): the dict of `limsurf geodesic --json` plus 'distance' (#V: values at the control vertices
+for dec, control coefficients of the limit function for sec) and 'limit_distance' (#V: at the limit
+point of each control vertex). t = time_factor · (mean control edge length)²; reference_level=K also
+runs the heat method with DEC on the K-times subdivided mesh (same t) and reports 'reference'.
+Raises limsurf.InputError for a source out of range, no source, or a disconnected mesh.)");
+
+    py::class_<HeatGeodesics>(m, "HeatGeodesics",
+                              R"(The heat method set up and factorised once for repeated queries:
+HeatGeodesics(mesh, scheme, method='sec', level=3, gradient_level=None, time_factor=1.0).distance(sources)
+costs two back-substitutions (three on open meshes) and one divergence per call.)")
+        .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
+                         std::optional<int> gradient_level, double time_factor, std::optional<std::string> boundary,
+                         std::optional<std::string> creasing, std::optional<std::string> triangles) {
+                 return naming_source(mesh, [&] {
+                     const HeatGeodesicsOptions options = heat_options(mesh, method, level, gradient_level, time_factor,
+                                                                       RuleNames{boundary, creasing, triangles});
+                     const SchemeKind kind = scheme_from(scheme);
+                     const py::gil_scoped_release release;
+                     return HeatGeodesics(mesh.mesh, kind, options);
+                 });
+             }),
+             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "gradient_level"_a = py::none(),
+             "time_factor"_a = 1.0, "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
+        .def(
+            "distance",
+            [](const HeatGeodesics& self, const py::handle& sources) {
+                const std::vector<Index> list = sources_from(sources);
+                Eigen::VectorXd d;
+                {
+                    const py::gil_scoped_release release;
+                    d = self.distance(list);
+                }
+                return to_numpy(d);
+            },
+            "sources"_a,
+            "The distance (#V) from a control vertex or a list of them, as geodesic_distance()['distance'].")
+        .def(
+            "source_values",
+            [](const HeatGeodesics& self, const py::handle& phi, const py::handle& sources) {
+                const std::vector<Index> list = sources_from(sources);
+                const Eigen::VectorXd values = vector_from(phi, "phi", self.num_vertices());
+                return to_numpy(self.source_values(values, list));
+            },
+            "phi"_a, "sources"_a,
+            "The values of a distance at the sources as the method measures them (control or limit values).")
+        .def_property_readonly("time_step", &HeatGeodesics::time_step, "t")
+        .def_property_readonly("mean_edge_length", &HeatGeodesics::mean_edge_length,
+                               "Mean edge length of the control mesh")
+        .def_property_readonly("max_edge_length", &HeatGeodesics::max_edge_length, "Longest edge of the control mesh")
+        .def_property_readonly("gradient_level", &HeatGeodesics::gradient_level,
+                               "Level of the mesh the gradient is normalised on (0 for dec)")
+        .def_property_readonly("setup_seconds", &HeatGeodesics::setup_seconds,
+                               "Seconds spent on the inner products, operators and gradient mesh")
+        .def_property_readonly("factorisation_seconds", &HeatGeodesics::factorisation_seconds,
+                               "Seconds spent on the Cholesky factorisations");
 }
 
 }  // namespace limsurf::python

@@ -1,5 +1,54 @@
-"""Placeholder: filled in by the SEC-applications work (issue 16)."""
+"""limsurf.geodesic_distance equal to `limsurf geodesic --json`, limsurf.HeatGeodesics for repeated
+queries (the same numbers as one-off calls), and its errors (SEC §4.2, apps/geodesics.h)."""
+import numpy as np
+import pytest
+
+import limsurf
+
+KEYS = ("scheme", "method", "level", "gradient_level", "vertices", "closed", "sources", "time_factor", "t",
+        "mean_edge_length", "max_edge_length", "distance_min", "distance_max", "limit_distance_min",
+        "limit_distance_max", "source_values", "reference")
 
 
-def test_placeholder():
-    pass
+@pytest.mark.parametrize("name, scheme, method, sources", [("genus2", "catmull-clark", "sec", [0]),
+                                                           ("tri_torus", "loop", "dec", [3, 20]),
+                                                           ("quad_grid", "catmull-clark", "secsnap", [12])])
+def test_geodesic_distance_equals_the_cli(mesh_path, cli, name, scheme, method, sources):
+    args = ["geodesic", mesh_path(name), "--scheme", scheme, "--method", method, "--reference-level", 2,
+            "--time-factor", 2, "--json"]
+    for s in sources:
+        args += ["--source", s]
+    theirs = cli(*args)
+    ours = limsurf.geodesic_distance(limsurf.read_mesh(mesh_path(name)), scheme, sources, method=method,
+                                     reference_level=2, time_factor=2.0)
+    for key in KEYS:
+        assert ours[key] == theirs[key], key
+    assert ours["distance"].shape == (ours["vertices"],) and ours["distance"].max() == theirs["distance_max"]
+
+
+def test_prefactorised_queries_match_one_off_calls(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    heat = limsurf.HeatGeodesics(mesh, "catmull-clark", method="sec", level=2)
+    assert heat.time_step == pytest.approx(heat.mean_edge_length ** 2, rel=1e-15)
+    assert heat.gradient_level == 2 and heat.setup_seconds >= 0 and heat.factorisation_seconds >= 0
+    for sources in (5, [5, 30]):
+        once = limsurf.geodesic_distance(mesh, "catmull-clark", sources, method="sec", level=2)["distance"]
+        assert np.array_equal(heat.distance(sources), once)
+    d = heat.distance(7)
+    assert abs(heat.source_values(d, 7)[0]) < 0.3 * heat.mean_edge_length
+    dec = limsurf.HeatGeodesics(mesh, "catmull-clark", method="dec")
+    assert dec.distance([7])[7] == 0.0 and dec.gradient_level == 0
+
+
+def test_errors(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    with pytest.raises(limsurf.InputError, match="source vertex 48 is out of range"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", [1, 48])
+    with pytest.raises(limsurf.InputError, match="no source vertex"):
+        limsurf.HeatGeodesics(mesh, "catmull-clark", method="dec").distance([])
+    with pytest.raises(limsurf.InputError, match="connected components"):
+        limsurf.geodesic_distance(limsurf.read_mesh(mesh_path("tetra_and_cube")), "catmull-clark", 0)
+    with pytest.raises(limsurf.InputError, match="time factor"):
+        limsurf.HeatGeodesics(mesh, "catmull-clark", time_factor=-1.0)
+    with pytest.raises(limsurf.InputError, match="sources must be"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", "zero")

@@ -1,2 +1,153 @@
-// Placeholder: filled in by the SEC-applications work (issue 16).
+// Geodesic distance by the heat method (Crane, Weischedel & Wardetzky 2013) with the operators of
+// SEC (§2.3, §4.2): the driver behind `limsurf geodesic` and limsurf.geodesic_distance /
+// limsurf.HeatGeodesics in Python. docs/guide/geodesic.md shows it at work.
+//
+// The three steps, all unknowns on the control vertices (#V), M0, L = d0ᵀ M1 d0 of --method:
+//   1. heat:    (M0 + t L) u = δ, δ the unit point masses at the sources; on open meshes u is the
+//               average of the Neumann solution and the one with u = 0 on the boundary (Crane §3.2);
+//   2. field:   X = −∇u / |∇u| per face of a "gradient mesh", and its integrated divergence
+//               b_i = Σ_f |f| ∇φ_i|_f · X_f (the cotan divergence on triangles; on polygons the
+//               gradient exact for linear functions on planar polygons);
+//   3. Poisson: L φ = b (one vertex pinned), then φ shifted (see "Shift" below).
+// The gradient mesh of dec is the control mesh, of decsnap the control mesh with its vertices at
+// their limit positions; of sec (secsnap) the control mesh subdivided gradient_level times (with
+// its vertices snapped), the field there being that of the subdivided heat solution A u and the
+// divergence pulled back by Aᵀ. That is the SEC divergence d0ᵀ M1 = (A_0^L)ᵀ d0ᵀ M1^L A_1^L of
+// Eq. 12 applied to the level-L normalised field — the same normalisation and Laplacian metric,
+// so |∇φ| ≈ 1 on the limit surface (normalising on the control mesh and integrating on the limit
+// would scale distances by the control/limit length ratio). gradient_level trades per-source
+// time (∝ the level-L faces) against accuracy: measured in docs/guide/geodesic.md.
+//
+// Time step t = time_factor · h², h the MEAN edge length of the control mesh (Crane's choice,
+// 2013 §3.2.4: t = m h², m = 1, h the mean spacing), not the paper's maximum: one long edge
+// would otherwise over-smooth every distance; --time-factor (h_max/h_mean)² reproduces the
+// paper's rule. Both lengths are reported.
+//
+// Source load: the unit point mass ∫ δ φ_i = φ_i(source): e_s for dec (hat functions); for sec the
+// limit stencil of s (row s of P = LimitBasis::vertex_limit_matrix), and the mass is lumped (SEC
+// §3.5) in M0 + t L — with e_s or the consistent mass the coefficients of u oscillate in sign
+// around the source and ∇u points the wrong way (measured; docs/guide/geodesic.md).
+//
+// Shift: dec and decsnap represent φ by its values at the control vertices, and φ_s = 0 (with
+// several sources the mean of their values is subtracted). sec and secsnap represent the limit
+// function Σ φ_i Φ_i, which cannot follow the cone tip |x| of a distance at the source (the
+// smooth basis rounds it); the constant is fixed instead so that the limit function at the limit
+// points of the sources' 1-ring neighbours equals their chord length to the nearest source (the
+// geodesic distance to O(h³)). The limit value at a source is then small but not 0 (source
+// values are reported: tested below 0.3 h_mean on the bundled meshes).
+// Distances between components are undefined: meshes with more than one connected component are
+// refused.
 #pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "limsurf/core/types.h"
+#include "limsurf/mesh/control_mesh.h"
+#include "limsurf/mesh/topology.h"
+#include "limsurf/scheme/scheme.h"
+#include "limsurf/sec/inner_products.h"
+#include "limsurf/sec/reference_solution.h"
+
+namespace limsurf {
+
+struct HeatGeodesicsOptions {
+    InnerProductMethod method = InnerProductMethod::Sec;
+    int level = 3;             ///< sec, secsnap: the level L of the inner products (0..8)
+    int gradient_level = -1;   ///< sec, secsnap: level of the normalised gradient (0..8); −1: = level
+    double time_factor = 1.0;  ///< t = time_factor · h_mean² (> 0)
+    /// t itself, overriding time_factor (> 0): the reference takes the t of the method it checks.
+    std::optional<double> time_step;
+    SchemeOptions scheme_options;
+    int num_threads = 0;  ///< threads for assembling the SEC inner products (0: hardware concurrency)
+};
+
+/// One set-up of the heat method: the inner products and the factorisations of M0 + t L (and its
+/// interior block on open meshes) and of L (one vertex pinned), so that each distance() costs
+/// two (three on open meshes) back-substitutions and one divergence on the gradient mesh.
+class HeatGeodesics {
+  public:
+    /// @brief Prepares the heat method on the limit surface of (@p topology, @p X) (#V × 3).
+    /// @throws InputError when the mesh has more than one connected component (naming a vertex of
+    ///   the second), time_factor is not positive and finite, a level is out of range, X has the
+    ///   wrong size; NumericalError when a factorisation fails (degenerate faces); otherwise as
+    ///   control_inner_products
+    HeatGeodesics(const Topology& topology, const Points& X, SchemeKind scheme,
+                  const HeatGeodesicsOptions& options = {});
+    HeatGeodesics(const ControlMesh& mesh, SchemeKind scheme, const HeatGeodesicsOptions& options = {});
+    ~HeatGeodesics();
+    HeatGeodesics(HeatGeodesics&&) noexcept;
+    HeatGeodesics& operator=(HeatGeodesics&&) noexcept;
+
+    /// @brief The distance φ (#V) from the set @p sources (control vertex indices; repeats allowed):
+    ///   values at the control vertices (dec, decsnap) or control coefficients of the limit
+    ///   function (sec, secsnap), shifted as the header says. Thread-safe (const).
+    /// @throws InputError when @p sources is empty or names a vertex out of range (naming it);
+    ///   NumericalError when the result is not finite
+    [[nodiscard]] Eigen::VectorXd distance(const std::vector<Index>& sources) const;
+
+    /// @brief The values of @p phi (#V) at @p sources as distance() measures them (control values
+    ///   or limit values, see the header): within source_spread of 0 for a distance() result.
+    /// @throws InputError as distance()
+    [[nodiscard]] Eigen::VectorXd source_values(const Eigen::VectorXd& phi, const std::vector<Index>& sources) const;
+
+    [[nodiscard]] Index num_vertices() const noexcept;            ///< #V of the control mesh
+    [[nodiscard]] double time_step() const noexcept;              ///< t
+    [[nodiscard]] double mean_edge_length() const noexcept;       ///< h_mean of the control mesh
+    [[nodiscard]] double max_edge_length() const noexcept;        ///< h_max of the control mesh
+    [[nodiscard]] int gradient_level() const noexcept;            ///< 0 for dec, decsnap
+    [[nodiscard]] Index gradient_faces() const noexcept;          ///< faces of the gradient mesh
+    [[nodiscard]] double setup_seconds() const noexcept;          ///< inner products, operators, gradient mesh
+    [[nodiscard]] double factorisation_seconds() const noexcept;  ///< the Cholesky factorisations
+    [[nodiscard]] const HeatGeodesicsOptions& options() const noexcept;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// @brief The paper's reference (§4.2): the heat method with DEC on the control mesh subdivided
+///   @p level times with the same time step @p t as the method checked (so that both approximate
+///   the same smooth problem and the difference is the discretisation error), compared with the
+///   subdivided distance A^K @p phi: l2 = ‖A^K φ − φ_K‖ in the level-K mass over ‖φ_K‖, linf =
+///   max |A^K φ − φ_K| / max |φ_K|. The level-K vertex s is control vertex s (vertex points first).
+/// @param max_memory the budget as ReferenceProblem::max_memory (checked before any work)
+/// @throws as check_reference, Hierarchy and HeatGeodesics; InputError when phi has the wrong size
+[[nodiscard]] ReferenceComparison compare_geodesics_with_reference(const Topology& topology, const Points& X,
+                                                                   SchemeKind scheme, const std::vector<Index>& sources,
+                                                                   const Eigen::VectorXd& phi, int level, double t,
+                                                                   const SchemeOptions& scheme_options = {},
+                                                                   std::optional<std::int64_t> max_memory = {});
+
+/// Everything `limsurf geodesic` reports.
+struct GeodesicResult {
+    Eigen::VectorXd distance;        ///< φ (#V), see HeatGeodesics::distance
+    Eigen::VectorXd limit_distance;  ///< P φ: the distance at the limit point of each control vertex
+    double time_step = 0.0;
+    double mean_edge_length = 0.0;
+    double max_edge_length = 0.0;
+    int gradient_level = 0;
+    Eigen::VectorXd source_values;  ///< the distance at each source (HeatGeodesics::source_values)
+    double setup_seconds = 0.0;
+    double factorisation_seconds = 0.0;
+    double solve_seconds = 0.0;  ///< the one distance() call
+    std::optional<ReferenceComparison> reference;
+};
+
+struct GeodesicOptions {
+    HeatGeodesicsOptions heat;
+    std::optional<int> reference_level;      ///< compare with DEC on the K-times subdivided mesh
+    std::optional<std::int64_t> max_memory;  ///< of the reference
+};
+
+/// @brief One distance field with its report (set-up, one solve, limit values, the reference).
+/// @details A reference that cannot be had (memory budget) is refused before the main work.
+/// @throws as HeatGeodesics, compare_geodesics_with_reference
+[[nodiscard]] GeodesicResult geodesic_distance(const ControlMesh& mesh, SchemeKind scheme,
+                                               const std::vector<Index>& sources, const GeodesicOptions& options);
+
+}  // namespace limsurf

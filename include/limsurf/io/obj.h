@@ -6,6 +6,8 @@
 #include <ostream>
 #include <string>
 
+#include <Eigen/Core>
+
 #include "limsurf/mesh/polygon_soup.h"
 
 namespace limsurf {
@@ -33,5 +35,12 @@ namespace limsurf {
 ///   read_obj() gives back the same positions (bitwise), faces, tags and hints.
 /// @throws InputError if the soup is malformed (see docs/io.md) or the stream fails
 void write_obj(std::ostream& out, const PolygonSoup& soup);
+
+/// @brief write_obj() with texture coordinates: one `vt u v` line per vertex (after the `v`
+///   lines) and faces as `f a/a b/b …`, so that a viewer textures the mesh by @p texcoords (e.g. a
+///   parameterisation, `limsurf parameterize`). Tags and hints follow as in write_obj().
+/// @param texcoords #V × 2, finite
+/// @throws InputError as write_obj(), or when texcoords has the wrong shape or a non-finite value
+void write_obj(std::ostream& out, const PolygonSoup& soup, const Eigen::MatrixXd& texcoords);
 
 }  // namespace limsurf

@@ -1,1 +1,315 @@
 #include "limsurf/apps/hodge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseLU>
+
+#include "limsurf/core/error.h"
+#include "limsurf/detail/sparse_cholesky.h"
+#include "limsurf/refine/hierarchy.h"
+#include "limsurf/sec/exterior_derivative.h"
+
+namespace limsurf {
+namespace {
+
+using ColMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
+/// The Laplacian d0ᵀ M1 d0 without row and column 0 (the pinned vertex).
+SparseMatrix pinned_laplacian(const SparseMatrix& L) {
+    const Index n = static_cast<Index>(L.rows());
+    std::vector<Eigen::Triplet<double>> tr;
+    for (Index i = 1; i < n; ++i) {
+        for (SparseMatrix::InnerIterator it(L, i); it; ++it) {
+            if (it.col() > 0) {
+                tr.emplace_back(i - 1, static_cast<Index>(it.col()) - 1, it.value());
+            }
+        }
+    }
+    SparseMatrix R(n - 1, n - 1);
+    R.setFromTriplets(tr.begin(), tr.end());
+    return R;
+}
+
+/// [[M1, d1rᵀ], [d1r, 0]] with d1r = d1 without its first @p skip rows.
+ColMatrix saddle_matrix(const SparseMatrix& M1, const SparseMatrix& d1, Index skip) {
+    const Index E = static_cast<Index>(M1.rows());
+    const Index F = static_cast<Index>(d1.rows()) - skip;
+    std::vector<Eigen::Triplet<double>> tr;
+    for (Index i = 0; i < E; ++i) {
+        for (SparseMatrix::InnerIterator it(M1, i); it; ++it) {
+            tr.emplace_back(i, static_cast<Index>(it.col()), it.value());
+        }
+    }
+    for (Index f = 0; f < F; ++f) {
+        for (SparseMatrix::InnerIterator it(d1, f + skip); it; ++it) {
+            tr.emplace_back(E + f, static_cast<Index>(it.col()), it.value());
+            tr.emplace_back(static_cast<Index>(it.col()), E + f, it.value());
+        }
+    }
+    ColMatrix S(E + F, E + F);
+    S.setFromTriplets(tr.begin(), tr.end());
+    S.makeCompressed();
+    return S;
+}
+
+double m1_norm(const SparseMatrix& M1, const Eigen::VectorXd& a) {
+    return std::sqrt(std::max(a.dot(M1 * a), 0.0));
+}
+
+/// |⟨a, b⟩| / ‖w‖² in M1 (relative to the input, so that a part that vanishes up to rounding counts as 0).
+double orthogonality(const SparseMatrix& M1, const Eigen::VectorXd& a, const Eigen::VectorXd& b, double w2) {
+    return w2 > 0.0 ? std::abs(a.dot(M1 * b)) / w2 : 0.0;
+}
+
+double relative(double value, double scale) {
+    return scale > 0.0 ? value / scale : value;
+}
+
+}  // namespace
+
+struct HodgeDecomposer::Impl {
+    SparseMatrix d0, d1, divergence, laplacian;
+    InnerProducts ip;
+    Index pinned_faces = 0;  // 1 on closed surfaces (d1ᵀ 1 = 0 there), else 0
+    std::unique_ptr<detail::SparseCholesky> poisson;
+    ColMatrix saddle;
+    Eigen::SparseLU<ColMatrix, Eigen::COLAMDOrdering<int>> lu;
+
+    Eigen::VectorXd solve_alpha(const Eigen::VectorXd& b) const {
+        const Eigen::Index n = b.size();
+        Eigen::VectorXd alpha = Eigen::VectorXd::Zero(n);
+        for (int pass = 0; pass < 2; ++pass) {  // the second pass: iterative refinement
+            const Eigen::VectorXd r = b - laplacian * alpha;
+            alpha.tail(n - 1) += poisson->solve(r.tail(n - 1));
+        }
+        return alpha;
+    }
+
+    Eigen::VectorXd solve_saddle(const Eigen::VectorXd& rhs) const {
+        Eigen::VectorXd x = lu.solve(rhs);
+        x += Eigen::VectorXd(lu.solve(Eigen::VectorXd(rhs - saddle * x)));
+        return x;
+    }
+};
+
+HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_products)
+    : impl_(std::make_unique<Impl>()) {
+    LIMSURF_CHECK(topology.num_components() == 1, InputError,
+                  "the Hodge decomposition needs a connected mesh (this one has ", topology.num_components(),
+                  " components: decompose each on its own)");
+    Impl& m = *impl_;
+    m.ip = std::move(inner_products);
+    m.d0 = exterior_derivative_0(topology);
+    m.d1 = exterior_derivative_1(topology);
+    LIMSURF_CHECK(m.ip.M1.rows() == topology.num_edges() && m.ip.M1.cols() == topology.num_edges(), InputError,
+                  "M1 is ", m.ip.M1.rows(), " x ", m.ip.M1.cols(), " for ", topology.num_edges(), " edges");
+    m.divergence = SparseMatrix(m.d0.transpose()) * m.ip.M1;
+    m.laplacian = m.divergence * m.d0;
+    m.poisson = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.laplacian), "the Laplacian d0ᵀ M1 d0");
+    m.pinned_faces = topology.is_closed() ? 1 : 0;
+    m.saddle = saddle_matrix(m.ip.M1, m.d1, m.pinned_faces);
+    m.lu.analyzePattern(m.saddle);
+    m.lu.factorize(m.saddle);
+    LIMSURF_CHECK(m.lu.info() == Eigen::Success, NumericalError,
+                  "the factorisation of the saddle-point system [[M1, d1ᵀ], [d1, 0]] failed (degenerate geometry?)");
+}
+
+HodgeDecomposer::~HodgeDecomposer() = default;
+HodgeDecomposer::HodgeDecomposer(HodgeDecomposer&&) noexcept = default;
+HodgeDecomposer& HodgeDecomposer::operator=(HodgeDecomposer&&) noexcept = default;
+
+const InnerProducts& HodgeDecomposer::inner_products() const noexcept {
+    return impl_->ip;
+}
+const SparseMatrix& HodgeDecomposer::d0() const noexcept {
+    return impl_->d0;
+}
+const SparseMatrix& HodgeDecomposer::d1() const noexcept {
+    return impl_->d1;
+}
+
+HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& w) const {
+    const Impl& m = *impl_;
+    const Eigen::Index E = m.d0.rows();
+    const Eigen::Index F = m.d1.rows();
+    LIMSURF_CHECK(w.size() == E, InputError, "the 1-form has ", w.size(), " values for ", E, " edges");
+    LIMSURF_CHECK(w.allFinite(), InputError, "the 1-form has a non-finite value");
+    HodgeParts p;
+    p.alpha = m.solve_alpha(m.divergence * w);
+    p.alpha.array() -= p.alpha.mean();
+    p.exact = m.d0 * p.alpha;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(E + F - m.pinned_faces);
+    rhs.tail(F - m.pinned_faces) = (m.d1 * w).tail(F - m.pinned_faces);
+    const Eigen::VectorXd x = m.solve_saddle(rhs);
+    p.coexact = x.head(E);
+    p.gamma = Eigen::VectorXd::Zero(F);
+    p.gamma.tail(F - m.pinned_faces) = -x.tail(F - m.pinned_faces);
+    if (m.pinned_faces > 0) {
+        p.gamma.array() -= p.gamma.mean();
+    }
+    p.harmonic = w - p.exact - p.coexact;
+    return p;
+}
+
+HarmonicBasis harmonic_basis(const HodgeDecomposer& decomposer, std::uint64_t seed) {
+    const SparseMatrix& d0 = decomposer.d0();
+    const SparseMatrix& d1 = decomposer.d1();
+    const SparseMatrix& M1 = decomposer.inner_products().M1;
+    const Eigen::Index V = d0.cols();
+    const Eigen::Index E = d0.rows();
+    const Eigen::Index F = d1.rows();
+    // Closed: d1ᵀ 1 = 0, so rank d1 = F − 1; open: rank d1 = F.
+    Eigen::VectorXd face_sum = SparseMatrix(d1.transpose()) * Eigen::VectorXd::Ones(F);
+    const bool closed = face_sum.lpNorm<Eigen::Infinity>() == 0.0 && F > 0;
+    const auto chi = static_cast<int>(V - E + F);
+    HarmonicBasis out;
+    out.expected = closed ? 2 - chi : 1 - chi;
+    const int k = std::max(out.expected, 0) + 4;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    Eigen::MatrixXd H(E, k);
+    double input = 0.0;  // mean squared M1-norm of the random forms: the scale the threshold is relative to
+    for (int j = 0; j < k; ++j) {
+        Eigen::VectorXd w(E);
+        for (Eigen::Index e = 0; e < E; ++e) {
+            w[e] = uniform(rng);
+        }
+        input += w.dot(M1 * w) / k;
+        H.col(j) = decomposer.decompose(w).harmonic;
+    }
+    const Eigen::MatrixXd G = H.transpose() * (M1 * H);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (G + G.transpose()));
+    out.gram_eigenvalues = eig.eigenvalues().reverse();
+    int dim = 0;
+    while (dim < k && out.gram_eigenvalues[dim] > 1e-12 * input) {
+        ++dim;
+    }
+    out.dimension = dim;
+    out.gap = dim == 0   ? 0.0
+              : dim == k ? 1e300
+                         : out.gram_eigenvalues[dim - 1] / std::max(std::abs(out.gram_eigenvalues[dim]), 1e-300);
+    Eigen::MatrixXd B(E, dim);
+    for (int j = 0; j < dim; ++j) {
+        const Eigen::Index col = k - 1 - j;  // eigenvalues ascending in eig
+        B.col(j) = H * eig.eigenvectors().col(col) / std::sqrt(eig.eigenvalues()[col]);
+    }
+    // A second, modified Gram–Schmidt pass in M1 makes Bᵀ M1 B = I to rounding.
+    for (int j = 0; j < dim; ++j) {
+        for (int i = 0; i < j; ++i) {
+            B.col(j) -= B.col(i).dot(M1 * B.col(j)) * B.col(i);
+        }
+        B.col(j) /= m1_norm(M1, B.col(j));
+    }
+    out.forms = std::move(B);
+    return out;
+}
+
+Eigen::VectorXd random_one_form(const Topology& topology, const Points& X, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    Eigen::VectorXd w(topology.num_edges());
+    for (Index e = 0; e < topology.num_edges(); ++e) {
+        const auto ev = topology.edge_vertices(e);
+        w[e] = uniform(rng) * (X.row(ev[1]) - X.row(ev[0])).norm();
+    }
+    return w;
+}
+
+namespace {
+
+void measure(HodgeResult& r, const HodgeDecomposer& dec, const Eigen::VectorXd& w) {
+    const SparseMatrix& M1 = dec.inner_products().M1;
+    const SparseMatrix& d0 = dec.d0();
+    const SparseMatrix& d1 = dec.d1();
+    const HodgeParts& p = r.parts;
+    r.norm = m1_norm(M1, w);
+    r.exact_norm = m1_norm(M1, p.exact);
+    r.coexact_norm = m1_norm(M1, p.coexact);
+    r.harmonic_norm = m1_norm(M1, p.harmonic);
+    const double w2 = r.norm * r.norm;
+    r.exact_coexact = orthogonality(M1, p.exact, p.coexact, w2);
+    r.exact_harmonic = orthogonality(M1, p.exact, p.harmonic, w2);
+    r.coexact_harmonic = orthogonality(M1, p.coexact, p.harmonic, w2);
+    const double wmax = w.lpNorm<Eigen::Infinity>();
+    r.sum_residual = relative((p.exact + p.coexact + p.harmonic - w).lpNorm<Eigen::Infinity>(), wmax);
+    const Eigen::VectorXd curl = d1 * w;
+    const Eigen::VectorXd div = SparseMatrix(d0.transpose()) * (M1 * w);
+    r.curl_of_exact = relative((d1 * p.exact).lpNorm<Eigen::Infinity>(), curl.lpNorm<Eigen::Infinity>());
+    const double div_scale = div.norm() > 0.0 ? div.norm() : (M1 * w).norm();
+    r.divergence_of_coexact = relative((SparseMatrix(d0.transpose()) * (M1 * p.coexact)).norm(), div_scale);
+    r.harmonic_curl = relative((d1 * p.harmonic).norm(), curl.norm());
+    r.harmonic_divergence = relative((SparseMatrix(d0.transpose()) * (M1 * p.harmonic)).norm(), div_scale);
+}
+
+HodgeReference hodge_reference(const Topology& topology, const Points& X0, SchemeKind scheme,
+                               const HodgeOptions& options, const Eigen::VectorXd& w, const HodgeParts& parts) {
+    const int K = *options.reference_level;
+    RefineOptions ro;
+    ro.scheme = scheme;
+    ro.levels = K;
+    ro.scheme_options = options.scheme_options;
+    ro.forms = true;
+    const Hierarchy h(topology, ro);
+    const Topology& tK = h.topology(K);
+    const HodgeDecomposer fine(tK, polygonal_inner_products(tK, h.positions(K, X0)));
+    const SparseMatrix& A1 = h.accumulated_form(1, K);
+    const HodgeParts ref = fine.decompose(A1 * w);
+    const SparseMatrix& M1 = fine.inner_products().M1;
+    const auto error = [&](const Eigen::VectorXd& coarse, const Eigen::VectorXd& fine_part, double& diff2,
+                           double& ref2) {
+        const Eigen::VectorXd d = A1 * coarse - fine_part;
+        const double a = d.dot(M1 * d);
+        const double b = fine_part.dot(M1 * fine_part);
+        diff2 += a;
+        ref2 += b;
+        return b > 0.0 ? std::sqrt(a / b) : std::sqrt(a);
+    };
+    HodgeReference out;
+    out.level = K;
+    out.edges = tK.num_edges();
+    double diff2 = 0.0;
+    double ref2 = 0.0;
+    out.exact = error(parts.exact, ref.exact, diff2, ref2);
+    out.coexact = error(parts.coexact, ref.coexact, diff2, ref2);
+    out.harmonic = error(parts.harmonic, ref.harmonic, diff2, ref2);
+    out.total = ref2 > 0.0 ? std::sqrt(diff2 / ref2) : 0.0;
+    return out;
+}
+
+}  // namespace
+
+HodgeResult hodge_decomposition(const Topology& topology, const Points& X0, SchemeKind scheme, const Eigen::VectorXd& w,
+                                const HodgeOptions& options) {
+    LIMSURF_CHECK(w.size() == topology.num_edges(), InputError, "the 1-form has ", w.size(), " values for ",
+                  topology.num_edges(), " edges");
+    LIMSURF_CHECK(w.allFinite(), InputError, "the 1-form has a non-finite value");
+    LIMSURF_CHECK(topology.num_components() == 1, InputError,
+                  "the Hodge decomposition needs a connected mesh (this one has ", topology.num_components(),
+                  " components: decompose each on its own)");
+    if (options.reference_level) {
+        LIMSURF_CHECK(*options.reference_level >= 1 && *options.reference_level <= 6, InputError,
+                      "the reference level must be 1..6 (got ", *options.reference_level, ")");
+    }
+    const HodgeDecomposer dec(
+        topology, control_inner_products(topology, X0, scheme, options.inner_products, options.scheme_options));
+    HodgeResult r;
+    r.parts = dec.decompose(w);
+    r.solver = std::string(detail::SparseCholesky::name()) + " + sparse LU (saddle point)";
+    measure(r, dec, w);
+    r.genus = static_cast<int>(topology.genus());
+    r.boundary_loops = topology.num_boundary_loops();
+    if (options.basis) {
+        r.basis = harmonic_basis(dec);
+    }
+    if (options.reference_level) {
+        r.reference = hodge_reference(topology, X0, scheme, options, w, r.parts);
+    }
+    return r;
+}
+
+}  // namespace limsurf

@@ -1,1 +1,660 @@
 #include "limsurf/apps/parameterization.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include <Eigen/LU>
+#include <Eigen/SparseLU>
+#include <Spectra/SymGEigsShiftSolver.h>
+
+#include "limsurf/core/error.h"
+#include "limsurf/detail/sparse_cholesky.h"
+#include "limsurf/limit/limit_basis.h"
+#include "limsurf/quadrature/rules.h"
+#include "limsurf/refine/hierarchy.h"
+#include "limsurf/render/tessellation.h"
+#include "limsurf/sec/operators.h"
+
+namespace limsurf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void check_parameterizable(const Topology& t, const ParameterizationOptions& options) {
+    LIMSURF_CHECK(t.has_boundary(), InputError,
+                  "parameterize needs a mesh with boundary: this mesh is closed (cut it open first)");
+    LIMSURF_CHECK(t.num_components() == 1, InputError, "parameterize needs a connected mesh: this one has ",
+                  t.num_components(), " components (parameterise each separately)");
+    if (options.boundary == ParameterizationBoundary::Circle) {
+        LIMSURF_CHECK(t.num_boundary_loops() == 1 && t.euler_characteristic() == 1, InputError,
+                      "the circle boundary needs a topological disk (one boundary loop, Euler characteristic 1): "
+                      "this mesh has ",
+                      t.num_boundary_loops(), " boundary loops and Euler characteristic ", t.euler_characteristic(),
+                      " (use --boundary free, which accepts any number of loops)");
+    }
+    LIMSURF_CHECK(!options.reference_level || options.boundary == ParameterizationBoundary::Circle, InputError,
+                  "a reference solution is defined for the circle boundary only (the free map is defined up to a "
+                  "similarity)");
+}
+
+/// A_s with A(U) = ½ Uᵀ A_s U = ½ Σ_{boundary edges i→j} (u_i v_j − u_j v_i), U = (u; v).
+SparseMatrix boundary_area_form(const Topology& t) {
+    const Index n = t.num_vertices();
+    Triplets triplets;
+    for (Index loop = 0; loop < t.num_boundary_loops(); ++loop) {
+        const std::span<const Index> b = t.boundary_loop(loop);
+        for (std::size_t k = 0; k < b.size(); ++k) {
+            const Index i = b[k];
+            const Index j = b[(k + 1) % b.size()];
+            triplets.emplace_back(i, n + j, 0.5);
+            triplets.emplace_back(n + j, i, 0.5);
+            triplets.emplace_back(j, n + i, -0.5);
+            triplets.emplace_back(n + i, j, -0.5);
+        }
+    }
+    SparseMatrix A(2 * n, 2 * n);
+    A.setFromTriplets(triplets.begin(), triplets.end());
+    return A;
+}
+
+SparseMatrix block_diagonal(const SparseMatrix& M) {
+    Triplets triplets;
+    triplets.reserve(static_cast<std::size_t>(2 * M.nonZeros()));
+    for (Index r = 0; r < M.outerSize(); ++r) {
+        for (SparseMatrix::InnerIterator it(M, r); it; ++it) {
+            triplets.emplace_back(it.row(), it.col(), it.value());
+            triplets.emplace_back(it.row() + M.rows(), it.col() + M.cols(), it.value());
+        }
+    }
+    SparseMatrix out(2 * M.rows(), 2 * M.cols());
+    out.setFromTriplets(triplets.begin(), triplets.end());
+    return out;
+}
+
+/// The area form of sec and secsnap: the level-L boundary's, pulled back by A^L (SEC Eq. 12's pattern).
+SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const ParameterizationOptions& options) {
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = options.level;
+    refine.scheme_options = options.scheme_options;
+    const Hierarchy h(t, refine);
+    const SparseMatrix A2 = block_diagonal(h.accumulated(options.level));
+    const SparseMatrix AL = boundary_area_form(h.topology(options.level));
+    const SparseMatrix half = AL * A2;
+    return SparseMatrix(A2.transpose() * half);
+}
+
+/// B-orthogonal projection away from the constant maps (1,0) and (0,1): B is the boundary indicator.
+struct ConstantDeflation {
+    std::vector<Index> boundary;  // boundary vertices
+    Index n = 0;
+
+    void apply(double* y) const {
+        for (int c = 0; c < 2; ++c) {
+            double mean = 0.0;
+            for (const Index i : boundary) {
+                mean += y[c * n + i];
+            }
+            mean /= static_cast<double>(boundary.size());
+            for (Index i = 0; i < n; ++i) {
+                y[c * n + i] -= mean;
+            }
+        }
+    }
+};
+
+/// Spectra's shift-and-invert operator y = P (L_C − σB)⁻¹ x, with P the constant deflation.
+class DeflatedShiftInvert {
+  public:
+    using Scalar = double;
+    DeflatedShiftInvert(const SparseMatrix& conformal, const SparseMatrix& mass, ConstantDeflation deflation)
+        : conformal_(conformal), mass_(mass), deflation_(std::move(deflation)) {}
+    [[nodiscard]] Eigen::Index rows() const { return conformal_.rows(); }
+    [[nodiscard]] Eigen::Index cols() const { return conformal_.cols(); }
+    void set_shift(double sigma) {
+        factor_ = std::make_unique<detail::SparseCholesky>(SparseMatrix(conformal_ - sigma * mass_),
+                                                           "the shifted conformal energy L_C − σB");
+    }
+    void perform_op(const double* x_in, double* y_out) const {
+        const Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
+        Eigen::Map<Eigen::VectorXd>(y_out, rows()) = factor_->solve(x);
+        deflation_.apply(y_out);
+    }
+
+  private:
+    const SparseMatrix& conformal_;
+    const SparseMatrix& mass_;
+    ConstantDeflation deflation_;
+    std::unique_ptr<detail::SparseCholesky> factor_;
+};
+
+class DiagonalProduct {
+  public:
+    using Scalar = double;
+    explicit DiagonalProduct(Eigen::VectorXd diagonal) : d_(std::move(diagonal)) {}
+    [[nodiscard]] Eigen::Index rows() const { return d_.size(); }
+    [[nodiscard]] Eigen::Index cols() const { return d_.size(); }
+    void perform_op(const double* x_in, double* y_out) const {
+        Eigen::Map<Eigen::VectorXd>(y_out, rows()) = d_.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x_in, rows()));
+    }
+
+  private:
+    Eigen::VectorXd d_;
+};
+
+std::vector<Index> all_boundary_vertices(const Topology& t) {
+    std::vector<Index> out;
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        if (t.is_boundary_vertex(v)) {
+            out.push_back(v);
+        }
+    }
+    return out;
+}
+
+/// Centre, orient, scale and rotate a free map (see the header's "Normalisation").
+Eigen::MatrixXd normalised_map(const Topology& t, const ConformalSystem& system, const Eigen::VectorXd& U) {
+    const Index n = t.num_vertices();
+    Eigen::MatrixXd uv(n, 2);
+    uv.col(0) = U.head(n);
+    uv.col(1) = U.tail(n);
+    const std::vector<Index> boundary = all_boundary_vertices(t);
+    Eigen::RowVector2d centre = Eigen::RowVector2d::Zero();
+    for (const Index i : boundary) {
+        centre += uv.row(i);
+    }
+    uv.rowwise() -= centre / static_cast<double>(boundary.size());
+    Eigen::VectorXd stacked(2 * n);
+    stacked << uv.col(0), uv.col(1);
+    double area = 0.5 * stacked.dot(system.area * stacked);
+    if (area < 0.0) {  // an eigenvector of the mirrored orientation cannot minimise E_C, but be safe
+        uv.col(1) *= -1.0;
+        area = -area;
+    }
+    LIMSURF_CHECK(area > 0.0 && std::isfinite(area), NumericalError,
+                  "the spectral parameterisation has zero area (degenerate boundary?)");
+    uv *= std::sqrt(system.surface_area / area);
+    const Index first = t.boundary_loop(0)[0];
+    const double angle = std::atan2(uv(first, 1), uv(first, 0));
+    Eigen::Matrix2d rotation;  // applied to rows: rotates by −angle
+    rotation << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    return uv * rotation;
+}
+
+/// U (2#V) from a #V × 2 matrix (u; v).
+Eigen::VectorXd stacked_from(const Eigen::MatrixXd& uv) {
+    Eigen::VectorXd U(2 * uv.rows());
+    U << uv.col(0), uv.col(1);
+    return U;
+}
+
+/// The eigenpair of the smallest λ, B-normalised, with its residual ‖(L_C − λB)U‖ / (‖L_C‖₁ ‖U‖);
+/// U is left in result.uv (#V × 2, not yet normalised).
+void accept_eigenpair(const ConformalSystem& system, const Eigen::VectorXd& values, const Eigen::MatrixXd& vectors,
+                      int iterations, ParameterizationResult& result) {
+    const Eigen::VectorXd b = system.boundary_mass.diagonal();
+    Eigen::Index best = 0;
+    values.minCoeff(&best);
+    const double lambda = values(best);
+    Eigen::VectorXd U = vectors.col(best);
+    U /= std::sqrt(U.dot(b.cwiseProduct(U)));
+    const Eigen::VectorXd residual = system.conformal * U - lambda * b.cwiseProduct(U);
+    double norm1 = 0.0;  // the largest column sum of absolute values
+    for (Index c = 0; c < system.conformal.outerSize(); ++c) {
+        double sum = 0.0;
+        for (SparseMatrix::InnerIterator it(system.conformal, c); it; ++it) {
+            sum += std::abs(it.value());
+        }
+        norm1 = std::max(norm1, sum);
+    }
+    result.eigenvalue = lambda;
+    result.residual = residual.norm() / (norm1 * U.norm());
+    result.iterations = iterations;
+    const Index n = U.size() / 2;
+    result.uv.resize(n, 2);
+    result.uv.col(0) = U.head(n);
+    result.uv.col(1) = U.tail(n);
+}
+
+void solve_spectral(const ControlMesh& mesh, const ConformalSystem& system, ParameterizationResult& result) {
+    const Topology& t = mesh.topology();
+    const Index n = t.num_vertices();
+    const Eigen::VectorXd b = system.boundary_mass.diagonal();
+    ConstantDeflation deflation{all_boundary_vertices(t), n};
+    LIMSURF_CHECK(2 * n > 3, InputError, "the mesh is too small for the spectral parameterisation (", n, " vertices)");
+    // σ just below the spectrum (L_C is positive semi-definite): the nearest eigenvalues λ1 = λ2
+    // converge at the rate (λ1 − σ)/(λ3 − σ), so σ must be small against λ1, which is tiny on fine
+    // meshes (1e-7 of the Laplacian's scale at 8k vertices). The constants (λ = 0) get 1/|σ| in
+    // the solve, but the deflation removes them exactly. Should rounding leave L_C slightly
+    // indefinite, the factorisation fails and a larger shift is tried.
+    const double scale = system.conformal.diagonal().cwiseAbs().mean();
+    const Eigen::Index nev = 2;
+    const Eigen::Index ncv = std::min<Eigen::Index>(2 * n, 24);
+    DiagonalProduct bop(b);
+    Eigen::VectorXd start(2 * n);  // deterministic, B-orthogonal to the constants
+    for (Index i = 0; i < 2 * n; ++i) {
+        start(i) = std::sin(1.0 + 12.9898 * static_cast<double>(i)) + 0.5;
+    }
+    deflation.apply(start.data());
+    bool solved = false;
+    for (const double fraction : {1e-8, 1e-6, 1e-4, 1e-2}) {
+        const double sigma = -fraction * scale;
+        DeflatedShiftInvert op(system.conformal, system.boundary_mass, deflation);
+        try {
+            Spectra::SymGEigsShiftSolver<DeflatedShiftInvert, DiagonalProduct, Spectra::GEigsMode::ShiftInvert> solver(
+                op, bop, nev, ncv, sigma);
+            solver.init(start.data());
+            solver.compute(Spectra::SortRule::LargestMagn, 1000, 1e-12);
+            if (solver.info() != Spectra::CompInfo::Successful) {
+                continue;
+            }
+            accept_eigenpair(system, solver.eigenvalues(), solver.eigenvectors(),
+                             static_cast<int>(solver.num_iterations()), result);
+            solved = true;
+            break;
+        } catch (const NumericalError&) {
+            continue;  // L_C − σB not positive definite: a larger shift
+        }
+    }
+    LIMSURF_CHECK(solved, NumericalError,
+                  "the eigen-solver (Spectra, shift-invert Lanczos) did not converge for the spectral "
+                  "parameterisation");
+    result.uv = normalised_map(t, system, stacked_from(result.uv));
+}
+
+/// Solves L_II X_I = −L_IB X_B (the harmonic interior of Dirichlet data X_B), columns of X.
+/// Returns the relative residual.
+double harmonic_interior(const Topology& t, const SparseMatrix& L, Eigen::MatrixXd& X, std::string* solver_name) {
+    const Index n = t.num_vertices();
+    std::vector<Index> free_index(static_cast<std::size_t>(n), invalid_index);
+    Index num_free = 0;
+    for (Index v = 0; v < n; ++v) {
+        if (!t.is_boundary_vertex(v)) {
+            free_index[static_cast<std::size_t>(v)] = num_free++;
+        }
+    }
+    Triplets triplets;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(num_free, X.cols());
+    for (Index c = 0; c < L.outerSize(); ++c) {
+        for (SparseMatrix::InnerIterator it(L, c); it; ++it) {
+            const Index r = free_index[static_cast<std::size_t>(it.row())];
+            if (r == invalid_index) {
+                continue;
+            }
+            const Index k = free_index[static_cast<std::size_t>(it.col())];
+            if (k != invalid_index) {
+                triplets.emplace_back(r, k, it.value());
+            } else {
+                rhs.row(r) -= it.value() * X.row(it.col());
+            }
+        }
+    }
+    SparseMatrix LII(num_free, num_free);
+    LII.setFromTriplets(triplets.begin(), triplets.end());
+    const detail::SparseCholesky factor(LII, "the interior Laplacian of the fixed-boundary parameterisation");
+    if (solver_name != nullptr) {
+        *solver_name = detail::SparseCholesky::name();
+    }
+    Eigen::MatrixXd interior(num_free, X.cols());
+    for (Index c = 0; c < X.cols(); ++c) {
+        interior.col(c) = factor.solve(rhs.col(c));
+    }
+    LIMSURF_CHECK(interior.allFinite(), NumericalError,
+                  "the fixed-boundary parameterisation is not finite (degenerate geometry?)");
+    for (Index v = 0; v < n; ++v) {
+        const Index r = free_index[static_cast<std::size_t>(v)];
+        if (r != invalid_index) {
+            X.row(v) = interior.row(r);
+        }
+    }
+    const double rhs_norm = rhs.norm();
+    return rhs_norm > 0.0 ? (LII * interior - rhs).norm() / rhs_norm : 0.0;
+}
+
+/// The ptex point at parameter t ∈ [0, 1] of the edge from corner k to k+1 of control face f.
+SurfacePoint edge_point(const LimitBasis& basis, Index f, Index k, double t) {
+    const Topology& topo = basis.topology();
+    const Index degree = topo.face_degree(f);
+    const Index p = basis.first_ptex_face(f);
+    if (basis.domain() == ParameterDomain::Triangle) {
+        const std::array<SurfacePoint, 3> on{SurfacePoint{p, t, 0.0}, SurfacePoint{p, 1.0 - t, t},
+                                             SurfacePoint{p, 0.0, 1.0 - t}};
+        return on[static_cast<std::size_t>(k)];
+    }
+    if (degree == 4) {
+        const std::array<SurfacePoint, 4> on{SurfacePoint{p, t, 0.0}, SurfacePoint{p, 1.0, t},
+                                             SurfacePoint{p, 1.0 - t, 1.0}, SurfacePoint{p, 0.0, 1.0 - t}};
+        return on[static_cast<std::size_t>(k)];
+    }
+    // Sub-face k runs from corner k to the edge's midpoint along v = 0; sub-face k+1 from there to
+    // corner k+1 along u = 0.
+    if (t <= 0.5) {
+        return SurfacePoint{p + k, 2.0 * t, 0.0};
+    }
+    return SurfacePoint{p + (k + 1) % degree, 0.0, 2.0 * (1.0 - t)};
+}
+
+/// Length of the limit curve over the boundary edge a → b (Gauss–Legendre on each half).
+double limit_edge_length(const LimitBasis& basis, const Points& X, Index a, Index b) {
+    const Topology& topo = basis.topology();
+    const Index e = topo.find_edge(a, b);
+    const Index f = topo.edge_faces(e)[0];
+    const std::span<const Index> corners = topo.face_vertices(f);
+    const Index degree = topo.face_degree(f);
+    Index k = 0;
+    while (k < degree &&
+           !(corners[static_cast<std::size_t>(k)] == a && corners[static_cast<std::size_t>((k + 1) % degree)] == b)) {
+        ++k;
+    }
+    LIMSURF_CHECK(k < degree, NumericalError, "boundary edge ", a, "→", b, " does not run along its face ", f);
+    LIMSURF_CHECK(basis.has_limit_surface(basis.first_ptex_face(f)), InputError, "boundary face ", f,
+                  " has no limit surface (boundary rule 'none'): the circle boundary needs the limit boundary curve");
+    static const QuadratureRule rule = gauss_legendre_1d(10);
+    double length = 0.0;
+    const double h = 1e-7;
+    for (int half = 0; half < 2; ++half) {
+        for (int q = 0; q < rule.num_points(); ++q) {
+            const double t = 0.5 * (half + rule.u[static_cast<std::size_t>(q)]);
+            // d/dt of the curve, by the exact derivatives of the ptex point and the chain rule.
+            const SurfacePoint s = edge_point(basis, f, k, t);
+            const SurfacePoint s2 = edge_point(basis, f, k, std::min(1.0, t + h));
+            const SurfacePoint s1 = edge_point(basis, f, k, std::max(0.0, t - h));
+            const double du = (s2.u - s1.u) / (std::min(1.0, t + h) - std::max(0.0, t - h));
+            const double dv = (s2.v - s1.v) / (std::min(1.0, t + h) - std::max(0.0, t - h));
+            const Eigen::Matrix<double, 6, 3> d = basis.evaluate(X, s, DerivativeOrder::First);
+            const Eigen::RowVector3d tangent = du * d.row(Du) + dv * d.row(Dv);
+            length += 0.5 * rule.weight[static_cast<std::size_t>(q)] * tangent.norm();
+        }
+    }
+    return length;
+}
+
+/// Relative L2 (level-K mass) and L∞ (Euclidean in the plane) differences of two maps.
+ReferenceComparison compare_maps(const SparseMatrix& M0, const Eigen::MatrixXd& u, const Eigen::MatrixXd& reference,
+                                 int level) {
+    const Eigen::MatrixXd d = u - reference;
+    const double reference_norm2 = (reference.transpose() * (M0 * reference)).trace();
+    const double reference_max = reference.rowwise().norm().maxCoeff();
+    LIMSURF_CHECK(reference_norm2 > 0.0 && reference_max > 0.0, NumericalError, "the reference map is zero");
+    ReferenceComparison out;
+    out.level = level;
+    out.vertices = u.rows();
+    out.l2 = std::sqrt((d.transpose() * (M0 * d)).trace() / reference_norm2);
+    out.linf = d.rowwise().norm().maxCoeff() / reference_max;
+    return out;
+}
+
+ReferenceComparison circle_reference(const ControlMesh& mesh, SchemeKind scheme, const ParameterizationOptions& options,
+                                     const Eigen::MatrixXd& uv) {
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = *options.reference_level;
+    refine.scheme_options = options.scheme_options;
+    refine.max_memory = options.max_memory;
+    const Hierarchy h(mesh.topology(), refine);
+    const int K = *options.reference_level;
+    const Topology& fine = h.topology(K);
+    const Points XK = h.positions(K, mesh.positions());
+    const Operators ops(fine, polygonal_inner_products(fine, XK));
+    const Eigen::MatrixXd subdivided = h.apply(K, uv);
+    // The same boundary conditions: the subdivided boundary values have the same limit boundary
+    // curve (subdivision does not move the limit), so only the interior differs.
+    Eigen::MatrixXd reference = subdivided;
+    harmonic_interior(fine, ops.laplacian(), reference, nullptr);
+    return compare_maps(ops.inner_products().M0, subdivided, reference, K);
+}
+
+}  // namespace
+
+const char* to_string(ParameterizationBoundary boundary) noexcept {
+    return boundary == ParameterizationBoundary::Free ? "free" : "circle";
+}
+
+ParameterizationBoundary parse_parameterization_boundary(const std::string& name) {
+    if (name == "free") {
+        return ParameterizationBoundary::Free;
+    }
+    if (name == "circle") {
+        return ParameterizationBoundary::Circle;
+    }
+    throw InputError("unknown parameterisation boundary '" + name + "' (expected free or circle)");
+}
+
+ConformalSystem conformal_system(const ControlMesh& mesh, SchemeKind scheme, const ParameterizationOptions& options) {
+    const Topology& t = mesh.topology();
+    check_parameterizable(t, options);
+    InnerProductOptions ip;
+    ip.method = options.method;
+    ip.level = options.level;
+    const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
+    ConformalSystem out;
+    out.surface_area = ops.inner_products().M0.sum();
+    out.area = uses_subdivision(options.method) && options.level > 0 ? pulled_back_area_form(t, scheme, options)
+                                                                     : boundary_area_form(t);
+    out.conformal = block_diagonal(ops.laplacian()) - out.area;
+    const Index n = t.num_vertices();
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * n);
+    for (Index v = 0; v < n; ++v) {
+        if (t.is_boundary_vertex(v)) {
+            b(v) = 1.0;
+            b(n + v) = 1.0;
+        }
+    }
+    out.boundary_mass = SparseMatrix(b.asDiagonal());
+    return out;
+}
+
+std::pair<Eigen::MatrixXd, double> circle_boundary_values(const ControlMesh& mesh, SchemeKind scheme,
+                                                          const SchemeOptions& scheme_options) {
+    const Topology& t = mesh.topology();
+    ParameterizationOptions check;
+    check.boundary = ParameterizationBoundary::Circle;
+    check_parameterizable(t, check);
+    const LimitBasis basis(t, scheme, scheme_options);
+    const std::span<const Index> loop = t.boundary_loop(0);
+    const auto nb = static_cast<Index>(loop.size());
+    std::vector<double> arc(static_cast<std::size_t>(nb) + 1, 0.0);  // arc length to the limit point of loop[k]
+    for (Index k = 0; k < nb; ++k) {
+        arc[static_cast<std::size_t>(k) + 1] =
+            arc[static_cast<std::size_t>(k)] + limit_edge_length(basis, mesh.positions(),
+                                                                 loop[static_cast<std::size_t>(k)],
+                                                                 loop[static_cast<std::size_t>((k + 1) % nb)]);
+    }
+    const double length = arc.back();
+    LIMSURF_CHECK(length > 0.0 && std::isfinite(length), NumericalError,
+                  "the limit boundary curve has zero length (degenerate boundary)");
+    // The limit points of the boundary vertices depend on the boundary vertices alone (the
+    // boundary curve rules): invert that stencil so the limit boundary interpolates the circle.
+    const Index n = t.num_vertices();
+    std::vector<Index> position(static_cast<std::size_t>(n), invalid_index);
+    for (Index k = 0; k < nb; ++k) {
+        position[static_cast<std::size_t>(loop[static_cast<std::size_t>(k)])] = k;
+    }
+    Triplets triplets;
+    Eigen::MatrixXd target(nb, 2);
+    for (Index k = 0; k < nb; ++k) {
+        const LimitWeights w = basis.vertex_limit(loop[static_cast<std::size_t>(k)]);
+        for (Index j = 0; j < w.size(); ++j) {
+            const double weight = w.w(Value, j);
+            const Index col = position[static_cast<std::size_t>(w.vertices[static_cast<std::size_t>(j)])];
+            LIMSURF_CHECK(col != invalid_index || std::abs(weight) < 1e-12, UnsupportedError,
+                          "the limit point of boundary vertex ", loop[static_cast<std::size_t>(k)],
+                          " depends on interior vertex ", w.vertices[static_cast<std::size_t>(j)],
+                          " (boundary rules without a boundary curve are not supported)");
+            if (col != invalid_index && weight != 0.0) {
+                triplets.emplace_back(k, col, weight);
+            }
+        }
+        const double theta = 2.0 * std::numbers::pi * arc[static_cast<std::size_t>(k)] / length;
+        target(k, 0) = std::cos(theta);
+        target(k, 1) = std::sin(theta);
+    }
+    SparseMatrix P(nb, nb);
+    P.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::SparseLU<Eigen::SparseMatrix<double, Eigen::ColMajor>> lu;
+    lu.compute(Eigen::SparseMatrix<double, Eigen::ColMajor>(P));
+    LIMSURF_CHECK(lu.info() == Eigen::Success, NumericalError, "the boundary limit stencil is singular");
+    const Eigen::MatrixXd control = lu.solve(target);
+    Eigen::MatrixXd uv = Eigen::MatrixXd::Zero(n, 2);
+    for (Index k = 0; k < nb; ++k) {
+        uv.row(loop[static_cast<std::size_t>(k)]) = control.row(k);
+    }
+    return {uv, length};
+}
+
+QuasiConformalDistortion quasi_conformal_distortion(const LimitSampler& sampler, const Points& X,
+                                                    const Eigen::MatrixXd& uv, int num_threads) {
+    LIMSURF_CHECK(uv.rows() == sampler.num_vertices() && uv.cols() == 2, InputError, "the map has ", uv.rows(), " × ",
+                  uv.cols(), " values, expected ", sampler.num_vertices(), " × 2");
+    LIMSURF_CHECK(uv.allFinite(), InputError, "the map has a value that is not finite");
+    const std::vector<Eigen::Matrix<double, 6, 3>> d = sampler.evaluate(X);
+    const Index ns = sampler.num_samples();
+    Eigen::VectorXd ratio(ns);
+    Eigen::VectorXd area(ns);
+    Eigen::VectorXd det(ns);
+    parallel_ranges(ns, num_threads, [&](Index begin, Index end) {
+        for (Index s = begin; s < end; ++s) {
+            const auto w = sampler.limit_weights(s);
+            const std::span<const Index> verts = sampler.vertices(s);
+            Eigen::Matrix2d J = Eigen::Matrix2d::Zero();  // rows u, v; columns ∂s, ∂t of the ptex domain
+            for (std::size_t j = 0; j < verts.size(); ++j) {
+                const auto col = static_cast<Eigen::Index>(j);
+                J(0, 0) += w(Du, col) * uv(verts[j], 0);
+                J(0, 1) += w(Dv, col) * uv(verts[j], 0);
+                J(1, 0) += w(Du, col) * uv(verts[j], 1);
+                J(1, 1) += w(Dv, col) * uv(verts[j], 1);
+            }
+            const Eigen::Vector3d xs = d[static_cast<std::size_t>(s)].row(Du).transpose();
+            const Eigen::Vector3d xt = d[static_cast<std::size_t>(s)].row(Dv).transpose();
+            // Orthonormal tangent frame: X' = Q R with R upper triangular (Gram–Schmidt), so the
+            // differential on the tangent plane is D = J R⁻¹.
+            const double r11 = xs.norm();
+            const double r12 = xs.dot(xt) / r11;
+            const double r22 = std::sqrt(std::max(0.0, xt.squaredNorm() - r12 * r12));
+            Eigen::Matrix2d Rinv;
+            Rinv << 1.0 / r11, -r12 / (r11 * r22), 0.0, 1.0 / r22;
+            const Eigen::Matrix2d D = J * Rinv;
+            const double f2 = D.squaredNorm();
+            const double dd = D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0);
+            const double plus = std::sqrt(std::max(0.0, f2 + 2.0 * std::abs(dd)));
+            const double minus = std::sqrt(std::max(0.0, f2 - 2.0 * std::abs(dd)));
+            const double s1 = 0.5 * (plus + minus);
+            const double s2 = 0.5 * (plus - minus);
+            ratio(s) = s2 > 1e-12 * s1 ? s1 / s2 : -1.0;  // −1: degenerate
+            area(s) = sampler.weight(s) * r11 * r22;
+            det(s) = dd;
+        }
+    });
+    QuasiConformalDistortion out;
+    out.samples = ns;
+    double weighted = 0.0;
+    double counted_area = 0.0;
+    double flipped_area = 0.0;
+    for (Index s = 0; s < ns; ++s) {
+        out.area += area(s);
+        if (det(s) < 0.0) {
+            ++out.flipped;
+            flipped_area += area(s);
+        }
+        if (ratio(s) < 0.0 || !std::isfinite(ratio(s))) {
+            ++out.degenerate;
+            continue;
+        }
+        weighted += area(s) * ratio(s);
+        counted_area += area(s);
+        out.max = std::max(out.max, ratio(s));
+    }
+    LIMSURF_CHECK(counted_area > 0.0, NumericalError, "the map is degenerate everywhere on the limit surface");
+    out.mean = weighted / counted_area;
+    out.flipped_area = flipped_area / out.area;
+    return out;
+}
+
+ParameterizationResult parameterize(const ControlMesh& mesh, SchemeKind scheme,
+                                    const ParameterizationOptions& options) {
+    const Topology& t = mesh.topology();
+    check_parameterizable(t, options);
+    if (options.reference_level) {  // refused now, not after the main solve
+        ReferenceProblem reference;
+        reference.level = *options.reference_level;
+        reference.scheme_options = options.scheme_options;
+        reference.max_memory = options.max_memory;
+        check_reference(t, scheme, reference);
+    }
+    ParameterizationResult result;
+    result.boundary = options.boundary;
+    result.boundary_loops = t.num_boundary_loops();
+    result.boundary_vertices = static_cast<Index>(all_boundary_vertices(t).size());
+    result.solver = detail::SparseCholesky::name();
+    auto start = Clock::now();
+    if (options.boundary == ParameterizationBoundary::Free) {
+        const ConformalSystem system = conformal_system(mesh, scheme, options);
+        result.times.assembly = seconds_since(start);
+        start = Clock::now();
+        solve_spectral(mesh, system, result);
+        result.times.solve = seconds_since(start);
+    } else {
+        InnerProductOptions ip;
+        ip.method = options.method;
+        ip.level = options.level;
+        const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
+        const SparseMatrix L = ops.laplacian();
+        auto [uv, length] = circle_boundary_values(mesh, scheme, options.scheme_options);
+        result.boundary_length = length;
+        result.times.assembly = seconds_since(start);
+        start = Clock::now();
+        result.residual = harmonic_interior(t, L, uv, &result.solver);
+        result.uv = std::move(uv);
+        result.times.solve = seconds_since(start);
+    }
+    start = Clock::now();
+    const LimitBasis basis(t, scheme, options.scheme_options);
+    const LimitSampler sampler(
+        basis, SamplerOptions{options.distortion.degree, options.distortion.tiles, options.distortion.num_threads});
+    result.distortion =
+        quasi_conformal_distortion(sampler, mesh.positions(), result.uv, options.distortion.num_threads);
+    result.times.distortion = seconds_since(start);
+    if (options.reference_level) {
+        start = Clock::now();
+        result.reference = circle_reference(mesh, scheme, options, result.uv);
+        result.times.reference = seconds_since(start);
+    }
+    return result;
+}
+
+RenderResult render_uv_checkerboard(const ControlMesh& mesh, SchemeKind scheme, const SchemeOptions& scheme_options,
+                                    const Eigen::MatrixXd& uv, const CheckerboardOptions& options) {
+    LIMSURF_CHECK(uv.rows() == mesh.num_vertices() && uv.cols() == 2, InputError, "the map has ", uv.rows(), " × ",
+                  uv.cols(), " values, expected ", mesh.num_vertices(), " × 2");
+    LIMSURF_CHECK(options.squares >= 1 && options.squares <= 1000, InputError,
+                  "the checkerboard needs 1..1000 squares, got ", options.squares);
+    const LimitBasis basis(mesh.topology(), scheme, scheme_options);
+    TessellationOptions tess;
+    tess.resolution = options.resolution > 0 ? options.resolution : automatic_resolution(basis);
+    tess.curvature = false;
+    const LimitTessellation surface = tessellate_limit_surface(basis, mesh.positions(), tess);
+    const Eigen::VectorXd u = evaluate_vertex_field(surface, uv.col(0));
+    const Eigen::VectorXd v = evaluate_vertex_field(surface, uv.col(1));
+    const double side = std::max(u.maxCoeff() - u.minCoeff(), v.maxCoeff() - v.minCoeff());
+    LIMSURF_CHECK(side > 0.0, InputError, "the map is constant: no checkerboard to draw");
+    const double k = std::numbers::pi * options.squares / side;
+    const Eigen::VectorXd field = ((u.array() - u.minCoeff()) * k).sin() * ((v.array() - v.minCoeff()) * k).sin();
+    RenderOptions render = options.render;
+    render.colormap = Colormap::CoolWarm;
+    render.range = std::array<double, 2>{-1e-6, 1e-6};  // the sign alone: sharp squares
+    render.color_bar = false;
+    render.isolines = 0;
+    return render_tessellation(surface, field, render);
+}
+
+}  // namespace limsurf

@@ -444,8 +444,19 @@ PolygonSoup read_obj(const std::filesystem::path& path) {
     return read_obj(in, path.string());
 }
 
-void write_obj(std::ostream& out, const PolygonSoup& soup) {
+namespace {
+
+void write_obj_tags(std::ostream& out, const PolygonSoup& soup);
+
+/// The `v` (and with texture coordinates `vt`) and `f` lines, then the tags.
+void write_obj_lines(std::ostream& out, const PolygonSoup& soup, const Eigen::MatrixXd* texcoords) {
     detail::io_check_soup(soup);
+    if (texcoords != nullptr) {
+        LIMSURF_CHECK(texcoords->rows() == soup.num_vertices() && texcoords->cols() == 2, InputError,
+                      "texture coordinates: expected ", soup.num_vertices(), " × 2 values, got ", texcoords->rows(),
+                      " × ", texcoords->cols());
+        LIMSURF_CHECK(texcoords->allFinite(), InputError, "texture coordinates: a value is not finite");
+    }
     out << "# written by limsurf\n";
     for (Index v = 0; v < soup.num_vertices(); ++v) {
         out << 'v';
@@ -455,13 +466,30 @@ void write_obj(std::ostream& out, const PolygonSoup& soup) {
         }
         out << '\n';
     }
+    if (texcoords != nullptr) {
+        for (Index v = 0; v < soup.num_vertices(); ++v) {
+            out << "vt ";
+            detail::io_write_double(out, (*texcoords)(v, 0));
+            out << ' ';
+            detail::io_write_double(out, (*texcoords)(v, 1));
+            out << '\n';
+        }
+    }
     for (Index f = 0; f < soup.num_faces(); ++f) {
         out << 'f';
         for (const Index v : soup.face(f)) {
-            out << ' ' << (static_cast<long long>(v) + 1);
+            const long long index = static_cast<long long>(v) + 1;
+            out << ' ' << index;
+            if (texcoords != nullptr) {
+                out << '/' << index;
+            }
         }
         out << '\n';
     }
+    write_obj_tags(out, soup);
+}
+
+void write_obj_tags(std::ostream& out, const PolygonSoup& soup) {
     for (const CreaseTag& crease : soup.sharpness.creases) {
         write_tag_counts(out, "crease", 2, 1, 0);
         out << ' ' << crease.v0 << ' ' << crease.v1 << ' ';
@@ -503,6 +531,16 @@ void write_obj(std::ostream& out, const PolygonSoup& soup) {
         out << (*soup.hints.triangles == TriangleSubdivision::Smooth ? " smooth\n" : " catmark\n");
     }
     detail::io_check_written(out, "OBJ");
+}
+
+}  // namespace
+
+void write_obj(std::ostream& out, const PolygonSoup& soup) {
+    write_obj_lines(out, soup, nullptr);
+}
+
+void write_obj(std::ostream& out, const PolygonSoup& soup, const Eigen::MatrixXd& texcoords) {
+    write_obj_lines(out, soup, &texcoords);
 }
 
 }  // namespace limsurf

@@ -163,6 +163,19 @@ def commands(mesh, out_dir, is_huge):
         ("plate", ["plate", mesh, "--json", "-o", o("w.vtk")], [o("w.vtk")]),
         ("shell free pressure", ["shell", mesh, "--pressure", "1e300", "--interpolate", "-o", o("u.vtk")],
          [o("u.vtk")]),
+        ("render", ["render", mesh, "--scheme", "catmull-clark", "--field", "mean-curvature", "--size", "64x48",
+                    "-o", o("r.png")], [o("r.png")]),
+        ("parameterize sec", ["parameterize", mesh, "--scheme", "catmull-clark", "--level", "1", "--degree", "4",
+                              "--tiles", "1", "-o", o("uv.obj")], [o("uv.obj")]),
+        ("parameterize circle json", ["parameterize", mesh, "--scheme", "loop", "--method", "dec", "--boundary",
+                                      "circle", "--degree", "4", "--tiles", "1", "--json"], []),
+        ("geodesic sec", ["geodesic", mesh, "--scheme", "catmull-clark", "--source", "0", "--level", "1",
+                          "-o", o("g.vtk")], [o("g.vtk")]),
+        ("geodesic loop dec json", ["geodesic", mesh, "--scheme", "loop", "--source", "0", "--method", "dec",
+                                    "--json"], []),
+        ("vector-field", ["vector-field", mesh, "--scheme", "catmull-clark", "--method", "dec", "--vorticity", "0:1",
+                          "--sample-level", "1", "-o", o("v.vtk")], [o("v.vtk")]),
+        ("hodge json", ["hodge", mesh, "--scheme", "loop", "--method", "dec", "--random", "1", "--json"], []),
     ]
 
 
