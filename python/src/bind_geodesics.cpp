@@ -55,9 +55,7 @@ py::dict report(const Mesh& mesh, const std::string& scheme, const std::string& 
                                         "solve"_a = r.solve_seconds),
                  "distance"_a = to_numpy(r.distance), "limit_distance"_a = to_numpy(r.limit_distance));
     if (r.reference) {
-        out["reference"] =
-            py::dict("level"_a = r.reference->level, "method"_a = "dec", "vertices"_a = r.reference->vertices,
-                     "l2_relative"_a = r.reference->l2, "linf_relative"_a = r.reference->linf);
+        out["reference"] = reference_dict(*r.reference);
     }
     return out;
 }
