@@ -5,8 +5,6 @@
 // numerically against b1 from the Euler characteristic (apps/hodge.h).
 #include "limsurf/apps/hodge.h"
 
-#include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -66,20 +64,6 @@ Eigen::VectorXd input_form(const ControlMesh& mesh, const HodgeCommandOptions& o
         }
         return V;
     });
-}
-
-void write_values(const std::string& path, const Eigen::VectorXd& w) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        LIMSURF_CHECK(out.good(), InputError, "cannot write '", path, "'");
-        out << std::setprecision(17);
-        for (Eigen::Index i = 0; i < w.size(); ++i) {
-            out << w[i] << '\n';
-        }
-        LIMSURF_CHECK(out.good(), InputError, "writing '", path, "' failed");
-    }
-    LIMSURF_CHECK(std::rename(tmp.c_str(), path.c_str()) == 0, InputError, "cannot write '", path, "'");
 }
 
 int decompose_and_report(const BuildResult& built, const HodgeCommandOptions& o) {

@@ -5,8 +5,6 @@
 // products of --method, and writes it as vectors on the limit surface (apps/vector_field.h).
 #include "limsurf/apps/vector_field.h"
 
-#include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -19,6 +17,7 @@
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "limsurf/io/mesh_io.h"
+#include "limsurf/io/vertex_field.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/render/render.h"
 #include "limsurf/render/tessellation.h"
@@ -113,20 +112,6 @@ VectorFieldConstraints constraints_of(const VectorFieldCommandOptions& o) {
         c.strokes.push_back(std::move(stroke));
     }
     return c;
-}
-
-void write_values(const std::string& path, const Eigen::VectorXd& w) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        LIMSURF_CHECK(out.good(), InputError, "cannot write '", path, "'");
-        out << std::setprecision(17);
-        for (Eigen::Index i = 0; i < w.size(); ++i) {
-            out << w[i] << '\n';
-        }
-        LIMSURF_CHECK(out.good(), InputError, "writing '", path, "' failed");
-    }
-    LIMSURF_CHECK(std::rename(tmp.c_str(), path.c_str()) == 0, InputError, "cannot write '", path, "'");
 }
 
 /// The limit surface coloured by the vectors' magnitude at the level-S vertices (carried by the limit basis
