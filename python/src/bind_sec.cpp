@@ -55,8 +55,8 @@ SurfaceFunction boundary_function(const py::handle& g, Index num_vertices) {
     };
 }
 
-py::dict poisson(const Mesh& mesh, const std::string& scheme, const py::handle& rhs, const SurfacePoissonOptions& options,
-                 const py::handle& boundary) {
+py::dict poisson(const Mesh& mesh, const std::string& scheme, const py::handle& rhs,
+                 const SurfacePoissonOptions& options, const py::handle& boundary) {
     return naming_source(mesh, [&] {
         const Index n = mesh.mesh.num_vertices();
         SurfacePoissonData data;
@@ -83,9 +83,7 @@ py::dict poisson(const Mesh& mesh, const std::string& scheme, const py::handle& 
                                           : py::object(py::none()),
                      "u_min"_a = u.minCoeff(), "u_max"_a = u.maxCoeff(), "u"_a = to_numpy(u), "f"_a = to_numpy(r.f));
         if (r.reference) {
-            out["reference"] = py::dict("level"_a = r.reference->level, "method"_a = "dec",
-                                        "vertices"_a = r.reference->vertices, "l2_relative"_a = r.reference->l2,
-                                        "linf_relative"_a = r.reference->linf);
+            out["reference"] = reference_dict(*r.reference);
         }
         return out;
     });

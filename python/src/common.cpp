@@ -36,8 +36,8 @@ SchemeHints hints_from(const RuleNames& names) {
                                                BoundaryInterpolation::EdgeAndCorner});
     }
     if (names.creasing) {
-        hints.creasing =
-            parse_name("creasing method", *names.creasing, std::array{CreasingMethod::Uniform, CreasingMethod::Chaikin});
+        hints.creasing = parse_name("creasing method", *names.creasing,
+                                    std::array{CreasingMethod::Uniform, CreasingMethod::Chaikin});
     }
     if (names.triangles) {
         hints.triangles = parse_name("triangle rule", *names.triangles,
@@ -76,7 +76,7 @@ std::string located_message(const Error& error, const SourceMap& source) {
         return message;
     }
     const std::string where = element->kind == ErrorElement::Kind::Face ? source.face_location(element->index)
-                                                                         : source.vertex_location(element->index);
+                                                                        : source.vertex_location(element->index);
     return where + ": " + message;
 }
 
@@ -98,6 +98,12 @@ void bind_errors(py::module_& m) {
              "A factorisation failed or a result is not finite (also an ArithmeticError).");
     subclass(std::type_identity<UnsupportedError>{}, "UnsupportedError", PyExc_NotImplementedError,
              "A valid request this scheme or case does not implement (also a NotImplementedError).");
+}
+
+py::dict reference_dict(const ReferenceComparison& reference) {
+    using namespace pybind11::literals;
+    return py::dict("level"_a = reference.level, "method"_a = "dec", "vertices"_a = reference.vertices,
+                    "l2_relative"_a = reference.l2, "linf_relative"_a = reference.linf);
 }
 
 }  // namespace limsurf::python

@@ -12,6 +12,7 @@
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/scheme/scheme.h"
+#include "limsurf/sec/reference_solution.h"
 
 namespace limsurf::python {
 
@@ -50,6 +51,10 @@ struct RuleNames {
 
 /// The message of @p error prefixed with the file and line of the mesh element it is about (when
 /// the mesh came from a file and the error is about one of its elements), as the CLI does.
+/// The comparison with the DEC reference on the K-times subdivided mesh as the CLI prints it in
+/// --json: level, method ("dec"), vertices, l2_relative, linf_relative.
+[[nodiscard]] py::dict reference_dict(const ReferenceComparison& reference);
+
 [[nodiscard]] std::string located_message(const Error& error, const SourceMap& source);
 
 /// @brief Runs @p work; a limsurf error from it is rethrown with the same type, naming the file and

@@ -39,4 +39,9 @@ void validate_vertex_fields(std::span<const VertexField> fields, Index num_verti
 ///   one finite number, more or fewer than @p count values
 [[nodiscard]] Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count);
 
+/// @brief Writes @p values one per line with 17 significant digits (what read_vertex_values reads
+///   back bit for bit: per-vertex or per-edge data such as a 1-form), atomically (io/atomic_file.h).
+/// @throws InputError naming the file when a value is not finite or the file cannot be written
+void write_values(const std::filesystem::path& path, const Eigen::VectorXd& values);
+
 }  // namespace limsurf

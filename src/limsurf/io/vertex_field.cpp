@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <string>
 #include <vector>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/input_file.h"
 #include "limsurf/detail/io_text.h"
+#include "limsurf/io/atomic_file.h"
 
 namespace limsurf {
 
@@ -89,6 +91,19 @@ Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index coun
     LIMSURF_CHECK(!in.bad(), InputError, name, ": read error");
     LIMSURF_CHECK(n == count, InputError, name, ": ", n, " values, but the mesh has ", count, " vertices");
     return out;
+}
+
+void write_values(const std::filesystem::path& path, const Eigen::VectorXd& values) {
+    for (Index i = 0; i < values.size(); ++i) {
+        LIMSURF_CHECK(std::isfinite(values[i]), InputError, path.string(), ": value ", i, " is ", values[i],
+                      " (not finite): nothing written");
+    }
+    write_file_atomically(path, [&](std::ostream& out) {
+        out << std::setprecision(17);
+        for (Index i = 0; i < values.size(); ++i) {
+            out << values[i] << '\n';
+        }
+    });
 }
 
 }  // namespace limsurf

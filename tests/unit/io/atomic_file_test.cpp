@@ -1,5 +1,6 @@
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -178,6 +179,23 @@ TEST(VertexValues, OneFiniteNumberPerLineAndOnePerVertex) {
     } catch (const InputError& error) {
         EXPECT_EQ(std::string(error.what()), dir.string() + ": cannot open: is a directory");
     }
+    fs::remove_all(dir);
+}
+
+TEST(VertexValues, WrittenValuesReadBackBitForBitAndNonFiniteWritesNothing) {
+    const fs::path dir = test::make_temp_dir("values_out");
+    const Eigen::Vector4d values(0.1, -1.0 / 3.0, 6.02214076e23, -4.9e-324);
+    write_values(dir / "w.txt", values);
+    EXPECT_EQ(read_vertex_values(dir / "w.txt", 4), values);  // 17 digits: exact round trip
+    const Eigen::Vector2d bad(1.0, std::numeric_limits<double>::infinity());
+    try {
+        write_values(dir / "bad.txt", bad);
+        FAIL();
+    } catch (const InputError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  (dir / "bad.txt").string() + ": value 1 is inf (not finite): nothing written");
+    }
+    EXPECT_FALSE(fs::exists(dir / "bad.txt"));
     fs::remove_all(dir);
 }
 
