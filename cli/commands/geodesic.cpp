@@ -166,10 +166,7 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::IsMember({"loop", "catmull-clark"}));
     cmd->add_option("--source", options->sources, "Source vertex (0-based control vertex index; repeatable)")
         ->required();
-    cmd->add_option("--method", options->method, "dec, decsnap, sec, secsnap (default sec)")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap"}));
-    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
+    add_inner_product_options(cmd, options->method, options->level);
     cmd->add_option("--gradient-level", options->gradient_level,
                     "sec, secsnap: level of the normalised gradient (0..8, default: --level)")
         ->check(CLI::Range(0, 8));

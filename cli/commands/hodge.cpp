@@ -178,10 +178,7 @@ void add_hodge_command(CLI::App& app, CommandStatus& status) {
         "hodge", "Helmholtz-Hodge decomposition of a 1-form and the harmonic basis (SEC §2.3, §4.3)");
     cmd->add_option("input", o->input, "Input mesh (.obj, .off, .ply)")->required();
     add_limit_scheme_options(cmd, o->scheme);
-    cmd->add_option("--method", o->method, "Inner products: dec, decsnap, sec, secsnap (default sec)")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap"}));
-    cmd->add_option("--level", o->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
+    add_inner_product_options(cmd, o->method, o->level);
     auto* file = cmd->add_option("--one-form", o->one_form, "The 1-form: one value per edge, one per line");
     auto* random = cmd->add_option("--random", o->random, "A random 1-form with this seed (>= 0)")
                        ->check(CLI::Range(0LL, 1LL << 62));

@@ -78,6 +78,15 @@ T choose_rule(const std::string& flag, const std::map<std::string, T>& names, co
 }
 
 /// The rules chosen on the command line, else the file's hints, else the defaults.
+/// --method dec|decsnap|sec|secsnap and --level L (0..8): the inner products of the SEC
+/// applications (sec/inner_products.h), the same words and range in every command.
+inline void add_inner_product_options(CLI::App* cmd, std::string& method, int& level) {
+    cmd->add_option("--method", method, "Inner products: dec, decsnap, sec, secsnap (default sec)")
+        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap"}));
+    cmd->add_option("--level", level, "Subdivision level L of sec and secsnap (0..8, default 3)")
+        ->check(CLI::Range(0, 8));
+}
+
 inline SchemeOptions scheme_rules(const ControlMesh& mesh, const LimitSchemeOptions& options) {
     const SchemeHints& hints = mesh.hints();
     const SchemeOptions defaults;

@@ -218,10 +218,7 @@ void add_parameterize_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--scheme", options->scheme, "Subdivision scheme")
         ->required()
         ->check(CLI::IsMember({"loop", "catmull-clark"}));
-    cmd->add_option("--method", options->method, "Inner products: dec, decsnap, sec (default), secsnap")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap"}));
-    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
+    add_inner_product_options(cmd, options->method, options->level);
     cmd->add_option("--boundary", options->boundary,
                     "free: spectral conformal (default); circle: boundary on the unit circle, harmonic interior")
         ->check(CLI::IsMember({"free", "circle"}));

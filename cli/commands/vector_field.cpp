@@ -239,10 +239,7 @@ void add_vector_field_command(CLI::App& app, CommandStatus& status) {
         "vector-field", "Design a smooth tangent vector field (Fisher et al. 2007) with DEC or SEC (SEC §4.3)");
     cmd->add_option("input", o->input, "Input mesh (.obj, .off, .ply)")->required();
     add_limit_scheme_options(cmd, o->scheme);
-    cmd->add_option("--method", o->method, "Inner products: dec, decsnap, sec, secsnap (default sec)")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap"}));
-    cmd->add_option("--level", o->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
+    add_inner_product_options(cmd, o->method, o->level);
     cmd->add_option("--source", o->sources, "Source V:s[:w]: divergence s > 0 at vertex V (repeatable)");
     cmd->add_option("--sink", o->sinks, "Sink V:s[:w]: divergence -s at vertex V (repeatable)");
     cmd->add_option("--vorticity", o->vortices, "Vortex F:c[:w]: circulation c around face F (repeatable)");
