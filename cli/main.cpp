@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     add_geodesic_command(app, status);
     add_vector_field_command(app, status);
     add_hodge_command(app, status);
+    add_membrane_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

@@ -68,6 +68,18 @@ if(LIMSURF_WITH_CHOLMOD)
 endif()
 add_feature_info(cholmod CHOLMOD_LIBRARY "CHOLMOD sparse Cholesky for the sec layer (libsuitesparse-dev)")
 
+# Ipopt (coinor-libipopt-dev): the interior-point NLP solver of the membrane layer's constrained
+# shape optimisation (limsurf membrane). Optional: without it minimize_membrane() throws
+# UnsupportedError; scripts/setup.sh installs it. Found through its pkg-config file.
+option(LIMSURF_WITH_IPOPT "Use Ipopt for the membrane problems when installed" ON)
+if(LIMSURF_WITH_IPOPT)
+    find_package(PkgConfig QUIET)
+    if(PKG_CONFIG_FOUND)
+        pkg_check_modules(IPOPT QUIET IMPORTED_TARGET ipopt)
+    endif()
+endif()
+add_feature_info(ipopt IPOPT_FOUND "Ipopt for the membrane problems (coinor-libipopt-dev)")
+
 # muParser: right-hand sides from formulas in the CLI (limsurf poisson --rhs).
 if(LIMSURF_BUILD_CLI)
     find_path(MUPARSER_INCLUDE_DIR muParser.h PATH_SUFFIXES muParser)

@@ -31,6 +31,8 @@ packages=(
     libtinygltf-dev
     # SEC applications: Spectra's eigensolvers (spectral conformal parameterisation)
     libspectra-dev
+    # biomembranes: Ipopt for the constrained shape optimisation; Surface Evolver as a test-only peer
+    coinor-libipopt-dev evolver
 )
 
 # `setup.sh --fuzz` adds what the libFuzzer targets need (make fuzz).

@@ -23,9 +23,10 @@ LAYERS = {
     "analysis": {"core", "mesh", "scheme", "refine", "limit"},
     "fem": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
     "render": {"core", "mesh", "io", "scheme", "refine", "limit", "quadrature"},
+    "membrane": {"core", "mesh", "scheme", "refine", "limit", "quadrature", "volume"},
     # drivers shared by the CLI and the Python module: may stand on every library layer
     "apps": {"core", "mesh", "io", "scheme", "refine", "limit", "quadrature", "volume", "sec", "analysis", "fem",
-             "render"},
+             "render", "membrane"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"limsurf/([a-z_]+)/')
 

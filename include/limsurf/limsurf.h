@@ -2,6 +2,7 @@
 #pragma once
 
 #include "limsurf/analysis/eigen_analysis.h"
+#include "limsurf/apps/membrane.h"
 #include "limsurf/apps/poisson.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/fem/plate.h"
@@ -21,6 +22,8 @@
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/limit/patch_basis.h"
 #include "limsurf/limit/surface_frame.h"
+#include "limsurf/membrane/shape_functionals.h"
+#include "limsurf/membrane/shape_optimization.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/mesh/polygon_soup.h"
 #include "limsurf/mesh/sharpness.h"

@@ -257,3 +257,54 @@ def shell(mesh: Mesh, scheme: FemScheme, *, levels: int = 0, E: float = 1.0, nu:
           point_loads: list[tuple[Vector3, Vector3]] = ..., supports: list[tuple[SupportSelection, str]] = ...,
           probes: list[Vector3] | ArrayLike = ..., interpolate: bool = False, surface: SurfaceFunction | None = None,
           degree: int = 6, tiles: int = 4) -> dict[str, object]: ...
+
+# Biomembrane shapes (docs/guide/membrane.md).
+MembraneScheme = Literal["c2g0", "loop", "catmull-clark"]
+
+class ShapeFunctionals(TypedDict, total=False):
+    area: float
+    volume: float
+    mean_curvature: float
+    willmore: float
+    gaussian: float
+    harmonic: float
+    reduced_volume: float
+    reduced_mean_curvature: float
+    helfrich: float
+    volume_is_exact: bool
+    samples: int
+    gradient: dict[str, FloatArray]
+
+class MembraneIterationReport(TypedDict):
+    stage: Literal["shape", "regularization"]
+    iteration: int
+    objective: float
+    constraint_violation: float
+    dual_infeasibility: float
+    step: float
+
+@overload
+def shape_functionals(mesh: Mesh, scheme: MembraneScheme, *, X: ArrayLike | None = None, gradients: bool = True,
+                      spontaneous_curvature: float | None = None, degree: int = 8,
+                      subdivide_near_extraordinary: int = 3, threads: int = 0) -> ShapeFunctionals: ...
+@overload
+def shape_functionals(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: MembraneScheme, *,
+                      X: ArrayLike | None = None, gradients: bool = True, spontaneous_curvature: float | None = None,
+                      degree: int = 8, subdivide_near_extraordinary: int = 3, threads: int = 0) -> ShapeFunctionals: ...
+@overload
+def minimize_membrane(mesh: Mesh, scheme: MembraneScheme, *, area: float, volume: float | None = None,
+                      reduced_volume: float | None = None, mean_curvature: float | None = None,
+                      reduced_mean_curvature: float | None = None, spontaneous_curvature: float | None = None,
+                      regularize_harmonic: float | None = None, max_iterations: int = 1000, tolerance: float = 1e-8,
+                      objective_tolerance: float = 1e-7,
+                      callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
+                      subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
+@overload
+def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: MembraneScheme, *, area: float,
+                      volume: float | None = None, reduced_volume: float | None = None,
+                      mean_curvature: float | None = None, reduced_mean_curvature: float | None = None,
+                      spontaneous_curvature: float | None = None, regularize_harmonic: float | None = None,
+                      max_iterations: int = 1000, tolerance: float = 1e-8,
+                      objective_tolerance: float = 1e-7,
+                      callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
+                      subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...

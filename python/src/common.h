@@ -89,5 +89,6 @@ void bind_parameterization(py::module_& m);
 void bind_geodesics(py::module_& m);
 void bind_vector_field(py::module_& m);
 void bind_hodge(py::module_& m);
+void bind_membrane(py::module_& m);
 
 }  // namespace limsurf::python

@@ -24,4 +24,5 @@ PYBIND11_MODULE(_limsurf, m) {
     limsurf::python::bind_geodesics(m);
     limsurf::python::bind_vector_field(m);
     limsurf::python::bind_hodge(m);
+    limsurf::python::bind_membrane(m);
 }

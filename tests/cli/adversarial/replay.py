@@ -176,6 +176,10 @@ def commands(mesh, out_dir, is_huge):
         ("vector-field", ["vector-field", mesh, "--scheme", "catmull-clark", "--method", "dec", "--vorticity", "0:1",
                           "--sample-level", "1", "-o", o("v.vtk")], [o("v.vtk")]),
         ("hodge json", ["hodge", mesh, "--scheme", "loop", "--method", "dec", "--random", "1", "--json"], []),
+        ("membrane evaluate json", ["membrane", mesh, "--scheme", "loop", "--evaluate-only", "--json"], []),
+        ("membrane canham", ["membrane", mesh, "--scheme", "catmull-clark", "--area", "1", "--reduced-volume", "0.9",
+                             "--max-iterations", "5", "--degree", "4", "-o", o("m.obj"), "--field-output", o("m.vtk"),
+                             "--resolution", "2"], [o("m.obj"), o("m.vtk")]),
     ]
 
 

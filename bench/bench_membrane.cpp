@@ -1,0 +1,80 @@
+// Shape functionals of the membrane layer (c2g0-sphere-scheme-biomembranes §3): one evaluation of
+// W, A, V and M with their gradients, the work of every Ipopt iterate, on control meshes of about
+// 10k vertices (the target: <= 10 ms wall on 2 cores). No peer library evaluates these
+// functionals of a subdivision limit surface; Surface Evolver's solve time is compared by
+// tests/membrane/evolver_canham.py (docs/BENCHMARKS.md).
+//
+//   ShapeEval/scheme/threads   evaluate(X, {W, A, V, M}) (counters: vertices, samples)
+//   ShapeSetup/scheme          ShapeFunctionals construction (sampler with second derivatives)
+//   scheme: 0 C2g0 (tetra_4 refined twice: 8194 vertices), 1 Loop (icosahedron refined 5 times:
+//           10242 vertices), 2 Catmull–Clark (sphere_quads refined 3 times: 6146 vertices)
+#include <array>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/membrane/shape_functionals.h"
+#include "limsurf/refine/hierarchy.h"
+
+namespace {
+
+using limsurf::SchemeKind;
+
+struct Mesh {
+    limsurf::Topology topology;
+    limsurf::Points X;
+    SchemeKind scheme;
+};
+
+Mesh refined(const char* name, SchemeKind scheme, int levels) {
+    const auto built = limsurf::read_mesh(std::string(LIMSURF_MESH_DIR) + "/" + name);
+    limsurf::RefineOptions options;
+    options.scheme = scheme;
+    options.levels = levels;
+    const limsurf::Hierarchy h(built.mesh.topology(), options);
+    return {h.topology(levels), h.positions(levels, built.mesh.positions()).rowwise().normalized(), scheme};
+}
+
+const Mesh& mesh(int which) {
+    static const Mesh c2g0 = refined("tetra_4.obj", SchemeKind::C2g0, 2);
+    static const Mesh loop = refined("icosahedron.obj", SchemeKind::Loop, 5);
+    static const Mesh cc = refined("sphere_quads.obj", SchemeKind::CatmullClark, 3);
+    return which == 0 ? c2g0 : which == 1 ? loop : cc;
+}
+
+const char* scheme_label(int which) {
+    return which == 0 ? "c2g0" : which == 1 ? "loop" : "catmull-clark";
+}
+
+void ShapeEval(benchmark::State& state) {
+    const Mesh& m = mesh(static_cast<int>(state.range(0)));
+    const limsurf::LimitBasis basis(m.topology, m.scheme);
+    limsurf::ShapeOptions options;
+    options.num_threads = static_cast<int>(state.range(1));
+    const limsurf::ShapeFunctionals functionals(basis, options);
+    constexpr std::array<limsurf::ShapeFunctional, 4> terms{
+        limsurf::ShapeFunctional::Willmore, limsurf::ShapeFunctional::Area, limsurf::ShapeFunctional::Volume,
+        limsurf::ShapeFunctional::MeanCurvature};
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(functionals.evaluate(m.X, terms));
+    }
+    state.counters["vertices"] = static_cast<double>(m.X.rows());
+    state.counters["samples"] = static_cast<double>(functionals.num_samples());
+    state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
+}
+BENCHMARK(ShapeEval)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void ShapeSetup(benchmark::State& state) {
+    const Mesh& m = mesh(static_cast<int>(state.range(0)));
+    const limsurf::LimitBasis basis(m.topology, m.scheme);
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(limsurf::ShapeFunctionals(basis));
+    }
+    state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
+}
+BENCHMARK(ShapeSetup)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,113 @@
+// Shape functionals of a closed limit surface and their exact gradients with respect to the
+// control points: the quantities of the Canham–Helfrich problem (3.1) and the harmonic energy
+// (3.6)–(3.11) of c2g0-sphere-scheme-biomembranes §3 (docs/membrane.md).
+//
+// For control points X (#V × 3) of a closed surface S = S[X]:
+//   area            A = ∫ dA
+//   volume          V = 1/3 ∫ x·n dA: exact trilinear forms (EnclosedVolume) for Loop and
+//                   Catmull–Clark, the quadrature of that integral for C2g0 (no forms exist)
+//   mean curvature  M = ∫ H dA, H = (k1 + k2)/2 (limit/surface_frame.h: H = 1 on the unit sphere)
+//   Willmore        W = ∫ H² dA (4π on every round sphere)
+//   Gaussian        K = ∫ K dA (2π χ by Gauss–Bonnet; its gradient vanishes up to quadrature error)
+//   harmonic        E = ∫ ‖dφ‖² of the parameterisation φ over the conformal structure of the
+//                   control mesh (3.6): every triangle an equilateral triangle (the τ map of (3.9):
+//                   E_f = 2/√3 ∫_Ω E − F + G), every Catmull–Clark ptex face a unit square
+//                   (E_f = ∫ E + G). On C2g0 meshes (valences 3 and 6) this is the Bers structure
+//                   of §2.3; on Loop and Catmull–Clark meshes it is the cone structure of the same
+//                   equilateral triangles / squares, whose energy is finite (near a vertex of
+//                   subdominant eigenvalue λ, |dφ| grows like r^(-log2 λ - 1), square-integrable).
+// Each is a sum over quadrature samples (quadrature/sampler.h) of a function of the position
+// and derivatives there; the gradient is the exact derivative of that sum (the chain rule through
+// the limit weights, (3.10)–(3.11)), so finite differences of the discrete functional converge to
+// it at rate h². Derived quantities: reduced volume v = V / ((4π/3)(A/4π)^(3/2)), reduced total
+// mean curvature m = M / (4π (A/4π)^(1/2)) (defined under Fig. 1; both 1 on a round sphere) and
+// the Helfrich energy ∫ (H − H0)² dA = W − 2 H0 M + H0² A.
+//
+// Parallel and deterministic: samples are evaluated in parallel over ptex faces into per-face
+// local gradients, which are then gathered per control vertex in face order, so the results are
+// bit-identical for every thread count.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <span>
+
+#include "limsurf/core/types.h"
+#include "limsurf/limit/limit_basis.h"
+
+namespace limsurf {
+
+/// The shape functionals ShapeFunctionals evaluates.
+enum class ShapeFunctional { Area = 0, Volume, MeanCurvature, Willmore, Gaussian, Harmonic };
+constexpr int num_shape_functionals = 6;
+
+/// Options of ShapeFunctionals.
+struct ShapeOptions {
+    int degree = 8;                        ///< quadrature degree per tile (quadrature/rules.h)
+    int subdivide_near_extraordinary = 3;  ///< tile levels towards irregular corners (SamplerOptions)
+    int num_threads = 0;                   ///< 0: hardware concurrency; results do not depend on it
+    /// Loop and Catmull–Clark: the volume by exact trilinear forms (true) or by the same quadrature
+    /// as C2g0 (false). C2g0 always uses quadrature.
+    bool exact_volume = true;
+};
+
+/// Values of every functional at one X, and the gradients that were asked for.
+struct ShapeValues {
+    double area = 0.0;
+    double volume = 0.0;
+    double mean_curvature = 0.0;  ///< M = ∫ H dA
+    double willmore = 0.0;        ///< W = ∫ H² dA
+    double gaussian = 0.0;        ///< ∫ K dA
+    double harmonic = 0.0;        ///< E of (3.6)
+    /// ∂value/∂X (#V × 3) per functional, indexed by ShapeFunctional; empty when not asked for.
+    std::array<Points, num_shape_functionals> gradient;
+
+    [[nodiscard]] double value(ShapeFunctional f) const noexcept;
+    [[nodiscard]] const Points& gradient_of(ShapeFunctional f) const { return gradient[static_cast<std::size_t>(f)]; }
+    /// v = V / ((4π/3)(A/4π)^(3/2)); 1 on a round sphere.
+    [[nodiscard]] double reduced_volume() const noexcept;
+    /// m = M / (4π (A/4π)^(1/2)); 1 on a round sphere.
+    [[nodiscard]] double reduced_mean_curvature() const noexcept;
+    /// ∫ (H − H0)² dA = W − 2 H0 M + H0² A.
+    [[nodiscard]] double helfrich(double spontaneous_curvature) const noexcept;
+    /// Its gradient from those of W, M and A.
+    /// @throws InputError when one of the three gradients was not computed
+    [[nodiscard]] Points helfrich_gradient(double spontaneous_curvature) const;
+};
+
+/// @brief Shape functionals of the closed limit surface of one topology, for any control points.
+/// @details Built once per topology (a LimitSampler with second derivatives, and EnclosedVolume
+///   where exact); evaluate() then costs one pass over the samples. Immutable and thread-safe.
+class ShapeFunctionals {
+  public:
+    /// @param basis a closed surface under Loop, Catmull–Clark or C2g0 (copied what is needed)
+    /// @throws InputError for an open surface (names a boundary vertex), or bad options
+    /// @throws UnsupportedError for Doo–Sabin, sharpness tags, holes (naming the scheme or vertex)
+    explicit ShapeFunctionals(const LimitBasis& basis, const ShapeOptions& options = {});
+    ~ShapeFunctionals();
+    ShapeFunctionals(ShapeFunctionals&&) noexcept;
+    ShapeFunctionals& operator=(ShapeFunctionals&&) noexcept;
+    ShapeFunctionals(const ShapeFunctionals&) = delete;
+    ShapeFunctionals& operator=(const ShapeFunctionals&) = delete;
+
+    /// @brief Every functional at @p X, and the gradients of those in @p gradients.
+    /// @throws InputError when X does not have num_vertices() rows or has a non-finite entry
+    /// @throws NumericalError when the surface is degenerate at a sample (parallel tangents),
+    ///   naming the ptex face
+    [[nodiscard]] ShapeValues evaluate(const Points& X, std::span<const ShapeFunctional> gradients = {}) const;
+    /// evaluate() with the gradients of all six functionals.
+    [[nodiscard]] ShapeValues evaluate_all(const Points& X) const;
+
+    [[nodiscard]] Index num_vertices() const noexcept;
+    [[nodiscard]] Index num_samples() const noexcept;
+    [[nodiscard]] SchemeKind scheme() const noexcept;
+    [[nodiscard]] const ShapeOptions& options() const noexcept;
+    /// True when the volume comes from exact trilinear forms, false when from quadrature.
+    [[nodiscard]] bool volume_is_exact() const noexcept;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace limsurf

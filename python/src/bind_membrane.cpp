@@ -1,0 +1,287 @@
+// Biomembrane shapes (membrane/, apps/membrane.h): limsurf.shape_functionals (the functionals of
+// c2g0-sphere-scheme-biomembranes §3 and their exact gradients) and limsurf.minimize_membrane (the
+// dict of `limsurf membrane --json` plus the positions). Both take a Mesh, or arrays V, F.
+#include <exception>
+#include <optional>
+#include <string>
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "arrays.h"
+#include "common.h"
+#include "limsurf/apps/membrane.h"
+
+namespace limsurf::python {
+namespace {
+
+using namespace pybind11::literals;
+
+/// The keyword arguments both functions share.
+struct ShapeArguments {
+    int degree = 8;
+    int subdivide_near_extraordinary = 3;
+    int threads = 0;
+};
+
+/// The functionals of @p mesh's topology under @p scheme (built with the GIL released).
+ShapeFunctionals functionals_of(const Mesh& mesh, const std::string& scheme, const ShapeArguments& args) {
+    const SchemeKind kind = scheme_from(scheme);
+    ShapeOptions options;
+    options.degree = args.degree;
+    options.subdivide_near_extraordinary = args.subdivide_near_extraordinary;
+    options.num_threads = args.threads;
+    const py::gil_scoped_release release;
+    const LimitBasis basis(mesh.mesh.topology(), kind, rules_for(mesh.mesh, {}));
+    return ShapeFunctionals(basis, options);
+}
+
+/// A Mesh from arrays, through limsurf.Mesh (the same validation and warnings).
+Mesh mesh_from(const py::handle& V, const py::handle& F) {
+    return py::module_::import("limsurf._limsurf").attr("Mesh")(V, F).cast<Mesh>();
+}
+
+const char* name_of(ShapeFunctional f) {
+    constexpr const char* names[] = {"area", "volume", "mean_curvature", "willmore", "gaussian", "harmonic"};
+    return names[static_cast<int>(f)];
+}
+
+/// The values under the names of `limsurf membrane --json` (helfrich when H0 is given).
+py::dict values_dict(const ShapeValues& values, const std::optional<double>& spontaneous_curvature) {
+    py::dict out("area"_a = values.area, "volume"_a = values.volume, "mean_curvature"_a = values.mean_curvature,
+                 "willmore"_a = values.willmore, "gaussian"_a = values.gaussian, "harmonic"_a = values.harmonic,
+                 "reduced_volume"_a = values.reduced_volume(),
+                 "reduced_mean_curvature"_a = values.reduced_mean_curvature());
+    if (spontaneous_curvature) {
+        out["helfrich"] = values.helfrich(*spontaneous_curvature);
+    }
+    return out;
+}
+
+py::dict shape_functionals(const Mesh& mesh, const std::string& scheme, const std::optional<py::object>& X,
+                           bool gradients, std::optional<double> spontaneous_curvature, const ShapeArguments& args) {
+    return naming_source(mesh, [&] {
+        const Points positions = X ? points_from(*X, "X") : mesh.mesh.positions();
+        const ShapeFunctionals functionals = functionals_of(mesh, scheme, args);
+        ShapeValues values;
+        {
+            const py::gil_scoped_release release;
+            values = gradients ? functionals.evaluate_all(positions) : functionals.evaluate(positions);
+        }
+        py::dict out = values_dict(values, spontaneous_curvature);
+        out["volume_is_exact"] = functionals.volume_is_exact();
+        out["samples"] = functionals.num_samples();
+        if (gradients) {
+            py::dict gradient;
+            for (int f = 0; f < num_shape_functionals; ++f) {
+                const auto which = static_cast<ShapeFunctional>(f);
+                gradient[name_of(which)] = to_numpy(values.gradient_of(which));
+            }
+            if (spontaneous_curvature) {
+                gradient["helfrich"] = to_numpy(values.helfrich_gradient(*spontaneous_curvature));
+            }
+            out["gradient"] = gradient;
+        }
+        return out;
+    });
+}
+
+py::object optional_value(const std::optional<double>& value) {
+    return value ? py::object(py::float_(*value)) : py::object(py::none());
+}
+
+/// One stage as `limsurf membrane --json` reports it (cli/commands/membrane.cpp, stage_json).
+py::dict stage_dict(const MembraneProblem& problem, const MembraneResult& result,
+                    const std::optional<double>& spontaneous_curvature) {
+    py::dict out = values_dict(result.values, spontaneous_curvature);
+    const std::optional<double>& volume = problem.volume;
+    const std::optional<double>& mean = problem.mean_curvature;
+    constexpr const char* objectives[] = {"willmore", "helfrich", "harmonic"};
+    out["objective"] = objectives[static_cast<int>(problem.objective)];
+    out["objective_value"] = result.objective;
+    py::dict targets("area"_a = problem.area, "volume"_a = optional_value(volume),
+                     "reduced_volume"_a = optional_value(
+                         volume ? std::optional(*volume / volume_from_reduced(1.0, problem.area)) : std::nullopt),
+                     "mean_curvature"_a = optional_value(mean),
+                     "reduced_mean_curvature"_a = optional_value(
+                         mean ? std::optional(*mean / mean_curvature_from_reduced(1.0, problem.area)) : std::nullopt));
+    py::dict residuals("area"_a = result.area_residual,
+                       "volume"_a = optional_value(volume ? std::optional(result.volume_residual) : std::nullopt),
+                       "mean_curvature"_a =
+                           optional_value(mean ? std::optional(result.mean_curvature_residual) : std::nullopt));
+    if (problem.willmore_bound) {
+        targets["willmore_bound"] = *problem.willmore_bound;
+        residuals["willmore_excess"] = result.willmore_excess;
+    }
+    out["targets"] = targets;
+    out["residuals"] = residuals;
+    out["max_relative_residual"] = max_relative_residual(problem, result);
+    out["iterations"] = result.iterations;
+    out["seconds"] = result.seconds;
+    out["converged"] = result.converged;
+    out["status"] = result.status;
+    return out;
+}
+
+py::dict run_dict(const std::string& scheme, const Mesh& mesh, const ShapeFunctionals& functionals,
+                  const ShapeArguments& args, const MembraneRequest& request, const MembraneRun& run) {
+    py::dict out("scheme"_a = scheme, "vertices"_a = mesh.mesh.num_vertices(),
+                 "unknowns"_a = 3 * mesh.mesh.num_vertices(), "samples"_a = functionals.num_samples(),
+                 "degree"_a = args.degree, "volume_is_exact"_a = functionals.volume_is_exact(),
+                 "initial_area"_a = run.initial_area, "scale"_a = run.scale,
+                 "spontaneous_curvature"_a = optional_value(request.spontaneous_curvature));
+    for (const auto& [key, value] : stage_dict(run.problem, run.shape, request.spontaneous_curvature)) {
+        out[key] = value;
+    }
+    out["regularization"] = py::none();
+    if (run.regularization) {
+        py::dict stage = stage_dict(*run.regularization_problem, *run.regularization, request.spontaneous_curvature);
+        stage["epsilon"] = *request.regularize_harmonic;
+        out["regularization"] = stage;
+    }
+    out["positions"] = to_numpy(run.final_result().positions);
+    return out;
+}
+
+/// The progress callback: @p callback(dict) with the GIL held; False stops the solve. A Python
+/// exception is kept in @p error (and stops the solve) to be raised once the solver has returned:
+/// it must not unwind through Ipopt.
+MembraneProgress progress_of(const std::optional<py::function>& callback, std::exception_ptr& error) {
+    if (!callback) {
+        return {};
+    }
+    return [&callback, &error](MembraneStage stage, const MembraneIteration& it) {
+        const py::gil_scoped_acquire acquire;
+        try {
+            const py::object answer =
+                (*callback)(py::dict("stage"_a = to_string(stage), "iteration"_a = it.iteration,
+                                     "objective"_a = it.objective, "constraint_violation"_a = it.constraint_violation,
+                                     "dual_infeasibility"_a = it.dual_infeasibility, "step"_a = it.step));
+            return answer.is_none() || static_cast<bool>(py::bool_(answer));
+        } catch (...) {
+            error = std::current_exception();
+            return false;
+        }
+    };
+}
+
+py::dict minimize_membrane(const Mesh& mesh, const std::string& scheme, const MembraneRequest& request,
+                           const std::optional<py::function>& callback, const ShapeArguments& args) {
+    return naming_source(mesh, [&] {
+        (void)membrane_problem(request);  // a bad request fails before the functionals are built
+        const ShapeFunctionals functionals = functionals_of(mesh, scheme, args);
+        std::exception_ptr error;
+        const MembraneProgress progress = progress_of(callback, error);
+        MembraneRun run;
+        {
+            const py::gil_scoped_release release;
+            run = solve_membrane_problem(functionals, mesh.mesh.positions(), request, progress);
+        }
+        if (error) {
+            std::rethrow_exception(error);
+        }
+        return run_dict(scheme, mesh, functionals, args, request, run);
+    });
+}
+
+MembraneRequest request_of(double area, std::optional<double> volume, std::optional<double> reduced_volume,
+                           std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
+                           std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
+                           int max_iterations, double tolerance, double objective_tolerance) {
+    MembraneRequest request;
+    request.area = area;
+    request.volume = volume;
+    request.reduced_volume = reduced_volume;
+    request.mean_curvature = mean_curvature;
+    request.reduced_mean_curvature = reduced_mean_curvature;
+    request.spontaneous_curvature = spontaneous_curvature;
+    request.regularize_harmonic = regularize_harmonic;
+    request.max_iterations = max_iterations;
+    request.tolerance = tolerance;
+    request.objective_tolerance = objective_tolerance;
+    return request;
+}
+
+constexpr const char* shape_doc = R"(The shape functionals of the closed limit surface and their exact gradients
+with respect to the control points (c2g0-sphere-scheme-biomembranes §3; docs/guide/membrane.md):
+shape_functionals(mesh, scheme, ...) or shape_functionals(V, F, scheme, ...), scheme 'c2g0', 'loop' or
+'catmull-clark'. A dict with 'area', 'volume', 'mean_curvature' (∫H dA, H = 1 on the unit sphere),
+'willmore' (∫H² dA, 4π on a sphere), 'gaussian' (∫K dA = 2πχ), 'harmonic' (the harmonic energy (3.6)),
+'reduced_volume', 'reduced_mean_curvature', 'helfrich' (∫(H − H0)² dA, with spontaneous_curvature=H0),
+'volume_is_exact' (trilinear forms for Loop/Catmull–Clark, quadrature for C2g0) and 'samples'; with
+gradients=True also 'gradient': name → (#V, 3) array. X: other positions (#V × 3) for the same faces.
+Raises limsurf.InputError for an open mesh, limsurf.UnsupportedError for Doo–Sabin or tags.)";
+
+constexpr const char* minimize_doc = R"(Solves the Canham problem (min W s.t. A = area, V = volume) or, with
+mean_curvature / reduced_mean_curvature and spontaneous_curvature, the Helfrich problem (3.1) with hard
+constraints (Ipopt), from the mesh as initial guess scaled about its centroid to limit area `area`; with
+regularize_harmonic=ε then (3.12): min harmonic energy s.t. the same constraints and W ≤ W0 + ε.
+minimize_membrane(mesh, scheme, area=..., ...) or minimize_membrane(V, F, scheme, area=..., ...).
+Returns the dict of `limsurf membrane --json` plus 'positions' (#V × 3, the last stage's control points).
+callback(dict) is called after every iteration with 'stage', 'iteration', 'objective',
+'constraint_violation', 'dual_infeasibility', 'step'; returning False stops the solve (converged False);
+an exception in it stops the solve and is raised. Raises limsurf.InputError for an infeasible request
+(area <= 0, reduced volume outside (0, 1], both or neither volume options) or an open mesh,
+limsurf.UnsupportedError for Doo–Sabin or without Ipopt.)";
+
+}  // namespace
+
+void bind_membrane(py::module_& m) {
+    const auto shape = [](const Mesh& mesh, const std::string& scheme, std::optional<py::object> X, bool gradients,
+                          std::optional<double> spontaneous_curvature, int degree, int subdivide_near_extraordinary,
+                          int threads) {
+        return shape_functionals(mesh, scheme, X, gradients, spontaneous_curvature,
+                                 {degree, subdivide_near_extraordinary, threads});
+    };
+    m.def("shape_functionals", shape, "mesh"_a, "scheme"_a, py::kw_only(), "X"_a = py::none(), "gradients"_a = true,
+          "spontaneous_curvature"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0,
+          shape_doc);
+    m.def(
+        "shape_functionals",
+        [shape](const py::object& V, const py::object& F, const std::string& scheme, std::optional<py::object> X,
+                bool gradients, std::optional<double> spontaneous_curvature, int degree,
+                int subdivide_near_extraordinary, int threads) {
+            return shape(mesh_from(V, F), scheme, std::move(X), gradients, spontaneous_curvature, degree,
+                         subdivide_near_extraordinary, threads);
+        },
+        "V"_a, "F"_a, "scheme"_a, py::kw_only(), "X"_a = py::none(), "gradients"_a = true,
+        "spontaneous_curvature"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
+
+    const auto minimize = [](const Mesh& mesh, const std::string& scheme, double area, std::optional<double> volume,
+                             std::optional<double> reduced_volume, std::optional<double> mean_curvature,
+                             std::optional<double> reduced_mean_curvature, std::optional<double> spontaneous_curvature,
+                             std::optional<double> regularize_harmonic, int max_iterations, double tolerance,
+                             double objective_tolerance, std::optional<py::function> callback, int degree,
+                             int subdivide_near_extraordinary, int threads) {
+        const MembraneRequest request =
+            request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature, spontaneous_curvature,
+                       regularize_harmonic, max_iterations, tolerance, objective_tolerance);
+        return minimize_membrane(mesh, scheme, request, callback, {degree, subdivide_near_extraordinary, threads});
+    };
+    m.def("minimize_membrane", minimize, "mesh"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(),
+          "reduced_volume"_a = py::none(), "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
+          "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
+          "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "callback"_a = py::none(), "degree"_a = 8,
+          "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, minimize_doc);
+    m.def(
+        "minimize_membrane",
+        [minimize](const py::object& V, const py::object& F, const std::string& scheme, double area,
+                   std::optional<double> volume, std::optional<double> reduced_volume,
+                   std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
+                   std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
+                   int max_iterations, double tolerance, double objective_tolerance,
+                   std::optional<py::function> callback, int degree, int subdivide_near_extraordinary, int threads) {
+            return minimize(mesh_from(V, F), scheme, area, volume, reduced_volume, mean_curvature,
+                            reduced_mean_curvature, spontaneous_curvature, regularize_harmonic, max_iterations,
+                            tolerance, objective_tolerance, std::move(callback), degree, subdivide_near_extraordinary,
+                            threads);
+        },
+        "V"_a, "F"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(), "reduced_volume"_a = py::none(),
+        "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
+        "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
+        "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "callback"_a = py::none(), "degree"_a = 8,
+        "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
+}
+
+}  // namespace limsurf::python

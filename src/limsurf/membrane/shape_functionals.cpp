@@ -1,0 +1,435 @@
+// Shape functionals and their exact gradients (c2g0-sphere-scheme-biomembranes §3; the header
+// gives the definitions). Per sample the integrand is a function of the position x and the
+// derivatives a = ∂u, b = ∂v, ∂uu, ∂uv, ∂vv; its derivatives with respect to those six rows (a
+// 6 × 3 "local gradient") are pulled back to the control points through the sample's limit
+// weights, the chain rule (3.10)–(3.11). Notation below: N = a × b (unnormalised normal),
+// S = N·N = EG − F², J = √S (area element), L = N·∂uu, Mn = N·∂uv, Nn = N·∂vv (the second
+// fundamental form times J), Q = G ∂uu − 2F ∂uv + E ∂vv and P = N·Q, so that
+//   H = −P / (2 J³)   (limit/surface_frame.h's sign: H = 1 on the unit sphere)
+//   K = (L Nn − Mn²) / S².
+#include "limsurf/membrane/shape_functionals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "limsurf/core/error.h"
+#include "limsurf/quadrature/sampler.h"
+#include "limsurf/volume/enclosed_volume.h"
+
+namespace limsurf {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Local = Eigen::Matrix<double, 6, 3>;  // ∂(integrand)/∂(x, a, b, ∂uu, ∂uv, ∂vv), one row each
+
+constexpr std::size_t index_of(ShapeFunctional f) {
+    return static_cast<std::size_t>(f);
+}
+
+/// One sample's integrands (times the quadrature weight) and, when asked, their local gradients.
+struct SampleTerms {
+    std::array<double, num_shape_functionals> value{};
+    std::array<Local, num_shape_functionals> local;
+    Vec3 normal_area = Vec3::Zero();  // w N: sums to ∫ n dA, the volume's dependence on the centroid
+};
+
+/// The integrands of every functional at one sample. @p wanted: which local gradients to fill;
+/// @p centroid: the mean of the control points, the origin of the quadrature volume. Returns false
+/// when the tangents are (nearly) parallel or a value is not finite.
+bool sample_terms(const Local& d, double weight, bool triangle, const Vec3& centroid,
+                  const std::array<bool, num_shape_functionals>& wanted, SampleTerms& out) {
+    // The volume 1/3 ∫ (x − c)·n dA about the control points' centroid c: equal to 1/3 ∫ x·n dA
+    // on a closed surface, but translation invariant even where the quadrature of ∫ n dA = 0 is
+    // not exact (near extraordinary vertices).
+    const Vec3 x = d.row(Value).transpose() - centroid;
+    const Vec3 a = d.row(Du).transpose();
+    const Vec3 b = d.row(Dv).transpose();
+    const Vec3 xuu = d.row(Duu).transpose();
+    const Vec3 xuv = d.row(Duv).transpose();
+    const Vec3 xvv = d.row(Dvv).transpose();
+    const Vec3 N = a.cross(b);
+    const double S = N.squaredNorm();
+    const double E = a.squaredNorm();
+    const double F = a.dot(b);
+    const double G = b.squaredNorm();
+    if (!(S > 1e-28 * E * G) || !std::isfinite(S)) {
+        return false;
+    }
+    const double J = std::sqrt(S);
+    const double L = N.dot(xuu);
+    const double Mn = N.dot(xuv);
+    const double Nn = N.dot(xvv);
+    const Vec3 Q = G * xuu - 2.0 * F * xuv + E * xvv;
+    const double P = N.dot(Q);
+    const double T = L * Nn - Mn * Mn;
+    const double w = weight;
+    out.normal_area = w * N;
+    // The harmonic energy's metric: an equilateral triangle (τ of (3.9)) or a unit square.
+    const double harmonic_scale = triangle ? 2.0 / std::sqrt(3.0) : 1.0;
+    const double harmonic_mixed = triangle ? -1.0 : 0.0;
+
+    auto& v = out.value;
+    v[index_of(ShapeFunctional::Area)] = J * w;
+    v[index_of(ShapeFunctional::Volume)] = x.dot(N) / 3.0 * w;
+    v[index_of(ShapeFunctional::MeanCurvature)] = -P / (2.0 * S) * w;
+    v[index_of(ShapeFunctional::Willmore)] = P * P / (4.0 * S * S * J) * w;
+    v[index_of(ShapeFunctional::Gaussian)] = T / (S * J) * w;
+    v[index_of(ShapeFunctional::Harmonic)] = harmonic_scale * (E + harmonic_mixed * F + G) * w;
+    for (const double value : v) {
+        if (!std::isfinite(value)) {
+            return false;
+        }
+    }
+
+    // Differentials shared by several functionals: dS = 2 N·dN with dN = da × b + a × db.
+    const Vec3 dS_da = 2.0 * b.cross(N);
+    const Vec3 dS_db = 2.0 * N.cross(a);
+    auto set = [&](ShapeFunctional f, const Vec3& dx, const Vec3& da, const Vec3& db, const Vec3& duu, const Vec3& duv,
+                   const Vec3& dvv) {
+        Local& g = out.local[index_of(f)];
+        g.row(Value) = w * dx.transpose();
+        g.row(Du) = w * da.transpose();
+        g.row(Dv) = w * db.transpose();
+        g.row(Duu) = w * duu.transpose();
+        g.row(Duv) = w * duv.transpose();
+        g.row(Dvv) = w * dvv.transpose();
+    };
+    const Vec3 zero = Vec3::Zero();
+    if (wanted[index_of(ShapeFunctional::Area)]) {  // J = √S
+        set(ShapeFunctional::Area, zero, dS_da / (2.0 * J), dS_db / (2.0 * J), zero, zero, zero);
+    }
+    if (wanted[index_of(ShapeFunctional::Volume)]) {  // x·(a × b) / 3
+        set(ShapeFunctional::Volume, N / 3.0, b.cross(x) / 3.0, x.cross(a) / 3.0, zero, zero, zero);
+    }
+    const bool need_P = wanted[index_of(ShapeFunctional::MeanCurvature)] || wanted[index_of(ShapeFunctional::Willmore)];
+    if (need_P) {
+        // dP = dN·Q + N·dQ, dQ = dG ∂uu − 2 dF ∂uv + dE ∂vv with dE = 2a·da, dF = b·da + a·db, dG = 2b·db.
+        const Vec3 dP_da = b.cross(Q) - 2.0 * Mn * b + 2.0 * Nn * a;
+        const Vec3 dP_db = Q.cross(a) + 2.0 * L * b - 2.0 * Mn * a;
+        const Vec3 dP_duu = G * N;
+        const Vec3 dP_duv = -2.0 * F * N;
+        const Vec3 dP_dvv = E * N;
+        if (wanted[index_of(ShapeFunctional::MeanCurvature)]) {  // −P / (2S)
+            const double cp = -1.0 / (2.0 * S);
+            const double cs = P / (2.0 * S * S);
+            set(ShapeFunctional::MeanCurvature, zero, cp * dP_da + cs * dS_da, cp * dP_db + cs * dS_db, cp * dP_duu,
+                cp * dP_duv, cp * dP_dvv);
+        }
+        if (wanted[index_of(ShapeFunctional::Willmore)]) {  // P² / (4 S^(5/2))
+            const double S52 = S * S * J;
+            const double cp = P / (2.0 * S52);
+            const double cs = -5.0 * P * P / (8.0 * S52 * S);
+            set(ShapeFunctional::Willmore, zero, cp * dP_da + cs * dS_da, cp * dP_db + cs * dS_db, cp * dP_duu,
+                cp * dP_duv, cp * dP_dvv);
+        }
+    }
+    if (wanted[index_of(ShapeFunctional::Gaussian)]) {  // T / S^(3/2), dT = Nn dL + L dNn − 2 Mn dMn
+        const Vec3 R = Nn * xuu + L * xvv - 2.0 * Mn * xuv;
+        const double ct = 1.0 / (S * J);
+        const double cs = -1.5 * T / (S * S * J);
+        set(ShapeFunctional::Gaussian, zero, ct * b.cross(R) + cs * dS_da, ct * R.cross(a) + cs * dS_db, ct * Nn * N,
+            ct * (-2.0 * Mn) * N, ct * L * N);
+    }
+    if (wanted[index_of(ShapeFunctional::Harmonic)]) {
+        set(ShapeFunctional::Harmonic, zero, harmonic_scale * (2.0 * a + harmonic_mixed * b),
+            harmonic_scale * (2.0 * b + harmonic_mixed * a), zero, zero, zero);
+    }
+    return true;
+}
+
+}  // namespace
+
+double ShapeValues::value(ShapeFunctional f) const noexcept {
+    switch (f) {
+    case ShapeFunctional::Area:
+        return area;
+    case ShapeFunctional::Volume:
+        return volume;
+    case ShapeFunctional::MeanCurvature:
+        return mean_curvature;
+    case ShapeFunctional::Willmore:
+        return willmore;
+    case ShapeFunctional::Gaussian:
+        return gaussian;
+    case ShapeFunctional::Harmonic:
+        return harmonic;
+    }
+    return 0.0;
+}
+
+double ShapeValues::reduced_volume() const noexcept {
+    return volume / ((4.0 * std::numbers::pi / 3.0) * std::pow(area / (4.0 * std::numbers::pi), 1.5));
+}
+
+double ShapeValues::reduced_mean_curvature() const noexcept {
+    return mean_curvature / (4.0 * std::numbers::pi * std::sqrt(area / (4.0 * std::numbers::pi)));
+}
+
+double ShapeValues::helfrich(double spontaneous_curvature) const noexcept {
+    const double h0 = spontaneous_curvature;
+    return willmore - 2.0 * h0 * mean_curvature + h0 * h0 * area;
+}
+
+Points ShapeValues::helfrich_gradient(double spontaneous_curvature) const {
+    const Points& w = gradient_of(ShapeFunctional::Willmore);
+    const Points& m = gradient_of(ShapeFunctional::MeanCurvature);
+    const Points& a = gradient_of(ShapeFunctional::Area);
+    LIMSURF_CHECK(w.size() > 0 && m.size() > 0 && a.size() > 0, InputError,
+                  "the Helfrich gradient needs the gradients of W, M and A");
+    const double h0 = spontaneous_curvature;
+    return w - 2.0 * h0 * m + h0 * h0 * a;
+}
+
+struct ShapeFunctionals::Impl {
+    ShapeOptions options;
+    SchemeKind scheme = SchemeKind::Loop;
+    bool triangle = true;
+    LimitSampler sampler;
+    std::unique_ptr<EnclosedVolume> exact_volume;
+    // Elements: the ptex faces with samples, samples [element_samples[e], element_samples[e+1]).
+    std::vector<Index> element_samples;
+    // The support of element e: slots [element_slots[e], element_slots[e+1]) of slot_vertex.
+    std::vector<std::size_t> element_slots;
+    std::vector<Index> slot_vertex;
+    std::vector<Index> entry_slot;  // per sampler entry (in sample order): its slot
+    // Gather: the slots of vertex v, in element order: vertex_slots[vertex_offsets[v] .. +1).
+    std::vector<std::size_t> vertex_offsets;
+    std::vector<std::size_t> vertex_slots;
+
+    Impl(const LimitBasis& basis, const ShapeOptions& o)
+        : options(o), scheme(basis.scheme()), triangle(basis.domain() == ParameterDomain::Triangle),
+          sampler(basis, SamplerOptions{o.degree, o.subdivide_near_extraordinary, o.num_threads}) {
+        build_supports(basis.topology().num_vertices());
+    }
+
+    void build_supports(Index num_vertices);
+    [[nodiscard]] ShapeValues evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const;
+};
+
+void ShapeFunctionals::Impl::build_supports(Index num_vertices) {
+    const Index n = sampler.num_samples();
+    for (Index s = 0; s < n; ++s) {
+        if (s == 0 || sampler.point(s).face != sampler.point(s - 1).face) {
+            element_samples.push_back(s);
+        }
+    }
+    element_samples.push_back(n);
+    const std::size_t num_elements = element_samples.size() - 1;
+    element_slots.assign(1, 0);
+    std::vector<Index> slot_of(static_cast<std::size_t>(num_vertices), invalid_index);
+    for (std::size_t e = 0; e < num_elements; ++e) {
+        const std::size_t first_slot = slot_vertex.size();
+        for (Index s = element_samples[e]; s < element_samples[e + 1]; ++s) {
+            for (const Index v : sampler.vertices(s)) {
+                Index& slot = slot_of[static_cast<std::size_t>(v)];
+                if (slot == invalid_index) {
+                    slot = static_cast<Index>(slot_vertex.size() - first_slot);
+                    slot_vertex.push_back(v);
+                }
+                entry_slot.push_back(slot);
+            }
+        }
+        for (std::size_t k = first_slot; k < slot_vertex.size(); ++k) {
+            slot_of[static_cast<std::size_t>(slot_vertex[k])] = invalid_index;
+        }
+        element_slots.push_back(slot_vertex.size());
+    }
+    // Transpose: slots per vertex, in increasing slot (= element) order.
+    vertex_offsets.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
+    for (const Index v : slot_vertex) {
+        ++vertex_offsets[static_cast<std::size_t>(v) + 1];
+    }
+    for (std::size_t v = 0; v < static_cast<std::size_t>(num_vertices); ++v) {
+        vertex_offsets[v + 1] += vertex_offsets[v];
+    }
+    vertex_slots.resize(slot_vertex.size());
+    std::vector<std::size_t> fill(vertex_offsets.begin(), vertex_offsets.end() - 1);
+    for (std::size_t k = 0; k < slot_vertex.size(); ++k) {
+        vertex_slots[fill[static_cast<std::size_t>(slot_vertex[k])]++] = k;
+    }
+}
+
+ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const {
+    LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "control points have ", X.rows(),
+                  " rows, the mesh has ", sampler.num_vertices(), " vertices");
+    LIMSURF_CHECK(X.allFinite(), InputError, "the control points have a non-finite coordinate");
+    std::array<bool, num_shape_functionals> wanted{};
+    for (const ShapeFunctional f : gradients) {
+        wanted[index_of(f)] = true;
+    }
+    const bool volume_by_forms = exact_volume != nullptr;
+    std::array<bool, num_shape_functionals> local_wanted = wanted;
+    if (volume_by_forms) {
+        local_wanted[index_of(ShapeFunctional::Volume)] = false;
+    }
+    std::vector<std::size_t> requested;  // functionals with a local gradient, in enum order
+    for (std::size_t f = 0; f < wanted.size(); ++f) {
+        if (local_wanted[f]) {
+            requested.push_back(f);
+        }
+    }
+
+    const std::size_t num_elements = element_samples.size() - 1;
+    const std::size_t num_slots = slot_vertex.size();
+    // Per element: the six integrals; per slot: a 3-vector per requested functional, side by side.
+    const std::size_t width = 3 * requested.size();
+    std::vector<std::array<double, num_shape_functionals>> element_values(num_elements);
+    std::vector<double> slot_gradient(num_slots * width, 0.0);
+    std::vector<Index> degenerate(num_elements, invalid_index);
+    std::vector<Vec3> element_normal_area(num_elements, Vec3::Zero());
+    const Vec3 centroid = X.colwise().mean().transpose();
+
+    parallel_ranges(static_cast<Index>(num_elements), options.num_threads, [&](Index begin, Index end) {
+        SampleTerms terms;
+        // The requested local gradients side by side (6 × 3R), so that each control vertex of a
+        // sample costs one small matrix product for all of them.
+        Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 3 * num_shape_functionals> stacked(6, width);
+        for (Index e = begin; e < end; ++e) {
+            const auto ue = static_cast<std::size_t>(e);
+            std::array<double, num_shape_functionals> sum{};
+            const std::size_t first_slot = element_slots[ue];
+            for (Index s = element_samples[ue]; s < element_samples[ue + 1]; ++s) {
+                const Local d = sampler.evaluate(X, s);
+                if (!sample_terms(d, sampler.weight(s), triangle, centroid, local_wanted, terms)) {
+                    degenerate[ue] = sampler.point(s).face;
+                    break;
+                }
+                for (std::size_t f = 0; f < sum.size(); ++f) {
+                    sum[f] += terms.value[f];
+                }
+                element_normal_area[ue] += terms.normal_area;
+                if (requested.empty()) {
+                    continue;
+                }
+                const auto weights = sampler.limit_weights(s);
+                const auto vertices = sampler.vertices(s);
+                // The sampler's entries of sample s start at the entry of its first vertex.
+                const std::size_t entry0 = static_cast<std::size_t>(vertices.data() - sampler.vertices(0).data());
+                for (std::size_t r = 0; r < requested.size(); ++r) {
+                    stacked.middleCols<3>(static_cast<Eigen::Index>(3 * r)) = terms.local[requested[r]];
+                }
+                for (std::size_t k = 0; k < vertices.size(); ++k) {
+                    const std::size_t slot = first_slot + static_cast<std::size_t>(entry_slot[entry0 + k]);
+                    Eigen::Map<Eigen::RowVectorXd> target(&slot_gradient[slot * width],
+                                                          static_cast<Eigen::Index>(width));
+                    target.noalias() += weights.col(static_cast<Eigen::Index>(k)).transpose() * stacked;
+                }
+            }
+            element_values[ue] = sum;
+        }
+    });
+    for (std::size_t e = 0; e < num_elements; ++e) {
+        LIMSURF_CHECK_AT(degenerate[e] == invalid_index, NumericalError, face_element(degenerate[e]),
+                         "the limit surface is degenerate (parallel tangents or non-finite curvature) on ptex face ",
+                         degenerate[e]);
+    }
+
+    ShapeValues out;
+    std::array<double, num_shape_functionals> total{};
+    for (const auto& values : element_values) {  // in element order: the same sum for any thread count
+        for (std::size_t f = 0; f < total.size(); ++f) {
+            total[f] += values[f];
+        }
+    }
+    out.area = total[index_of(ShapeFunctional::Area)];
+    out.volume = total[index_of(ShapeFunctional::Volume)];
+    out.mean_curvature = total[index_of(ShapeFunctional::MeanCurvature)];
+    out.willmore = total[index_of(ShapeFunctional::Willmore)];
+    out.gaussian = total[index_of(ShapeFunctional::Gaussian)];
+    out.harmonic = total[index_of(ShapeFunctional::Harmonic)];
+
+    const Index num_vertices = sampler.num_vertices();
+    for (std::size_t r = 0; r < requested.size(); ++r) {
+        Points& g = out.gradient[requested[r]];
+        g.setZero(num_vertices, 3);
+        parallel_ranges(num_vertices, options.num_threads, [&](Index begin, Index end) {
+            for (Index v = begin; v < end; ++v) {
+                const auto uv = static_cast<std::size_t>(v);
+                for (std::size_t k = vertex_offsets[uv]; k < vertex_offsets[uv + 1]; ++k) {
+                    const double* source = &slot_gradient[vertex_slots[k] * width + 3 * r];
+                    g(v, 0) += source[0];
+                    g(v, 1) += source[1];
+                    g(v, 2) += source[2];
+                }
+            }
+        });
+    }
+    if (local_wanted[index_of(ShapeFunctional::Volume)]) {
+        // The centroid c = mean of X moves with every control point: ∂V/∂X_v −= ∫ n dA / (3 #V).
+        Vec3 normal_area = Vec3::Zero();
+        for (const Vec3& n : element_normal_area) {
+            normal_area += n;
+        }
+        out.gradient[index_of(ShapeFunctional::Volume)].rowwise() -=
+            (normal_area / (3.0 * static_cast<double>(num_vertices))).transpose();
+    }
+    if (volume_by_forms) {
+        if (wanted[index_of(ShapeFunctional::Volume)]) {
+            Points& g = out.gradient[index_of(ShapeFunctional::Volume)];
+            out.volume = exact_volume->volume_and_gradient(X, g);
+        } else {
+            out.volume = exact_volume->volume(X);
+        }
+    }
+    return out;
+}
+
+ShapeFunctionals::ShapeFunctionals(const LimitBasis& basis, const ShapeOptions& options) {
+    const SchemeKind scheme = basis.scheme();
+    LIMSURF_CHECK(scheme == SchemeKind::Loop || scheme == SchemeKind::CatmullClark || scheme == SchemeKind::C2g0,
+                  UnsupportedError, "shape functionals need a Loop, Catmull-Clark or C2g0 surface (curvatures of a C2 ",
+                  "surface away from extraordinary points), not ", to_string(scheme));
+    const Topology& topology = basis.topology();
+    for (Index v = 0; v < topology.num_vertices(); ++v) {
+        LIMSURF_CHECK_AT(!topology.is_boundary_vertex(v), InputError, vertex_element(v),
+                         "shape functionals need a closed surface; vertex ", v, " is on a boundary");
+    }
+    for (Index f = 0; f < topology.num_faces(); ++f) {
+        LIMSURF_CHECK_AT(!topology.is_hole(f), UnsupportedError, face_element(f),
+                         "shape functionals need a closed surface; face ", f, " is a hole");
+    }
+    LIMSURF_CHECK(options.num_threads >= 0, InputError, "the thread count must be >= 0, not ", options.num_threads);
+    impl_ = std::make_unique<Impl>(basis, options);
+    if (options.exact_volume && scheme != SchemeKind::C2g0) {
+        VolumeOptions volume_options;
+        volume_options.num_threads = options.num_threads;
+        impl_->exact_volume = std::make_unique<EnclosedVolume>(topology, scheme, SchemeOptions{}, volume_options);
+    }
+}
+
+ShapeFunctionals::~ShapeFunctionals() = default;
+ShapeFunctionals::ShapeFunctionals(ShapeFunctionals&&) noexcept = default;
+ShapeFunctionals& ShapeFunctionals::operator=(ShapeFunctionals&&) noexcept = default;
+
+ShapeValues ShapeFunctionals::evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const {
+    return impl_->evaluate(X, gradients);
+}
+
+ShapeValues ShapeFunctionals::evaluate_all(const Points& X) const {
+    static constexpr std::array<ShapeFunctional, num_shape_functionals> all{
+        ShapeFunctional::Area,     ShapeFunctional::Volume,   ShapeFunctional::MeanCurvature,
+        ShapeFunctional::Willmore, ShapeFunctional::Gaussian, ShapeFunctional::Harmonic};
+    return impl_->evaluate(X, all);
+}
+
+Index ShapeFunctionals::num_vertices() const noexcept {
+    return impl_->sampler.num_vertices();
+}
+Index ShapeFunctionals::num_samples() const noexcept {
+    return impl_->sampler.num_samples();
+}
+SchemeKind ShapeFunctionals::scheme() const noexcept {
+    return impl_->scheme;
+}
+const ShapeOptions& ShapeFunctionals::options() const noexcept {
+    return impl_->options;
+}
+bool ShapeFunctionals::volume_is_exact() const noexcept {
+    return impl_->exact_volume != nullptr;
+}
+
+}  // namespace limsurf

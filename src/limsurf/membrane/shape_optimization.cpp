@@ -1,0 +1,604 @@
+// The membrane problems (3.1) and (3.12) of c2g0-sphere-scheme-biomembranes §3 as Ipopt NLPs
+// (the header states the problems). The unknowns are the control coordinates, x[3 i + c] = X(i, c).
+// Ipopt sees every constraint as its residual divided by a scale, (value − target) / scale, with
+// scale = |target| (for M0 = 0: the M of the sphere of area A0), so that its absolute
+// constr_viol_tol is MembraneOptions::constraint_tolerance relative to the target. One
+// ShapeFunctionals::evaluate() per new x serves the objective, the constraints and both
+// derivatives.
+#include "limsurf/membrane/shape_optimization.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <numbers>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Cholesky>
+
+#ifdef LIMSURF_HAVE_IPOPT
+#include <coin/IpIpoptApplication.hpp>
+#include <coin/IpTNLP.hpp>
+#endif
+
+#include "limsurf/core/error.h"
+
+namespace limsurf {
+namespace {
+
+void validate(const ShapeFunctionals& functionals, const Points& initial, const MembraneProblem& problem,
+              const MembraneOptions& options) {
+    LIMSURF_CHECK(std::isfinite(problem.area) && problem.area > 0.0, InputError,
+                  "the area A0 must be positive and finite, not ", problem.area);
+    if (problem.volume) {
+        const double v0 = *problem.volume;
+        const double sphere = volume_from_reduced(1.0, problem.area);
+        LIMSURF_CHECK(std::isfinite(v0) && v0 > 0.0, InputError, "the volume V0 must be positive and finite, not ", v0);
+        LIMSURF_CHECK(v0 <= sphere, InputError, "the volume V0 = ", v0,
+                      " exceeds that of the sphere of area A0 = ", problem.area, " (", sphere, "): reduced volume ",
+                      v0 / sphere, " > 1 violates the isoperimetric inequality");
+    }
+    if (problem.mean_curvature) {
+        LIMSURF_CHECK(std::isfinite(*problem.mean_curvature), InputError, "the mean curvature M0 must be finite");
+    }
+    if (problem.willmore_bound) {
+        const double bound = *problem.willmore_bound;
+        LIMSURF_CHECK(std::isfinite(bound) && bound > 0.0, InputError,
+                      "the Willmore bound must be positive and finite, not ", bound);
+    }
+    LIMSURF_CHECK(std::isfinite(problem.spontaneous_curvature), InputError, "the spontaneous curvature must be finite");
+    LIMSURF_CHECK(initial.rows() == functionals.num_vertices(), InputError, "the initial control points have ",
+                  initial.rows(), " rows, the mesh has ", functionals.num_vertices(), " vertices");
+    LIMSURF_CHECK(initial.allFinite(), InputError, "the initial control points have a non-finite coordinate");
+    LIMSURF_CHECK(options.max_iterations >= 0, InputError, "max_iterations must be >= 0, not ", options.max_iterations);
+    LIMSURF_CHECK(options.tolerance > 0.0 && options.constraint_tolerance > 0.0 && options.objective_tolerance >= 0.0,
+                  InputError, "the tolerances must be positive (the objective tolerance >= 0), not ", options.tolerance,
+                  ", ", options.constraint_tolerance, " and ", options.objective_tolerance);
+}
+
+#ifdef LIMSURF_HAVE_IPOPT
+
+/// One hard constraint: (value − target) / scale, = 0 or (upper_only) <= 0.
+struct Constraint {
+    ShapeFunctional functional = ShapeFunctional::Area;
+    double target = 0.0;
+    double scale = 1.0;
+    bool upper_only = false;
+};
+
+std::vector<Constraint> constraints_of(const MembraneProblem& problem) {
+    std::vector<Constraint> out{{ShapeFunctional::Area, problem.area, problem.area, false}};
+    if (problem.volume) {
+        out.push_back({ShapeFunctional::Volume, *problem.volume, *problem.volume, false});
+    }
+    if (problem.mean_curvature) {
+        const double m0 = *problem.mean_curvature;
+        const double scale = m0 != 0.0 ? std::abs(m0) : mean_curvature_from_reduced(1.0, problem.area);
+        out.push_back({ShapeFunctional::MeanCurvature, m0, scale, false});
+    }
+    if (problem.willmore_bound) {
+        out.push_back({ShapeFunctional::Willmore, *problem.willmore_bound, *problem.willmore_bound, true});
+    }
+    return out;
+}
+
+/// The functionals whose gradients the problem needs: the objective's and the constraints'.
+std::vector<ShapeFunctional> gradients_of(const MembraneProblem& problem, const std::vector<Constraint>& constraints) {
+    std::vector<ShapeFunctional> out;
+    auto add = [&out](ShapeFunctional f) {
+        if (std::find(out.begin(), out.end(), f) == out.end()) {
+            out.push_back(f);
+        }
+    };
+    switch (problem.objective) {
+    case MembraneObjective::Willmore:
+        add(ShapeFunctional::Willmore);
+        break;
+    case MembraneObjective::Helfrich:
+        add(ShapeFunctional::Willmore);
+        add(ShapeFunctional::MeanCurvature);
+        add(ShapeFunctional::Area);
+        break;
+    case MembraneObjective::Harmonic:
+        add(ShapeFunctional::Harmonic);
+        break;
+    }
+    for (const Constraint& c : constraints) {
+        add(c.functional);
+    }
+    return out;
+}
+
+double objective_of(const MembraneProblem& problem, const ShapeValues& values) {
+    switch (problem.objective) {
+    case MembraneObjective::Willmore:
+        return values.willmore;
+    case MembraneObjective::Helfrich:
+        return values.helfrich(problem.spontaneous_curvature);
+    case MembraneObjective::Harmonic:
+        return values.harmonic;
+    }
+    return 0.0;
+}
+
+Points objective_gradient(const MembraneProblem& problem, const ShapeValues& values) {
+    switch (problem.objective) {
+    case MembraneObjective::Willmore:
+        return values.gradient_of(ShapeFunctional::Willmore);
+    case MembraneObjective::Helfrich:
+        return values.helfrich_gradient(problem.spontaneous_curvature);
+    case MembraneObjective::Harmonic:
+        return values.gradient_of(ShapeFunctional::Harmonic);
+    }
+    return {};
+}
+
+bool all_finite(const ShapeValues& values) {
+    for (int f = 0; f < num_shape_functionals; ++f) {
+        const auto functional = static_cast<ShapeFunctional>(f);
+        if (!std::isfinite(values.value(functional)) || !values.gradient_of(functional).allFinite()) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/// The result's residuals and objective from its values.
+void fill_residuals(const MembraneProblem& problem, MembraneResult& result) {
+    const ShapeValues& v = result.values;
+    result.objective = objective_of(problem, v);
+    result.area_residual = v.area - problem.area;
+    result.volume_residual = problem.volume ? v.volume - *problem.volume : 0.0;
+    result.mean_curvature_residual = problem.mean_curvature ? v.mean_curvature - *problem.mean_curvature : 0.0;
+    result.willmore_excess = problem.willmore_bound ? std::max(0.0, v.willmore - *problem.willmore_bound) : 0.0;
+}
+
+/// True when every constraint holds to @p tolerance relative to its scale.
+bool constraints_hold(const std::vector<Constraint>& constraints, const ShapeValues& values, double tolerance) {
+    return std::all_of(constraints.begin(), constraints.end(), [&](const Constraint& c) {
+        const double residual = (values.value(c.functional) - c.target) / c.scale;
+        return c.upper_only ? residual <= tolerance : std::abs(residual) <= tolerance;
+    });
+}
+
+std::string describe(Ipopt::ApplicationReturnStatus status) {
+    switch (status) {
+    case Ipopt::Solve_Succeeded:
+        return "solved";
+    case Ipopt::Solved_To_Acceptable_Level:
+        return "stopped at an acceptable point (Ipopt's acceptable_tol), short of the tolerance";
+    case Ipopt::Infeasible_Problem_Detected:
+        return "the constraints look infeasible (Ipopt)";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+        return "the search direction became too small (Ipopt)";
+    case Ipopt::Diverging_Iterates:
+        return "the iterates diverge (Ipopt)";
+    case Ipopt::User_Requested_Stop:
+        return "stopped by the caller";
+    case Ipopt::Feasible_Point_Found:
+        return "a feasible point was found (Ipopt)";
+    case Ipopt::Maximum_Iterations_Exceeded:
+        return "the maximum number of iterations was reached";
+    case Ipopt::Restoration_Failed:
+        return "Ipopt's feasibility restoration failed";
+    case Ipopt::Error_In_Step_Computation:
+        return "Ipopt could not compute a step";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+        return "Ipopt's CPU time limit was reached";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+        return "not enough degrees of freedom (Ipopt)";
+    case Ipopt::Invalid_Problem_Definition:
+        return "invalid problem definition (Ipopt)";
+    case Ipopt::Invalid_Option:
+        return "invalid Ipopt option";
+    case Ipopt::Invalid_Number_Detected:
+        return "Ipopt met a non-finite number";
+    case Ipopt::Unrecoverable_Exception:
+        return "Ipopt failed with an unrecoverable exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+        return "an exception escaped into Ipopt";
+    case Ipopt::Insufficient_Memory:
+        return "Ipopt ran out of memory";
+    case Ipopt::Internal_Error:
+        return "Ipopt internal error";
+    }
+    return "unknown Ipopt status";
+}
+
+/// The NLP Ipopt solves. Callbacks never throw: an exception from ShapeFunctionals at a trial
+/// point is kept and the callback returns false, which makes Ipopt shorten the step; any other
+/// exception (and one from on_iteration) stops the solver and is rethrown after Solve.
+class MembraneNlp final : public Ipopt::TNLP {
+  public:
+    MembraneNlp(const ShapeFunctionals& functionals, const Points& initial, ShapeValues initial_values,
+                const MembraneProblem& problem, const MembraneOptions& options)
+        : functionals_(functionals), problem_(problem), options_(options), constraints_(constraints_of(problem)),
+          gradients_(gradients_of(problem, constraints_)), initial_(initial), current_(initial),
+          values_(std::move(initial_values)), good_(initial), good_values_(values_) {}
+
+    bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g, Ipopt::Index& nnz_h_lag,
+                      IndexStyleEnum& index_style) override {
+        n = num_variables();
+        m = static_cast<Ipopt::Index>(constraints_.size());
+        nnz_jac_g = n * m;  // dense rows: every functional depends on every control point
+        nnz_h_lag = 0;      // limited-memory quasi-Newton Hessian
+        index_style = C_STYLE;
+        return true;
+    }
+
+    bool get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index m, Ipopt::Number* g_l,
+                         Ipopt::Number* g_u) override {
+        std::fill(x_l, x_l + n, -2e19);  // below nlp_lower_bound_inf: free
+        std::fill(x_u, x_u + n, 2e19);
+        for (Ipopt::Index k = 0; k < m; ++k) {
+            g_l[k] = constraints_[static_cast<std::size_t>(k)].upper_only ? -2e19 : 0.0;
+            g_u[k] = 0.0;
+        }
+        return true;
+    }
+
+    bool get_starting_point(Ipopt::Index, bool init_x, Ipopt::Number* x, bool init_z, Ipopt::Number*, Ipopt::Number*,
+                            Ipopt::Index, bool init_lambda, Ipopt::Number*) override {
+        if (init_z || init_lambda || !init_x) {
+            return false;
+        }
+        to_x(initial_, x);
+        return true;
+    }
+
+    bool eval_f(Ipopt::Index, const Ipopt::Number* x, bool new_x, Ipopt::Number& obj_value) override {
+        if (!update(x, new_x)) {
+            return false;
+        }
+        obj_value = objective_of(problem_, values_);
+        return true;
+    }
+
+    bool eval_grad_f(Ipopt::Index, const Ipopt::Number* x, bool new_x, Ipopt::Number* grad_f) override {
+        if (!update(x, new_x)) {
+            return false;
+        }
+        try {
+            to_x(objective_gradient(problem_, values_), grad_f);
+        } catch (...) {
+            fatal_ = std::current_exception();
+            return false;
+        }
+        return true;
+    }
+
+    bool eval_g(Ipopt::Index, const Ipopt::Number* x, bool new_x, Ipopt::Index m, Ipopt::Number* g) override {
+        if (!update(x, new_x)) {
+            return false;
+        }
+        for (Ipopt::Index k = 0; k < m; ++k) {
+            const Constraint& c = constraints_[static_cast<std::size_t>(k)];
+            g[k] = (values_.value(c.functional) - c.target) / c.scale;
+        }
+        return true;
+    }
+
+    bool eval_jac_g(Ipopt::Index n, const Ipopt::Number* x, bool new_x, Ipopt::Index m, Ipopt::Index,
+                    Ipopt::Index* i_row, Ipopt::Index* j_col, Ipopt::Number* values) override {
+        if (values == nullptr) {  // the structure: row k, column j at k n + j
+            for (Ipopt::Index k = 0; k < m; ++k) {
+                for (Ipopt::Index j = 0; j < n; ++j) {
+                    i_row[k * n + j] = k;
+                    j_col[k * n + j] = j;
+                }
+            }
+            return true;
+        }
+        if (!update(x, new_x)) {
+            return false;
+        }
+        for (Ipopt::Index k = 0; k < m; ++k) {
+            const Constraint& c = constraints_[static_cast<std::size_t>(k)];
+            to_x(values_.gradient_of(c.functional) / c.scale, values + static_cast<std::ptrdiff_t>(k) * n);
+        }
+        return true;
+    }
+
+    bool intermediate_callback(Ipopt::AlgorithmMode, Ipopt::Index iter, Ipopt::Number obj_value, Ipopt::Number inf_pr,
+                               Ipopt::Number inf_du, Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number,
+                               Ipopt::Number alpha_pr, Ipopt::Index, const Ipopt::IpoptData*,
+                               Ipopt::IpoptCalculatedQuantities*) override {
+        iterations_ = iter;
+        if (fatal_) {
+            return false;
+        }
+        if (!options_.on_iteration) {
+            return true;
+        }
+        try {
+            const bool go_on = options_.on_iteration(MembraneIteration{iter, obj_value, inf_pr, inf_du, alpha_pr});
+            stopped_by_caller_ = stopped_by_caller_ || !go_on;
+            return go_on;
+        } catch (...) {
+            fatal_ = std::current_exception();
+            return false;
+        }
+    }
+
+    void finalize_solution(Ipopt::SolverReturn, Ipopt::Index, const Ipopt::Number* x, const Ipopt::Number*,
+                           const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*, const Ipopt::Number*,
+                           Ipopt::Number, const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+        if (x == nullptr) {
+            return;
+        }
+        Points X(functionals_.num_vertices(), 3);
+        from_x(x, X);
+        if (X.allFinite()) {
+            final_ = std::move(X);
+        }
+    }
+
+    /// The control points to return and their values: Ipopt's final point when every functional
+    /// is finite there, else the last point where they were.
+    [[nodiscard]] std::pair<Points, ShapeValues> result_point() const {
+        if (final_.size() > 0 && final_ != good_) {
+            try {
+                ShapeValues values = functionals_.evaluate(final_, gradients_);
+                if (all_finite(values)) {
+                    return {final_, std::move(values)};
+                }
+            } catch (const NumericalError&) {  // degenerate there: fall back to the last good point
+            }
+        }
+        return {good_, good_values_};
+    }
+
+    [[nodiscard]] const std::exception_ptr& fatal() const noexcept { return fatal_; }
+    [[nodiscard]] const std::exception_ptr& trial_failure() const noexcept { return trial_failure_; }
+    [[nodiscard]] bool stopped_by_caller() const noexcept { return stopped_by_caller_; }
+    [[nodiscard]] int iterations() const noexcept { return iterations_; }
+    [[nodiscard]] const std::vector<Constraint>& constraints() const noexcept { return constraints_; }
+
+  private:
+    [[nodiscard]] Ipopt::Index num_variables() const {
+        return static_cast<Ipopt::Index>(3 * functionals_.num_vertices());
+    }
+
+    static void to_x(const Points& X, Ipopt::Number* x) {
+        for (Index i = 0; i < X.rows(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                x[3 * i + c] = X(i, c);
+            }
+        }
+    }
+
+    static void from_x(const Ipopt::Number* x, Points& X) {
+        for (Index i = 0; i < X.rows(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                X(i, c) = x[3 * i + c];
+            }
+        }
+    }
+
+    /// Evaluates at @p x unless the cache holds it. False when the surface is degenerate there or
+    /// a value is not finite (Ipopt then cuts the step), or on a fatal exception.
+    bool update(const Ipopt::Number* x, bool new_x) {
+        if (!new_x && valid_) {
+            return true;
+        }
+        from_x(x, current_);
+        if (valid_ && current_ == good_) {  // e.g. the initial point, evaluated before Solve
+            return true;
+        }
+        valid_ = false;
+        try {
+            values_ = functionals_.evaluate(current_, gradients_);
+        } catch (const NumericalError&) {
+            trial_failure_ = std::current_exception();
+            return false;
+        } catch (...) {
+            fatal_ = std::current_exception();
+            return false;
+        }
+        if (!all_finite(values_)) {
+            return false;
+        }
+        valid_ = true;
+        good_ = current_;
+        good_values_ = values_;
+        return true;
+    }
+
+    const ShapeFunctionals& functionals_;
+    const MembraneProblem& problem_;
+    const MembraneOptions& options_;
+    std::vector<Constraint> constraints_;
+    std::vector<ShapeFunctional> gradients_;
+    Points initial_;
+    Points current_;      // the point of values_
+    ShapeValues values_;  // the cache, valid_ when it belongs to current_
+    bool valid_ = true;
+    Points good_;  // the last point where every functional was finite, and its values
+    ShapeValues good_values_;
+    Points final_;  // Ipopt's final point (empty until finalize_solution)
+    std::exception_ptr trial_failure_;
+    std::exception_ptr fatal_;
+    bool stopped_by_caller_ = false;
+    int iterations_ = 0;
+};
+
+void set_options(Ipopt::IpoptApplication& app, const MembraneOptions& options) {
+    const Ipopt::SmartPtr<Ipopt::OptionsList> o = app.Options();
+    o->SetIntegerValue("print_level", 0);
+    o->SetStringValue("sb", "yes");
+    o->SetStringValue("hessian_approximation", "limited-memory");
+    o->SetNumericValue("tol", options.tolerance);
+    // The constraints are scaled to their targets (MembraneNlp), so this is relative.
+    o->SetNumericValue("constr_viol_tol", options.constraint_tolerance);
+    o->SetIntegerValue("max_iter", options.max_iterations);
+    // The default scalar1 start of the quasi-Newton matrix stalls at a dual infeasibility of ~1e-4 on
+    // the Canham problem (the Willmore Hessian is a fourth-order operator); scalar2 with 20 pairs
+    // reaches tol = 1e-8 (F_tetra,2, v0 = 0.9: 286 iterations instead of > 3000).
+    o->SetStringValue("limited_memory_initialization", "scalar2");
+    o->SetIntegerValue("limited_memory_max_history", 20);
+    // Ipopt relaxes inequality bounds by bound_relax_factor (default 1e-8, relative here): keep
+    // the Willmore bound's relaxation within the constraint tolerance.
+    o->SetNumericValue("bound_relax_factor", 0.1 * options.constraint_tolerance);
+    // Ipopt may stop at an "acceptable" point. Its iterates' constraint violation wanders between
+    // 1e-13 and 1e-8 once W has settled (measured on F_tetra,3), so the acceptable test allows 100×
+    // the tolerance and project_onto_constraints() then restores it.
+    o->SetNumericValue("acceptable_constr_viol_tol", 100.0 * options.constraint_tolerance);
+    if (options.objective_tolerance > 0.0) {
+        // Stop once the objective's relative change stays below it for 15 iterations.
+        o->SetNumericValue("acceptable_obj_change_tol", options.objective_tolerance);
+        o->SetNumericValue("acceptable_tol", 1e20);
+        o->SetNumericValue("acceptable_dual_inf_tol", 1e20);
+        o->SetIntegerValue("acceptable_iter", 15);
+    } else {
+        o->SetIntegerValue("acceptable_iter", 0);
+    }
+}
+
+/// Gauss–Newton steps X ← X − Jᵀ(JJᵀ)⁻¹c onto the violated constraints (at most 4 rows, so JJᵀ is
+/// tiny): the minimum-norm correction, which moves the objective only by O(|c|). Returns the
+/// number of steps taken; stops when every constraint holds to @p tolerance or after 8 steps.
+int project_onto_constraints(const ShapeFunctionals& functionals, const std::vector<Constraint>& constraints,
+                             const std::vector<ShapeFunctional>& gradients, double tolerance, Points& X,
+                             ShapeValues& values) {
+    for (const Constraint& c : constraints) {
+        if (values.gradient_of(c.functional).rows() != X.rows()) {  // the point came without them
+            values = functionals.evaluate(X, gradients);
+            break;
+        }
+    }
+    for (int step = 0; step < 8; ++step) {
+        if (constraints_hold(constraints, values, tolerance)) {
+            return step;
+        }
+        std::vector<const Constraint*> active;
+        for (const Constraint& c : constraints) {
+            if (!c.upper_only || values.value(c.functional) > c.target) {
+                active.push_back(&c);
+            }
+        }
+        const auto m = static_cast<Eigen::Index>(active.size());
+        Eigen::MatrixXd J(m, X.size());
+        Eigen::VectorXd residual(m);
+        for (Eigen::Index i = 0; i < m; ++i) {
+            const Constraint& c = *active[static_cast<std::size_t>(i)];
+            const Points& g = values.gradient_of(c.functional);
+            J.row(i) = Eigen::Map<const Eigen::RowVectorXd>(g.data(), g.size()) / c.scale;
+            residual[i] = (values.value(c.functional) - c.target) / c.scale;
+        }
+        const Eigen::VectorXd multipliers = (J * J.transpose()).ldlt().solve(residual);
+        const Eigen::VectorXd delta = -J.transpose() * multipliers;
+        Points next = X + Eigen::Map<const Points>(delta.data(), X.rows(), 3);
+        ShapeValues next_values = functionals.evaluate(next, gradients);
+        if (!all_finite(next_values) || !next.allFinite()) {
+            return step;
+        }
+        X = std::move(next);
+        values = std::move(next_values);
+    }
+    return 8;
+}
+
+/// The result at the point Ipopt left, with the status in words.
+MembraneResult collect(const ShapeFunctionals& functionals, const MembraneNlp& nlp,
+                       Ipopt::ApplicationReturnStatus status, const MembraneProblem& problem,
+                       const MembraneOptions& options) {
+    MembraneResult result;
+    std::tie(result.positions, result.values) = nlp.result_point();
+    fill_residuals(problem, result);
+    result.iterations = nlp.iterations();
+    const bool by_objective = status == Ipopt::Solved_To_Acceptable_Level && options.objective_tolerance > 0.0;
+    const bool solved = (status == Ipopt::Solve_Succeeded || by_objective) && !nlp.stopped_by_caller();
+    int projections = 0;
+    if (solved) {
+        projections = project_onto_constraints(functionals, nlp.constraints(), gradients_of(problem, nlp.constraints()),
+                                               options.constraint_tolerance, result.positions, result.values);
+        fill_residuals(problem, result);
+    }
+    const bool feasible = constraints_hold(nlp.constraints(), result.values, options.constraint_tolerance);
+    result.converged = solved && feasible;
+    result.status = nlp.stopped_by_caller() ? "stopped by the caller"
+                    : by_objective          ? "solved to the objective tolerance (KKT tolerance not reached)"
+                                            : describe(status);
+    if (projections > 0) {
+        result.status += " (constraints restored by " + std::to_string(projections) + " projection step" +
+                         (projections > 1 ? "s)" : ")");
+    }
+    if (solved && !feasible) {
+        result.status += ", but a constraint misses its tolerance";
+    }
+    if (!result.converged && nlp.trial_failure()) {
+        try {
+            std::rethrow_exception(nlp.trial_failure());
+        } catch (const std::exception& e) {
+            result.status += std::string("; the last degenerate trial point: ") + e.what();
+        }
+    }
+    return result;
+}
+
+/// Runs Ipopt; throws what a callback could not handle, or what failed at the initial point.
+MembraneResult solve(const ShapeFunctionals& functionals, const Points& initial, const MembraneProblem& problem,
+                     const MembraneOptions& options) {
+    const auto constraints = constraints_of(problem);
+    const auto gradients = gradients_of(problem, constraints);
+    // The initial point outside Ipopt: a degenerate or non-finite start is the caller's error.
+    ShapeValues start = functionals.evaluate(initial, gradients);
+    LIMSURF_CHECK(all_finite(start), NumericalError, "a shape functional is not finite at the initial control points");
+
+    Ipopt::SmartPtr<MembraneNlp> nlp = new MembraneNlp(functionals, initial, std::move(start), problem, options);
+    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+    set_options(*app, options);
+    Ipopt::ApplicationReturnStatus status = app->Initialize("");  // no ipopt.opt from the working directory
+    LIMSURF_CHECK(status == Ipopt::Solve_Succeeded, NumericalError, "Ipopt did not initialise: ", describe(status));
+    {
+        // Ipopt's MUMPS keeps global state: one solve at a time in this process.
+        static std::mutex ipopt_mutex;
+        const std::lock_guard<std::mutex> lock(ipopt_mutex);
+        status = app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(Ipopt::GetRawPtr(nlp)));
+    }
+    if (nlp->fatal()) {
+        std::rethrow_exception(nlp->fatal());
+    }
+
+    return collect(functionals, *nlp, status, problem, options);
+}
+
+#endif
+
+}  // namespace
+
+double volume_from_reduced(double reduced_volume, double area) noexcept {
+    return reduced_volume * (4.0 * std::numbers::pi / 3.0) * std::pow(area / (4.0 * std::numbers::pi), 1.5);
+}
+
+double mean_curvature_from_reduced(double reduced, double area) noexcept {
+    return reduced * 4.0 * std::numbers::pi * std::sqrt(area / (4.0 * std::numbers::pi));
+}
+
+bool membrane_solver_available() noexcept {
+#ifdef LIMSURF_HAVE_IPOPT
+    return true;
+#else
+    return false;
+#endif
+}
+
+MembraneResult minimize_membrane(const ShapeFunctionals& functionals, const Points& initial,
+                                 const MembraneProblem& problem, const MembraneOptions& options) {
+    validate(functionals, initial, problem, options);
+#ifdef LIMSURF_HAVE_IPOPT
+    const auto start = std::chrono::steady_clock::now();
+    MembraneResult result = solve(functionals, initial, problem, options);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+#else
+    throw UnsupportedError("minimize_membrane needs Ipopt: limsurf was built without it (install coinor-libipopt-dev "
+                           "and reconfigure)");
+#endif
+}
+
+}  // namespace limsurf

@@ -1,0 +1,274 @@
+// `limsurf membrane`: --evaluate-only against analytic values and identities (Gauss–Bonnet 4π,
+// Willmore's inequality W >= 4π, the isoperimetric inequality v <= 1, the degrees of homogeneity
+// under scaling) and against the independent `limsurf volume` / `limsurf measure`; a short Canham
+// solve (constraints to 1e-8, the written OBJ re-evaluated from the file); the convention for a
+// solve that does not converge; and bad input (infeasible targets, an open mesh, Doo–Sabin,
+// conflicting options), each exiting non-zero with one error line and no file left behind.
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "support/mesh_zoo.h"
+#include "support/paths.h"
+
+namespace limsurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CliRun;
+
+constexpr double pi = std::numbers::pi;
+
+const fs::path& temp_dir() {
+    static const fs::path dir = test::make_temp_dir("cli_membrane");
+    return dir;
+}
+
+CliRun limsurf(const std::vector<std::string>& args) {
+    return test::run_limsurf(args, temp_dir());
+}
+
+std::string mesh(const std::string& name) {
+    return test::find_bundled(name).path.string();
+}
+
+nlohmann::json run_json(const std::vector<std::string>& args) {
+    const CliRun run = limsurf(args);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return run.exit_code == 0 ? nlohmann::json::parse(run.out) : nlohmann::json::object();
+}
+
+nlohmann::json evaluate(const std::string& path, const std::string& scheme) {
+    return run_json({"membrane", path, "--scheme", scheme, "--evaluate-only", "--json"});
+}
+
+double number(const nlohmann::json& json, const char* key) {
+    return json.at(key).get<double>();
+}
+
+/// A copy of @p source with every vertex x mapped to s x + t.
+fs::path transformed_copy(const std::string& source, double s, const std::array<double, 3>& t, const char* name) {
+    std::ifstream in(source);
+    const fs::path out_path = temp_dir() / name;
+    std::ofstream out(out_path);
+    out.precision(17);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("v ", 0) == 0) {
+            std::istringstream fields(line.substr(2));
+            double x = 0;
+            double y = 0;
+            double z = 0;
+            fields >> x >> y >> z;
+            out << "v " << s * x + t[0] << ' ' << s * y + t[1] << ' ' << s * z + t[2] << '\n';
+        } else {
+            out << line << '\n';
+        }
+    }
+    return out_path;
+}
+
+TEST(CliMembrane, EvaluateOnlyObeysGaussBonnetWillmoreAndIsoperimetry) {
+    // tetra_3: a C2g0 sphere (130 vertices), sphere_tris and icosahedron: Loop spheres.
+    for (const auto& [name, scheme] : {std::pair{"tetra_3", "c2g0"},
+                                       {"sphere_tris", "loop"},
+                                       {"icosahedron", "loop"},
+                                       {"sphere_quads", "catmull-clark"}}) {
+        const auto out = evaluate(mesh(name), scheme);
+        SCOPED_TRACE(name);
+        EXPECT_EQ(out.at("scheme"), scheme);
+        EXPECT_EQ(out.at("volume_is_exact").get<bool>(), std::string(scheme) != "c2g0");
+        // Gauss–Bonnet: ∫K dA = 2πχ = 4π exactly; what remains is quadrature error, larger near the
+        // extraordinary vertices of Loop and Catmull–Clark (measured 3e-7 for C2g0, 2e-6..1.2e-5 else).
+        const double quadrature = std::string(scheme) == "c2g0" ? 1e-6 : 5e-5;
+        EXPECT_NEAR(number(out, "gaussian"), 4 * pi, quadrature * 4 * pi);
+        // Dirichlet energy >= 2 × area for every map (|φ_u|² + |φ_v|² >= 2 |φ_u × φ_v| pointwise in
+        // conformal coordinates of the reference structure), with equality only for conformal maps.
+        EXPECT_GE(number(out, "harmonic"), 2 * number(out, "area"));
+        // Willmore's inequality (equality only on the round sphere, which no limit surface here is).
+        EXPECT_GT(number(out, "willmore"), 4 * pi);
+        EXPECT_LE(number(out, "reduced_volume"), 1.0);
+        EXPECT_GT(number(out, "reduced_volume"), 0.9);
+        // v and m from A, V, M by their definitions (Fig. 1 of the paper).
+        const double a = number(out, "area");
+        EXPECT_NEAR(number(out, "reduced_volume"), number(out, "volume") / (4 * pi / 3 * std::pow(a / (4 * pi), 1.5)),
+                    1e-14);
+        EXPECT_NEAR(number(out, "reduced_mean_curvature"),
+                    number(out, "mean_curvature") / (4 * pi * std::sqrt(a / (4 * pi))), 1e-14);
+    }
+    // The finest C2g0 sphere is close to round: W and m within a few per cent of the sphere's
+    // (W = 1.033 · 4π: the control points, not the limit surface, lie on the sphere).
+    const auto fine = evaluate(mesh("tetra_3"), "c2g0");
+    EXPECT_LT(number(fine, "willmore"), 1.05 * 4 * pi);
+    EXPECT_NEAR(number(fine, "reduced_mean_curvature"), 1.0, 1e-2);
+}
+
+TEST(CliMembrane, EvaluateOnlyHasTheDegreesOfHomogeneity) {
+    // x -> 3x + t: A and the harmonic energy scale by 9, V by 27, M by 3; W, ∫K, v and m do not change.
+    const fs::path moved = transformed_copy(mesh("icosahedron"), 3.0, {0.5, -2.0, 1.0}, "icosahedron_x3.obj");
+    const auto a = evaluate(mesh("icosahedron"), "loop");
+    const auto b = evaluate(moved.string(), "loop");
+    const std::vector<std::pair<const char*, double>> degrees{
+        {"area", 9.0},     {"volume", 27.0},  {"mean_curvature", 3.0}, {"willmore", 1.0},
+        {"gaussian", 1.0}, {"harmonic", 9.0}, {"reduced_volume", 1.0}, {"reduced_mean_curvature", 1.0}};
+    for (const auto& [key, factor] : degrees) {
+        EXPECT_NEAR(number(b, key), factor * number(a, key), 1e-12 * std::abs(factor * number(a, key))) << key;
+    }
+}
+
+TEST(CliMembrane, EvaluateOnlyAgreesWithTheVolumeAndMeasureCommands) {
+    // Independent paths to A and V: `limsurf volume` (exact trilinear forms) and `limsurf measure`
+    // (adaptive quadrature of the area).
+    const auto ours = evaluate(mesh("icosahedron"), "loop");
+    const auto volume = run_json({"volume", mesh("icosahedron"), "--scheme", "loop", "--json"});
+    const auto measure = run_json({"measure", mesh("icosahedron"), "--scheme", "loop", "--json"});
+    EXPECT_NEAR(number(ours, "volume"), number(volume, "volume"), 1e-12 * number(volume, "volume"));
+    // measure's adaptive rule is accurate to 2e-11 here; the shape functionals' fixed rule (degree 8,
+    // 3 tile levels towards the extraordinary vertices, of which the icosahedron has only) to 1.2e-5.
+    EXPECT_NEAR(number(ours, "area"), number(measure, "area"), 3e-5 * number(measure, "area"));
+}
+
+TEST(CliMembrane, EvaluateOnlyReportsTheHelfrichEnergyAndWritesCurvatureFields) {
+    const fs::path vtk = temp_dir() / "curvature.vtk";
+    const auto out =
+        run_json({"membrane", mesh("sphere_tris"), "--scheme", "loop", "--evaluate-only", "--spontaneous-curvature",
+                  "-0.5", "--field-output", vtk.string(), "--resolution", "4", "--json"});
+    const double h0 = -0.5;
+    EXPECT_NEAR(number(out, "helfrich"),
+                number(out, "willmore") - 2 * h0 * number(out, "mean_curvature") + h0 * h0 * number(out, "area"),
+                1e-12 * number(out, "helfrich"));
+    const std::string text = test::slurp(vtk);
+    EXPECT_NE(text.find("SCALARS mean_curvature"), std::string::npos);
+    EXPECT_NE(text.find("SCALARS gaussian_curvature"), std::string::npos);
+    EXPECT_EQ(text.find("nan"), std::string::npos);
+}
+
+TEST(CliMembrane, CanhamSolveMeetsItsConstraintsAndWritesTheShape) {
+    // The octahedron under Loop (6 vertices, 18 unknowns): Ipopt converges in about 35 iterations.
+    const fs::path obj = temp_dir() / "prolate.obj";
+    const fs::path vtk = temp_dir() / "prolate.vtk";
+    const double a0 = 4 * pi;
+    const CliRun run = limsurf({"membrane", mesh("octahedron"), "--scheme", "loop", "--area", "12.566370614359172",
+                                "--reduced-volume", "0.9", "--max-iterations", "300", "-o", obj.string(),
+                                "--field-output", vtk.string(), "--resolution", "4", "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("shape iteration"), std::string::npos) << "no progress lines on stderr";
+    const auto out = nlohmann::json::parse(run.out);
+    ASSERT_TRUE(out.at("converged").get<bool>()) << out.at("status");
+    EXPECT_EQ(out.at("objective"), "willmore");
+    EXPECT_EQ(out.at("unknowns"), 3 * 6);
+    const double v0 = 0.9 * 4 * pi / 3;  // the sphere of area 4π has radius 1
+    EXPECT_NEAR(number(out, "area"), a0, 1e-8 * a0);
+    EXPECT_NEAR(number(out, "volume"), v0, 1e-8 * v0);
+    EXPECT_NEAR(number(out, "reduced_volume"), 0.9, 1e-8);
+    EXPECT_LE(number(out, "max_relative_residual"), 1e-8);
+    EXPECT_GT(number(out, "willmore"), 4 * pi);  // Willmore's inequality
+    EXPECT_NEAR(number(out, "gaussian"), 4 * pi, 1e-4 * 4 * pi);
+    EXPECT_TRUE(out.at("regularization").is_null());
+    // The file holds the shape reported: evaluated again from the OBJ (shortest round-trip digits).
+    const auto back = evaluate(obj.string(), "loop");
+    for (const char* key : {"area", "volume", "mean_curvature", "willmore", "harmonic"}) {
+        EXPECT_NEAR(number(back, key), number(out, key), 1e-12 * std::abs(number(out, key))) << key;
+    }
+    EXPECT_NE(test::slurp(vtk).find("SCALARS gaussian_curvature"), std::string::npos);
+}
+
+TEST(CliMembrane, HelfrichSolveThenTheHarmonicRegularisation) {
+    // Helfrich (3.1) with m0 = 1.06 and H0 = 0.5, then (3.12) with ε = 0.05: the second stage keeps
+    // the constraints, keeps W <= W0 + ε and lowers the harmonic energy.
+    const fs::path obj = temp_dir() / "helfrich.obj";
+    const double h0 = 0.5;
+    const double eps = 0.05;
+    const auto out = run_json({"membrane", mesh("octahedron"), "--scheme", "loop", "--area", "12.566370614359172",
+                               "--reduced-volume", "0.9", "--reduced-mean-curvature", "1.06", "--spontaneous-curvature",
+                               "0.5", "--regularize-harmonic", "0.05", "-o", obj.string(), "--json"});
+    ASSERT_TRUE(out.at("converged").get<bool>()) << out.at("status");
+    EXPECT_EQ(out.at("objective"), "helfrich");
+    EXPECT_NEAR(number(out, "reduced_mean_curvature"), 1.06, 1e-8);
+    EXPECT_NEAR(number(out, "mean_curvature"), 1.06 * 4 * pi, 1e-8 * 4 * pi);  // M0 = m0 4π (A0/4π)^(1/2)
+    EXPECT_NEAR(number(out, "helfrich"),
+                number(out, "willmore") - 2 * h0 * number(out, "mean_curvature") + h0 * h0 * number(out, "area"),
+                1e-12 * number(out, "helfrich"));
+    const auto& r = out.at("regularization");
+    ASSERT_TRUE(r.is_object());
+    ASSERT_TRUE(r.at("converged").get<bool>()) << r.at("status");
+    EXPECT_EQ(r.at("objective"), "harmonic");
+    EXPECT_EQ(number(r, "epsilon"), eps);
+    EXPECT_EQ(r.at("targets").at("willmore_bound").get<double>(), number(out, "willmore") + eps);
+    EXPECT_LE(number(r, "willmore"), (number(out, "willmore") + eps) * (1 + 1e-8));
+    EXPECT_LT(number(r, "harmonic"), number(out, "harmonic"));
+    EXPECT_LE(number(r, "max_relative_residual"), 1e-8);
+    EXPECT_NEAR(number(r, "reduced_mean_curvature"), 1.06, 1e-8);
+    EXPECT_NEAR(number(r, "reduced_volume"), 0.9, 1e-8);
+    // The file holds the last stage's shape.
+    EXPECT_NEAR(number(evaluate(obj.string(), "loop"), "harmonic"), number(r, "harmonic"),
+                1e-12 * number(r, "harmonic"));
+}
+
+TEST(CliMembrane, AnUnfinishedSolveExitsZeroWithConvergedFalseAndAWarning) {
+    const fs::path obj = temp_dir() / "unfinished.obj";
+    const CliRun run = limsurf({"membrane", mesh("icosahedron"), "--scheme", "loop", "--area", "1", "--reduced-volume",
+                                "0.7", "--max-iterations", "2", "-o", obj.string(), "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto out = nlohmann::json::parse(run.out);
+    EXPECT_FALSE(out.at("converged").get<bool>());
+    EXPECT_LE(out.at("iterations").get<int>(), 2);
+    EXPECT_NE(run.err.find("warning: the solver did not converge"), std::string::npos) << run.err;
+    ASSERT_TRUE(fs::exists(obj));
+    EXPECT_EQ(test::slurp(obj).find("nan"), std::string::npos);
+    // The initial guess was scaled about its centroid from its own limit area to the target's.
+    const double initial = number(evaluate(mesh("icosahedron"), "loop"), "area");
+    EXPECT_NEAR(number(out, "initial_area"), initial, 1e-14 * initial);
+    EXPECT_NEAR(number(out, "scale"), std::sqrt(1.0 / initial), 1e-14);
+}
+
+TEST(CliMembrane, BadInputExitsWithOneClearLineAndNoFile) {
+    const fs::path obj = temp_dir() / "refused.obj";
+    const std::string area = "12.566370614359172";
+    struct Case {
+        std::vector<std::string> args;
+        int exit_code;
+        std::string message;
+    };
+    const std::vector<Case> cases{
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--reduced-volume", "1.2"}, 1, "reduced volume"},
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", "-1", "--reduced-volume", "0.9"}, 1, "area"},
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--volume", "5"}, 1, "volume"},  // > 4π/3
+        {{mesh("cylinder_open"), "--scheme", "catmull-clark", "--area", area, "--reduced-volume", "0.9"},
+         1,
+         "closed surface"},
+        {{mesh("cube"), "--scheme", "doo-sabin", "--area", area, "--reduced-volume", "0.9"}, 1, "doo-sabin"},
+        {{mesh("cube"), "--scheme", "c2g0", "--area", area, "--reduced-volume", "0.9"}, 1, "C2g0 needs triangles"},
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area}, 1, "volume"},
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--volume", "4", "--reduced-volume", "0.9"},
+         2,
+         "excludes"},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> args{"membrane"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        args.insert(args.end(), {"-o", obj.string()});
+        const CliRun run = limsurf(args);
+        SCOPED_TRACE(run.err);
+        EXPECT_EQ(run.exit_code, c.exit_code);
+        EXPECT_NE(run.err.find(c.message), std::string::npos);
+        if (c.exit_code == 1) {
+            EXPECT_EQ(run.err.rfind("error: ", 0), 0u);
+            EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << "one line";
+        }
+        EXPECT_FALSE(fs::exists(obj));
+    }
+}
+
+}  // namespace
+}  // namespace limsurf

@@ -1,0 +1,123 @@
+"""limsurf.shape_functionals and limsurf.minimize_membrane equal to `limsurf membrane --json` (the same
+numbers on the same input), their gradients against finite differences and the homogeneity identities,
+the iteration callback, and their errors (membrane/, apps/membrane.h, docs/guide/membrane.md)."""
+import math
+
+import numpy as np
+import pytest
+
+import limsurf
+
+VALUE_KEYS = ("area", "volume", "mean_curvature", "willmore", "gaussian", "harmonic", "reduced_volume",
+              "reduced_mean_curvature", "volume_is_exact", "samples")
+NAMES = ("area", "volume", "mean_curvature", "willmore", "gaussian", "harmonic")
+A0 = 4 * math.pi
+
+
+@pytest.mark.parametrize("name, scheme", [("tetra_2", "c2g0"), ("icosahedron", "loop"),
+                                          ("sphere_quads", "catmull-clark")])
+def test_shape_functionals_equal_the_cli(mesh_path, cli, name, scheme):
+    theirs = cli("membrane", mesh_path(name), "--scheme", scheme, "--evaluate-only", "--spontaneous-curvature", 0.25,
+                 "--json")
+    mesh = limsurf.read_mesh(mesh_path(name))
+    ours = limsurf.shape_functionals(mesh, scheme, spontaneous_curvature=0.25)
+    for key in VALUE_KEYS + ("helfrich",):
+        assert ours[key] == theirs[key], key
+    from_arrays = limsurf.shape_functionals(mesh.V, mesh.F, scheme, gradients=False)
+    assert from_arrays["willmore"] == ours["willmore"] and "gradient" not in from_arrays
+    for g in ours["gradient"].values():
+        assert g.shape == (mesh.num_vertices, 3) and g.dtype == np.float64
+
+
+def test_gradients_match_finite_differences_and_the_identities(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
+    X = mesh.V.copy()
+    rng = np.random.default_rng(17)
+    X += 0.05 * rng.standard_normal(X.shape)  # off the symmetric shape, where gradients are generic
+    f = limsurf.shape_functionals(mesh, "loop", X=X)
+    g = f["gradient"]
+    # Homogeneity (Euler): ∇A·X = 2A, ∇V·X = 3V, ∇M·X = M, ∇W·X = 0.
+    for name, degree in (("area", 2), ("volume", 3), ("mean_curvature", 1)):
+        assert np.sum(g[name] * X) == pytest.approx(degree * f[name], rel=1e-10), name
+    assert abs(np.sum(g["willmore"] * X)) < 1e-9 * f["willmore"] * np.abs(X).max()
+    # Translations leave every functional unchanged: the gradient rows sum to zero.
+    for name in NAMES:
+        assert np.abs(g[name].sum(axis=0)).max() < 1e-9 * np.abs(g[name]).max(), name
+    # Central differences of W in a few coordinates: error O(h²) of the discrete functional.
+    h = 1e-5
+    for (i, k) in ((0, 0), (5, 1), (11, 2)):
+        Xp, Xm = X.copy(), X.copy()
+        Xp[i, k] += h
+        Xm[i, k] -= h
+        fd = (limsurf.shape_functionals(mesh, "loop", X=Xp, gradients=False)["willmore"]
+              - limsurf.shape_functionals(mesh, "loop", X=Xm, gradients=False)["willmore"]) / (2 * h)
+        assert fd == pytest.approx(g["willmore"][i, k], rel=1e-6, abs=1e-8 * np.abs(g["willmore"]).max())
+
+
+def test_minimize_membrane_equals_the_cli(mesh_path, cli, tmp_path):
+    out = tmp_path / "prolate.obj"
+    theirs = cli("membrane", mesh_path("octahedron"), "--scheme", "loop", "--area", repr(A0), "--reduced-volume", 0.9,
+                 "--max-iterations", 300, "-o", out, "--json")
+    ours = limsurf.minimize_membrane(limsurf.read_mesh(mesh_path("octahedron")), "loop", area=A0, reduced_volume=0.9,
+                                     max_iterations=300)
+    assert ours["converged"] and theirs["converged"]
+    for key in set(theirs) - {"seconds", "output"}:
+        assert ours[key] == theirs[key], key
+    assert ours["max_relative_residual"] <= 1e-8
+    assert ours["reduced_volume"] == pytest.approx(0.9, abs=1e-8)
+    # The positions are those the CLI wrote (shortest round-trip digits in the OBJ).
+    assert np.array_equal(ours["positions"], limsurf.read_mesh(out).V)
+
+
+def test_callback_sees_every_iteration_and_can_stop_the_solve(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
+    seen = []
+    done = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=50,
+                                     callback=lambda it: seen.append(it))
+    assert [it["iteration"] for it in seen] == sorted({it["iteration"] for it in seen})
+    assert all(it["stage"] == "shape" for it in seen)
+    assert set(seen[0]) == {"stage", "iteration", "objective", "constraint_violation", "dual_infeasibility", "step"}
+    assert done["iterations"] <= len(seen)
+    stopped = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8,
+                                        callback=lambda it: it["iteration"] < 3)
+    assert not stopped["converged"] and stopped["iterations"] <= 4
+    assert np.isfinite(stopped["positions"]).all()
+
+    def fail(it):
+        raise KeyError("from the callback")
+
+    with pytest.raises(KeyError, match="from the callback"):
+        limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, callback=fail)
+
+
+def test_regularization_reports_both_stages(mesh_path):
+    stages = []
+    r = limsurf.minimize_membrane(limsurf.read_mesh(mesh_path("octahedron")), "loop", area=A0, reduced_volume=0.9,
+                                  reduced_mean_curvature=1.06, regularize_harmonic=0.05,
+                                  callback=lambda it: stages.append(it["stage"]))
+    assert r["converged"] and r["regularization"]["converged"]
+    assert stages[0] == "shape" and stages[-1] == "regularization" and stages == sorted(stages, key=stages.index)
+    reg = r["regularization"]
+    assert reg["targets"]["willmore_bound"] == r["willmore"] + 0.05
+    assert reg["willmore"] <= reg["targets"]["willmore_bound"] * (1 + 1e-8)
+    assert reg["harmonic"] < r["harmonic"]
+    # 'positions' are the last stage's: evaluated again they give its functionals.
+    again = limsurf.shape_functionals(limsurf.read_mesh(mesh_path("octahedron")), "loop", X=r["positions"],
+                                      gradients=False)
+    assert again["harmonic"] == reg["harmonic"] and again["willmore"] == reg["willmore"]
+
+
+def test_errors(mesh_path):
+    sphere = limsurf.read_mesh(mesh_path("tetra_1"))
+    with pytest.raises(limsurf.InputError, match="reduced volume"):
+        limsurf.minimize_membrane(sphere, "c2g0", area=A0, reduced_volume=1.2)
+    with pytest.raises(limsurf.InputError, match="area"):
+        limsurf.minimize_membrane(sphere, "c2g0", area=-1.0, reduced_volume=0.9)
+    with pytest.raises(limsurf.InputError, match="exactly one"):
+        limsurf.minimize_membrane(sphere, "c2g0", area=A0, volume=3.0, reduced_volume=0.9)
+    with pytest.raises(limsurf.InputError, match="closed surface"):
+        limsurf.shape_functionals(limsurf.read_mesh(mesh_path("cylinder_open")), "catmull-clark")
+    with pytest.raises(limsurf.UnsupportedError):
+        limsurf.shape_functionals(limsurf.read_mesh(mesh_path("cube")), "doo-sabin")
+    with pytest.raises(limsurf.InputError):
+        limsurf.shape_functionals(sphere, "c2g0", X=np.zeros((3, 3)))
