@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 #include <vector>
 
@@ -199,6 +200,11 @@ struct ShapeFunctionals::Impl {
     // Gather: the slots of vertex v, in element order: vertex_slots[vertex_offsets[v] .. +1).
     std::vector<std::size_t> vertex_offsets;
     std::vector<std::size_t> vertex_slots;
+    // The per-slot gradients of the last evaluate(), kept for the next one: tens of MB on large
+    // meshes, whose fresh allocation (page faults) cost more than the arithmetic and serialised
+    // the threads. A concurrent evaluate() that finds it in use allocates its own.
+    mutable std::mutex workspace_mutex;
+    mutable std::vector<double> workspace;
 
     Impl(const LimitBasis& basis, const ShapeOptions& o)
         : options(o), scheme(basis.scheme()), triangle(basis.domain() == ParameterDomain::Triangle),
@@ -278,7 +284,10 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     // Per element: the six integrals; per slot: a 3-vector per requested functional, side by side.
     const std::size_t width = 3 * requested.size();
     std::vector<std::array<double, num_shape_functionals>> element_values(num_elements);
-    std::vector<double> slot_gradient(num_slots * width, 0.0);
+    std::unique_lock<std::mutex> workspace_lock(workspace_mutex, std::try_to_lock);
+    std::vector<double> own_workspace;
+    std::vector<double>& slot_gradient = workspace_lock.owns_lock() ? workspace : own_workspace;
+    slot_gradient.resize(num_slots * width);  // zeroed per element below, in parallel
     std::vector<Index> degenerate(num_elements, invalid_index);
     std::vector<Vec3> element_normal_area(num_elements, Vec3::Zero());
     const Vec3 centroid = X.colwise().mean().transpose();
@@ -292,6 +301,8 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
             const auto ue = static_cast<std::size_t>(e);
             std::array<double, num_shape_functionals> sum{};
             const std::size_t first_slot = element_slots[ue];
+            std::fill(slot_gradient.begin() + static_cast<std::ptrdiff_t>(first_slot * width),
+                      slot_gradient.begin() + static_cast<std::ptrdiff_t>(element_slots[ue + 1] * width), 0.0);
             for (Index s = element_samples[ue]; s < element_samples[ue + 1]; ++s) {
                 const Local d = sampler.evaluate(X, s);
                 if (!sample_terms(d, sampler.weight(s), triangle, centroid, local_wanted, terms)) {
