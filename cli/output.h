@@ -65,6 +65,9 @@ void add_memory_option(CLI::App* cmd, std::string& text);
 /// @throws InputError for a malformed size
 [[nodiscard]] std::optional<std::int64_t> memory_budget(const std::string& text);
 
+/// The extension of @p path in lower case, with its dot (".vtk"); empty when it has none.
+std::string lower_extension(const std::string& path);
+
 /// Registers --format obj|off|ply on @p cmd: the output format where the path's extension does
 /// not say it (/dev/stdout, a pipe).
 void add_format_option(CLI::App* cmd, std::string& text);

@@ -64,28 +64,9 @@ struct MembraneCommandOptions {
 /// small enough for an ASCII file of a few megabytes.
 constexpr Index field_points = 100000;
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
 /// JSON null for an absent value.
 nlohmann::json optional_json(const std::optional<double>& value) {
     return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
-}
-
-const char* objective_name(MembraneObjective objective) {
-    switch (objective) {
-    case MembraneObjective::Willmore:
-        return "willmore";
-    case MembraneObjective::Helfrich:
-        return "helfrich";
-    case MembraneObjective::Harmonic:
-        return "harmonic";
-    }
-    return "willmore";
 }
 
 /// The functionals of one surface, under the names of limsurf.shape_functionals in Python.
@@ -110,7 +91,7 @@ nlohmann::json stage_json(const MembraneProblem& problem, const MembraneResult& 
     nlohmann::json out = values_json(result.values, spontaneous_curvature);
     const std::optional<double> volume = problem.volume;
     const std::optional<double> mean = problem.mean_curvature;
-    out["objective"] = objective_name(problem.objective);
+    out["objective"] = to_string(problem.objective);
     out["objective_value"] = result.objective;
     out["targets"] = {
         {"area", problem.area},

@@ -105,13 +105,6 @@ std::optional<std::array<double, 2>> parse_range(const std::string& text) {
     return std::array<double, 2>{lo, hi};
 }
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
 /// The field at the tessellation's points, or empty.
 Eigen::VectorXd tessellation_field(const FieldRequest& request, const LimitTessellation& tessellation,
                                    const ControlMesh& mesh, const std::string& mesh_file) {

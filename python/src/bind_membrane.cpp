@@ -97,8 +97,7 @@ py::dict stage_dict(const MembraneProblem& problem, const MembraneResult& result
     py::dict out = values_dict(result.values, spontaneous_curvature);
     const std::optional<double>& volume = problem.volume;
     const std::optional<double>& mean = problem.mean_curvature;
-    constexpr const char* objectives[] = {"willmore", "helfrich", "harmonic"};
-    out["objective"] = objectives[static_cast<int>(problem.objective)];
+    out["objective"] = to_string(problem.objective);
     out["objective_value"] = result.objective;
     py::dict targets("area"_a = problem.area, "volume"_a = optional_value(volume),
                      "reduced_volume"_a = optional_value(

@@ -29,6 +29,9 @@ enum class MembraneObjective {
     Harmonic   ///< the harmonic energy E of the parameterisation (3.12)
 };
 
+/// "willmore", "helfrich" or "harmonic" (the CLI's and Python's name of the objective).
+[[nodiscard]] const char* to_string(MembraneObjective objective) noexcept;
+
 /// The problem: an objective and hard constraints.
 struct MembraneProblem {
     MembraneObjective objective = MembraneObjective::Willmore;

@@ -579,6 +579,18 @@ double mean_curvature_from_reduced(double reduced, double area) noexcept {
     return reduced * 4.0 * std::numbers::pi * std::sqrt(area / (4.0 * std::numbers::pi));
 }
 
+const char* to_string(MembraneObjective objective) noexcept {
+    switch (objective) {
+    case MembraneObjective::Willmore:
+        return "willmore";
+    case MembraneObjective::Helfrich:
+        return "helfrich";
+    case MembraneObjective::Harmonic:
+        return "harmonic";
+    }
+    return "unknown";
+}
+
 bool membrane_solver_available() noexcept {
 #ifdef LIMSURF_HAVE_IPOPT
     return true;
