@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     add_vector_field_command(app, status);
     add_hodge_command(app, status);
     add_membrane_command(app, status);
+    add_tune_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

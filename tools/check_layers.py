@@ -20,7 +20,7 @@ LAYERS = {
     "quadrature": {"core", "mesh", "scheme", "refine", "limit"},
     "volume": {"core", "mesh", "scheme", "refine"},
     "sec": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
-    "analysis": {"core", "mesh", "scheme", "refine", "limit"},
+    "analysis": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
     "fem": {"core", "mesh", "scheme", "refine", "limit", "quadrature"},
     "render": {"core", "mesh", "io", "scheme", "refine", "limit", "quadrature"},
     "membrane": {"core", "mesh", "scheme", "refine", "limit", "quadrature", "volume"},

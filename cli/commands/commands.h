@@ -26,5 +26,6 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status);
 void add_vector_field_command(CLI::App& app, CommandStatus& status);
 void add_hodge_command(CLI::App& app, CommandStatus& status);
 void add_membrane_command(CLI::App& app, CommandStatus& status);
+void add_tune_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

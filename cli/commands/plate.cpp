@@ -1,6 +1,6 @@
 // limsurf plate MESH (--load uniform|sinusoidal|single-wave|FORMULA [--pressure P] | --load-file FILE)
 //   --support simply|clamped [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--json]
-//   [-o deflection.vtk]:
+//   [--tuned none|cup|saddle|auto] [-o deflection.vtk]:
 // Kirchhoff–Love bending of the planar plate bounded by the limit surface of a planar Catmull–Clark
 // control mesh (fem/plate.h). For each level 0..L (the control mesh refined l times: the same
 // plate) it reports the deflection at the centre and at (a/4, b/4) of the bounding box, the largest
@@ -8,7 +8,9 @@
 // errors against the Navier solution (centre, L2 and energy norm). --load-file reads one load value
 // per control vertex, taken as control values of the load: p_h = Σ p_i φ_i, so b = M p with the
 // mass matrix M of the limit basis; at level l the values are carried by the subdivision matrices,
-// p_l = S0 p_{l−1}, so every level sees the same load p_h. Parsing and printing only: the levels
+// p_l = S0 p_{l−1}, so every level sees the same load p_h. --tuned puts IGA-tuned weights at the
+// interior extraordinary vertices of valence >= 5 (iga-tuned-catmull-clark-weights §3.4, §4; auto:
+// two passes per level, R per vertex). Parsing and printing only: the levels
 // and their checks are solve_plate_levels (apps/plate.h).
 #include "limsurf/apps/plate.h"
 
@@ -43,9 +45,46 @@ struct PlateOptions {
     double E = 2e11;
     double nu = 0.3;
     int degree = 6;
+    std::string tuned = "none";
     std::string output;
     bool json = false;
 };
+
+/// A pass's deflections and, where there is one, its comparison with Navier's solution.
+nlohmann::json pass_json(const std::optional<double>& centre, const std::optional<double>& quarter, double largest,
+                         const std::optional<PlateNavierComparison>& navier) {
+    const auto optional_json = [](const std::optional<double>& x) {
+        return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+    };
+    nlohmann::json entry{{"centre_deflection", optional_json(centre)},
+                         {"quarter_deflection", optional_json(quarter)},
+                         {"max_deflection", largest}};
+    if (navier) {
+        entry["navier"] = {{"centre_deflection", navier->centre_deflection},
+                           {"quarter_deflection", navier->quarter_deflection},
+                           {"centre_relative_error", optional_json(navier->centre_relative_error)},
+                           {"quarter_relative_error", optional_json(navier->quarter_relative_error)},
+                           {"l2_relative_error", navier->l2_relative_error},
+                           {"energy_relative_error", navier->energy_relative_error}};
+    }
+    return entry;
+}
+
+/// A tuned vertex: its weights and, for --tuned auto, the decomposition that chose them.
+nlohmann::json tuned_vertex_json(const PlateTunedVertex& v) {
+    nlohmann::json out{{"vertex", v.vertex},
+                       {"valence", v.valence},
+                       {"shape", to_string(v.shape)},
+                       {"lambda", v.weights.lambda},
+                       {"alpha", v.weights.weights.alpha},
+                       {"beta", v.weights.weights.beta},
+                       {"gamma", v.weights.weights.gamma}};
+    if (v.decomposition) {
+        const ShapeDecomposition& d = *v.decomposition;
+        out["decomposition"] = {{"k3", d.k3}, {"k4", d.k4}, {"k5", d.k5}, {"ratio", d.ratio}};
+    }
+    return out;
+}
 
 int run_plate(const PlateOptions& options) {
     if (!options.output.empty()) {
@@ -59,6 +98,7 @@ int run_plate(const PlateOptions& options) {
         study.support = parse_plate_support(options.support);
         study.levels = options.levels;
         study.quadrature = SamplerOptions{options.degree, 6, 0};
+        study.tuning = parse_plate_tuning(options.tuned);
         PlateLoad load;
         load.pressure = options.pressure;
         const bool per_vertex = !options.load_file.empty();
@@ -73,26 +113,26 @@ int run_plate(const PlateOptions& options) {
             load.function = [&](const Points& P) { return evaluate_formula("--load", options.load, P); };
         }
         const PlateStudy result = solve_plate_levels(built.mesh.topology(), built.mesh.positions(), load, study);
-        const auto optional_json = [](const std::optional<double>& x) {
-            return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
-        };
+        print_warnings(result.warnings);
         nlohmann::json levels = nlohmann::json::array();
         for (const PlateLevel& level : result.levels) {
             nlohmann::json entry{{"level", level.level},
                                  {"vertices", level.topology.num_vertices()},
                                  {"faces", level.topology.num_faces()},
-                                 {"centre_deflection", optional_json(level.centre_deflection)},
-                                 {"quarter_deflection", optional_json(level.quarter_deflection)},
-                                 {"max_deflection", level.max_deflection},
                                  {"residual", level.solution.residual}};
-            if (level.navier) {
-                const PlateNavierComparison& navier = *level.navier;
-                entry["navier"] = {{"centre_deflection", navier.centre_deflection},
-                                   {"quarter_deflection", navier.quarter_deflection},
-                                   {"centre_relative_error", optional_json(navier.centre_relative_error)},
-                                   {"quarter_relative_error", optional_json(navier.quarter_relative_error)},
-                                   {"l2_relative_error", navier.l2_relative_error},
-                                   {"energy_relative_error", navier.energy_relative_error}};
+            entry.update(
+                pass_json(level.centre_deflection, level.quarter_deflection, level.max_deflection, level.navier));
+            if (study.tuning != PlateTuning::None) {
+                nlohmann::json vertices = nlohmann::json::array();
+                for (const PlateTunedVertex& v : level.tuned_vertices) {
+                    vertices.push_back(tuned_vertex_json(v));
+                }
+                entry["tuned_vertices"] = vertices;
+            }
+            if (level.first_pass) {
+                const PlatePass& first = *level.first_pass;
+                entry["first_pass"] =
+                    pass_json(first.centre_deflection, first.quarter_deflection, first.max_deflection, first.navier);
             }
             levels.push_back(entry);
         }
@@ -105,6 +145,7 @@ int run_plate(const PlateOptions& options) {
                            {"nu", options.nu},
                            {"thickness", options.thickness},
                            {"bending_rigidity", D},
+                           {"tuned", options.tuned},
                            {"rectangle", {{"x0", box.x0}, {"y0", box.y0}, {"a", box.a}, {"b", box.b}}},
                            {"levels", levels}};
         if (per_vertex) {
@@ -140,6 +181,19 @@ int run_plate(const PlateOptions& options) {
                           << entry["navier"]["energy_relative_error"] << std::setprecision(8);
             }
             std::cout << '\n';
+            if (entry.contains("first_pass") && entry["first_pass"].contains("navier")) {
+                const auto& first = entry["first_pass"]["navier"];
+                std::cout << std::setprecision(3) << "  first (cup) pass vs Navier: L2 " << first["l2_relative_error"]
+                          << ", energy " << first["energy_relative_error"] << std::setprecision(8) << '\n';
+            }
+            for (const auto& v : entry.value("tuned_vertices", nlohmann::json::array())) {
+                std::cout << "  vertex " << v["vertex"] << " (valence " << v["valence"] << "): " << v["shape"]
+                          << " weights, lambda " << v["lambda"];
+                if (v.contains("decomposition")) {
+                    std::cout << ", R = " << v["decomposition"]["ratio"];
+                }
+                std::cout << '\n';
+            }
         }
         return exit_ok;
     });
@@ -170,6 +224,10 @@ void add_plate_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--nu", options->nu, "Poisson's ratio (default 0.3)");
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (1..60, default 6)")
         ->check(CLI::Range(1, 60));
+    cmd->add_option("--tuned", options->tuned,
+                    "Tuned weights at interior extraordinary vertices of valence >= 5: none (default), cup, "
+                    "saddle, or auto (a cup pass, the cup-saddle ratio R per vertex, then a second pass)")
+        ->check(CLI::IsMember({"none", "cup", "saddle", "auto"}));
     cmd->add_option("-o,--output", options->output,
                     "Write the finest control mesh with the field w (.ply, .vtk, .vtu)");
     cmd->add_flag("--json", options->json, "Print JSON");

@@ -2,14 +2,15 @@
 #pragma once
 
 #include "limsurf/analysis/eigen_analysis.h"
+#include "limsurf/analysis/weight_tuning.h"
 #include "limsurf/apps/membrane.h"
 #include "limsurf/apps/poisson.h"
-#include "limsurf/fem/galerkin.h"
-#include "limsurf/fem/plate.h"
-#include "limsurf/fem/shell.h"
 #include "limsurf/core/error.h"
 #include "limsurf/core/types.h"
 #include "limsurf/core/version.h"
+#include "limsurf/fem/galerkin.h"
+#include "limsurf/fem/plate.h"
+#include "limsurf/fem/shell.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/io/gltf.h"
 #include "limsurf/io/mesh_io.h"

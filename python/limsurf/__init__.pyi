@@ -251,7 +251,8 @@ def shell_stiffness(mesh: Mesh, scheme: LimitScheme, *, E: float = 1.0, nu: floa
 def rigid_body_modes(V: Mesh | ArrayLike) -> FloatArray: ...
 def plate(mesh: Mesh, scheme: FemScheme, load: float | PlateLoadName | SurfaceFunction | ArrayLike, *,
           support: PlateSupport = "simply", E: float = 2e11, nu: float = 0.3, thickness: float = 0.1, levels: int = 0,
-          pressure: float | None = None, degree: int = 6, tiles: int = 6) -> dict[str, object]: ...
+          pressure: float | None = None, degree: int = 6, tiles: int = 6,
+          tuned: Literal["none", "cup", "saddle", "auto"] = "none") -> dict[str, object]: ...
 def shell(mesh: Mesh, scheme: FemScheme, *, levels: int = 0, E: float = 1.0, nu: float = 0.3, thickness: float = 0.1,
           gravity: float = 0.0, pressure: float = 0.0, traction: Traction | None = None,
           point_loads: list[tuple[Vector3, Vector3]] = ..., supports: list[tuple[SupportSelection, str]] = ...,
@@ -308,3 +309,87 @@ def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Memb
                       objective_tolerance: float = 1e-7,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
+
+# IGA-tuned Catmull–Clark weights (docs/guide/tune.md, docs/guide/python.md).
+TuningShape = Literal["cup", "saddle"]
+Constraint = Literal["exact", "relaxed", "none"]
+# "lambda" is a keyword: the keys that hold it are declared in the functional syntax.
+_TuningWeightsKeys = TypedDict("_TuningWeightsKeys", {"lambda": float, "alpha": float, "beta": float, "gamma": float,
+                                                      "constraint": Constraint, "lambda3": float, "lambda4": float})
+_TuningCurveLambda = TypedDict("_TuningCurveLambda", {"lambda": FloatArray})
+
+class TuningWeights(_TuningWeightsKeys, total=False):
+    """W: the weights (alpha, beta, gamma) of an extraordinary vertex, the constraint that fixed them and the
+    one-ring eigenvalues (lambda, lambda3, lambda4); 'cup_error' and 'saddle_error' where computed."""
+    cup_error: float
+    saddle_error: float
+
+class TuningCurve(_TuningCurveLambda):
+    """The error curve over λ as columns (increasing λ), one entry per sample."""
+    alpha: FloatArray
+    beta: FloatArray
+    gamma: FloatArray
+    lambda3: FloatArray
+    lambda4: FloatArray
+    cup_error: FloatArray
+    saddle_error: FloatArray
+    constraint: list[Constraint]
+
+class TuningResult(TypedDict):
+    """The dict of `limsurf tune --json` (without 'command' and 'time_seconds'), the curve as columns."""
+    valence: int
+    shape: TuningShape
+    quadrature_points: int
+    tile_levels: int
+    poisson_ratio: float
+    feasible_range: tuple[float, float]
+    search_range: tuple[float, float]
+    protect_other_shape: bool
+    protection_binds: bool
+    tuned: TuningWeights
+    unconstrained: TuningWeights
+    classical: TuningWeights
+    curve: TuningCurve
+
+class ShapeErrors(TypedDict):
+    cup: float
+    saddle: float
+
+class ShapeDecomposition(TypedDict):
+    """The cup–saddle decomposition at one extraordinary vertex (§3.4)."""
+    vertex: int
+    valence: int
+    k3: float
+    k4: float
+    k5: float
+    ratio: float
+    normal: FloatArray
+    cup_dominates: bool
+
+VertexWeights = tuple[float, float, float] | TuningWeights
+TunedWeightsSpec = Literal["cup", "saddle", "catmull-clark"] | str | dict[str, dict[int, VertexWeights]] | None
+
+def feasible_subdominant_range(valence: int) -> tuple[float, float]:
+    """The interval (low, high) of subdominant eigenvalues λ with tuned weights at this valence."""
+def one_ring_spectrum(valence: int, alpha: float | None = None, beta: float = 1.0, gamma: float = 1.0) -> TuningWeights:
+    """The one-ring eigenvalues (lambda, lambda3, lambda4) of the weights; alpha None: Catmull–Clark's."""
+def weights_for_subdominant(valence: int, lambda_: float) -> list[TuningWeights]:
+    """The weights (one or two candidates, exact ones first) whose subdominant eigenvalue is lambda_."""
+def quadratic_shape_errors(valence: int, alpha: float | None = None, beta: float = 1.0, gamma: float = 1.0, *,
+                           quadrature: int = 4, tile_levels: int = 10, poisson_ratio: float = 0.3) -> ShapeErrors:
+    """The relative energy-norm errors (32) of the cup and the saddle with these weights."""
+def tune_weights(valence: int, shape: TuningShape = "cup", *, quadrature: int = 4, tile_levels: int = 10,
+                 poisson_ratio: float = 0.3, lambda_range: tuple[float, float] | None = None, samples: int = 61,
+                 protect: bool = True) -> TuningResult:
+    """The search in λ of `limsurf tune --json` (the curve as numpy columns)."""
+def tuned_vertex_weights(valence: int, shape: TuningShape = "cup", *, quadrature: int = 4, tile_levels: int = 10,
+                         poisson_ratio: float = 0.3) -> TuningWeights:
+    """The tuned weights for the shape, λ rounded to three decimals as Table 1 prints it, with both errors."""
+@overload
+def decompose_shapes(mesh: Mesh, P: ArrayLike | None = None, *, weights: TunedWeightsSpec = None,
+                     min_valence: int = 5, poisson_ratio: float = 0.3) -> list[ShapeDecomposition]:
+    """The local cup–saddle decomposition of P at every extraordinary vertex of valence >= min_valence."""
+@overload
+def decompose_shapes(V: ArrayLike, F: ArrayLike | list[ArrayLike], P: ArrayLike | None = None, *,
+                     weights: TunedWeightsSpec = None, min_valence: int = 5,
+                     poisson_ratio: float = 0.3) -> list[ShapeDecomposition]: ...

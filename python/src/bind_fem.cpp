@@ -101,19 +101,47 @@ PlateLoad plate_load(const py::handle& load, const std::optional<double>& pressu
     return out;
 }
 
-py::dict plate_level_dict(const PlateLevel& level) {
-    py::dict entry("level"_a = level.level, "vertices"_a = level.topology.num_vertices(),
-                   "faces"_a = level.topology.num_faces(), "centre_deflection"_a = optional_float(level.centre_deflection),
-                   "quarter_deflection"_a = optional_float(level.quarter_deflection),
-                   "max_deflection"_a = level.max_deflection, "residual"_a = level.solution.residual);
-    if (level.navier) {
-        const PlateNavierComparison& n = *level.navier;
-        entry["navier"] = py::dict("centre_deflection"_a = n.centre_deflection,
-                                   "quarter_deflection"_a = n.quarter_deflection,
-                                   "centre_relative_error"_a = optional_float(n.centre_relative_error),
-                                   "quarter_relative_error"_a = optional_float(n.quarter_relative_error),
-                                   "l2_relative_error"_a = n.l2_relative_error,
-                                   "energy_relative_error"_a = n.energy_relative_error);
+/// A pass's deflections and Navier errors under the CLI's keys.
+py::dict plate_pass_dict(const std::optional<double>& centre, const std::optional<double>& quarter, double largest,
+                         const std::optional<PlateNavierComparison>& navier) {
+    py::dict entry("centre_deflection"_a = optional_float(centre), "quarter_deflection"_a = optional_float(quarter),
+                   "max_deflection"_a = largest);
+    if (navier) {
+        const PlateNavierComparison& n = *navier;
+        entry["navier"] =
+            py::dict("centre_deflection"_a = n.centre_deflection, "quarter_deflection"_a = n.quarter_deflection,
+                     "centre_relative_error"_a = optional_float(n.centre_relative_error),
+                     "quarter_relative_error"_a = optional_float(n.quarter_relative_error),
+                     "l2_relative_error"_a = n.l2_relative_error, "energy_relative_error"_a = n.energy_relative_error);
+    }
+    return entry;
+}
+
+py::dict plate_level_dict(const PlateLevel& level, bool tuned) {
+    py::dict entry =
+        plate_pass_dict(level.centre_deflection, level.quarter_deflection, level.max_deflection, level.navier);
+    entry["level"] = level.level;
+    entry["vertices"] = level.topology.num_vertices();
+    entry["faces"] = level.topology.num_faces();
+    entry["residual"] = level.solution.residual;
+    if (tuned) {
+        py::list vertices;
+        for (const PlateTunedVertex& v : level.tuned_vertices) {
+            py::dict d("vertex"_a = v.vertex, "valence"_a = v.valence, "shape"_a = to_string(v.shape),
+                       "lambda"_a = v.weights.lambda, "alpha"_a = v.weights.weights.alpha,
+                       "beta"_a = v.weights.weights.beta, "gamma"_a = v.weights.weights.gamma);
+            if (v.decomposition) {
+                const ShapeDecomposition& k = *v.decomposition;
+                d["decomposition"] = py::dict("k3"_a = k.k3, "k4"_a = k.k4, "k5"_a = k.k5, "ratio"_a = k.ratio);
+            }
+            vertices.append(d);
+        }
+        entry["tuned_vertices"] = vertices;
+    }
+    if (level.first_pass) {
+        const PlatePass& first = *level.first_pass;
+        entry["first_pass"] =
+            plate_pass_dict(first.centre_deflection, first.quarter_deflection, first.max_deflection, first.navier);
     }
     entry["w"] = to_numpy(level.solution.w);
     if (level.load_values.size() > 0) {
@@ -124,8 +152,8 @@ py::dict plate_level_dict(const PlateLevel& level) {
 }
 
 py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& load, const std::string& support,
-               double E, double nu, double thickness, int levels, std::optional<double> pressure, int degree,
-               int tiles) {
+               double E, double nu, double thickness, int levels, std::optional<double> pressure, int degree, int tiles,
+               const std::string& tuned) {
     return naming_source(mesh, [&] {
         PlateStudyOptions options;
         options.material = PlateMaterial{E, nu, thickness};
@@ -133,6 +161,7 @@ py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& lo
         options.scheme = fem_scheme(scheme, "plate");
         options.levels = levels;
         options.quadrature = SamplerOptions{degree, tiles, 0};
+        options.tuning = parse_plate_tuning(tuned);
         const PlateLoad spec = plate_load(load, pressure, mesh.mesh.num_vertices());
         PlateStudy r;
         {
@@ -142,13 +171,13 @@ py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& lo
         const bool named = spec.shape != PlateLoadShape::Function && spec.shape != PlateLoadShape::Values;
         py::list rows;
         for (const PlateLevel& level : r.levels) {
-            rows.append(plate_level_dict(level));
+            rows.append(plate_level_dict(level, options.tuning != PlateTuning::None));
         }
         const PlateRectangle& box = r.rectangle;
         py::dict out("load"_a = to_string(spec.shape),
                      "pressure"_a = named ? py::object(py::float_(spec.pressure)) : py::object(py::none()),
                      "support"_a = support, "E"_a = E, "nu"_a = nu, "thickness"_a = thickness,
-                     "bending_rigidity"_a = r.bending_rigidity,
+                     "bending_rigidity"_a = r.bending_rigidity, "tuned"_a = tuned, "warnings"_a = r.warnings,
                      "rectangle"_a = py::dict("x0"_a = box.x0, "y0"_a = box.y0, "a"_a = box.a, "b"_a = box.b),
                      "levels"_a = rows);
         if (r.navier_load && !r.rectangle_plate) {
@@ -164,7 +193,8 @@ py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& lo
 // ---- shell ----
 
 std::array<bool, 3> components_from(const py::handle& letters, const std::string& name) {
-    LIMSURF_CHECK(py::isinstance<py::str>(letters), InputError, name, ": the components are a string of letters "
+    LIMSURF_CHECK(py::isinstance<py::str>(letters), InputError, name,
+                  ": the components are a string of letters "
                   "among x, y, z, e.g. 'xz'");
     const std::string text = letters.cast<std::string>();
     std::array<bool, 3> out{false, false, false};
@@ -247,8 +277,8 @@ std::vector<ShellPointLoad> point_loads_from(const py::handle& loads) {
         LIMSURF_CHECK(py::isinstance<py::sequence>(item) && py::len(item) == 2, InputError, name,
                       ": expected a pair ((x, y, z), (fx, fy, fz))");
         const auto pair = py::reinterpret_borrow<py::sequence>(item);
-        out.push_back(ShellPointLoad{vector3_from(pair[0], name + " position"),
-                                     vector3_from(pair[1], name + " force")});
+        out.push_back(
+            ShellPointLoad{vector3_from(pair[0], name + " position"), vector3_from(pair[1], name + " force")});
     }
     return out;
 }
@@ -277,11 +307,10 @@ py::dict shell_level_dict(const ShellLevel& l, SchemeKind scheme) {
         limits = shell_vertex_limits(l, scheme);
     }
     return py::dict("level"_a = l.level, "vertices"_a = l.topology.num_vertices(), "faces"_a = l.topology.num_faces(),
-                    "unknowns"_a = l.solution.u.size(), "area"_a = l.area,
-                    "strain_energy"_a = 0.5 * l.solution.energy, "residual"_a = l.solution.residual,
-                    "rigid_motions_removed"_a = l.solution.free_rigid_motions, "probes"_a = probes,
-                    "u"_a = to_numpy(l.solution.displacements()), "mesh"_a = mesh_object(l.topology, l.X),
-                    "limit_positions"_a = to_numpy(limits.positions),
+                    "unknowns"_a = l.solution.u.size(), "area"_a = l.area, "strain_energy"_a = 0.5 * l.solution.energy,
+                    "residual"_a = l.solution.residual, "rigid_motions_removed"_a = l.solution.free_rigid_motions,
+                    "probes"_a = probes, "u"_a = to_numpy(l.solution.displacements()),
+                    "mesh"_a = mesh_object(l.topology, l.X), "limit_positions"_a = to_numpy(limits.positions),
                     "limit_displacements"_a = to_numpy(limits.displacements));
 }
 
@@ -350,9 +379,9 @@ void bind_fem(py::module_& m) {
         "laplace_beltrami",
         [](const Mesh& mesh, const std::string& scheme, int degree, int tiles, std::optional<std::string> boundary,
            std::optional<std::string> creasing, std::optional<std::string> triangles) {
-            const GalerkinMatrices g =
-                with_quadrature(mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
-                                [&](const LimitSampler& s) { return assemble_laplace_beltrami(s, mesh.mesh.positions()); });
+            const GalerkinMatrices g = with_quadrature(
+                mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
+                [&](const LimitSampler& s) { return assemble_laplace_beltrami(s, mesh.mesh.positions()); });
             return py::dict("mass"_a = to_scipy(g.mass), "stiffness"_a = to_scipy(g.stiffness));
         },
         "mesh"_a, "scheme"_a, py::kw_only(), "degree"_a = 8, "tiles"_a = 6, "boundary"_a = py::none(),
@@ -369,9 +398,9 @@ Raises NumericalError at a degenerate quadrature point (parallel tangents), nami
            std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
             const SurfaceFunction function = surface_function(f, "f");
-            const Eigen::VectorXd b =
-                with_quadrature(mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
-                                [&](const LimitSampler& s) { return galerkin_load(s, mesh.mesh.positions(), function); });
+            const Eigen::VectorXd b = with_quadrature(
+                mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
+                [&](const LimitSampler& s) { return galerkin_load(s, mesh.mesh.positions(), function); });
             return to_numpy(b);
         },
         "mesh"_a, "scheme"_a, "f"_a, py::kw_only(), "degree"_a = 8, "tiles"_a = 6, "boundary"_a = py::none(),
@@ -386,10 +415,9 @@ by f propagates as itself.)");
            std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
             const PlateMaterial material{E, nu, thickness};
-            return to_scipy(with_quadrature(mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
-                                            [&](const LimitSampler& s) {
-                                                return assemble_plate_bending(s, mesh.mesh.positions(), material);
-                                            }));
+            return to_scipy(with_quadrature(
+                mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
+                [&](const LimitSampler& s) { return assemble_plate_bending(s, mesh.mesh.positions(), material); }));
         },
         "mesh"_a, "scheme"_a, py::kw_only(), "E"_a = 2e11, "nu"_a = 0.3, "thickness"_a = 0.1, "degree"_a = 6,
         "tiles"_a = 6, "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
@@ -400,16 +428,15 @@ solves with them). Raises InputError for E ≤ 0, t ≤ 0, ν outside (−1, 0.5
 z = 0; NumericalError at a degenerate quadrature point.)");
     m.def(
         "shell_stiffness",
-        [](const Mesh& mesh, const std::string& scheme, double E, double nu, double thickness,
-           const std::string& terms, int degree, int tiles, std::optional<std::string> boundary,
-           std::optional<std::string> creasing, std::optional<std::string> triangles) {
+        [](const Mesh& mesh, const std::string& scheme, double E, double nu, double thickness, const std::string& terms,
+           int degree, int tiles, std::optional<std::string> boundary, std::optional<std::string> creasing,
+           std::optional<std::string> triangles) {
             const ShellMaterial material{E, nu, thickness};
             const ShellTerms which = shell_terms(terms);
-            return to_scipy(with_quadrature(mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles,
-                                            [&](const LimitSampler& s) {
-                                                return assemble_shell_stiffness(s, mesh.mesh.positions(), material,
-                                                                                which);
-                                            }));
+            return to_scipy(with_quadrature(
+                mesh, scheme, RuleNames{boundary, creasing, triangles}, degree, tiles, [&](const LimitSampler& s) {
+                    return assemble_shell_stiffness(s, mesh.mesh.positions(), material, which);
+                }));
         },
         "mesh"_a, "scheme"_a, py::kw_only(), "E"_a = 1.0, "nu"_a = 0.3, "thickness"_a = 0.1,
         "terms"_a = "membrane-and-bending", "degree"_a = 6, "tiles"_a = 4, "boundary"_a = py::none(),
@@ -432,11 +459,13 @@ scaled by the points' extent. The limit surface moves rigidly with them: shell_s
     m.def(
         "plate",
         [](const Mesh& mesh, const std::string& scheme, const py::handle& load, const std::string& support, double E,
-           double nu, double thickness, int levels, std::optional<double> pressure, int degree, int tiles) {
-            return plate(mesh, scheme, load, support, E, nu, thickness, levels, pressure, degree, tiles);
+           double nu, double thickness, int levels, std::optional<double> pressure, int degree, int tiles,
+           const std::string& tuned) {
+            return plate(mesh, scheme, load, support, E, nu, thickness, levels, pressure, degree, tiles, tuned);
         },
         "mesh"_a, "scheme"_a, "load"_a, py::kw_only(), "support"_a = "simply", "E"_a = 2e11, "nu"_a = 0.3,
         "thickness"_a = 0.1, "levels"_a = 0, "pressure"_a = py::none(), "degree"_a = 6, "tiles"_a = 6,
+        "tuned"_a = "none",
         R"(Kirchhoff–Love bending of the plate bounded by the limit surface of a planar (z = 0) control mesh,
 on the mesh and on it refined 1..levels times (0..6): `limsurf plate --json`'s numbers under the same
 keys (units: those of E, t and the load, e.g. Pa, m, N/m² give a deflection in m).
@@ -446,7 +475,10 @@ load: a number p (uniform); 'uniform', 'sinusoidal' (p sin(2πx/a) sin(2πy/b) o
 1e4); a function of position (an (n, 3) array in, n values out; evaluated at the quadrature points);
 or #V values, the load's control values (p_h = Σ p_i φ_i, carried to refined levels by S0; the CLI's
 --load-file). support: 'simply' (w = 0 on the boundary) or 'clamped' (also the next row of control
-values). scheme: 'catmull-clark' (the CLI's) or 'loop', with the default rules.
+values). scheme: 'catmull-clark' (the CLI's) or 'loop', with the default rules. tuned: 'none', 'cup',
+'saddle' or 'auto' (Catmull–Clark only): IGA-tuned weights at the interior extraordinary vertices of
+valence >= 5, as `limsurf plate --tuned` (levels then carry 'tuned_vertices' and, for 'auto',
+'first_pass'; 'warnings' lists what the CLI prints on stderr).
 
 Returns 'load' ('uniform', 'sinusoidal', 'single-wave', 'function' or 'values'), 'pressure' (None
 for a function or values), 'support', 'E', 'nu', 'thickness', 'bending_rigidity', 'rectangle',
@@ -466,10 +498,10 @@ non-planar mesh, a material out of range; an exception raised by the load functi
             return shell(mesh, scheme, levels, E, nu, thickness, gravity, pressure, traction, point_loads, supports,
                          probes, interpolate, surface, degree, tiles);
         },
-        "mesh"_a, "scheme"_a, py::kw_only(), "levels"_a = 0, "E"_a = 1.0, "nu"_a = 0.3,
-        "thickness"_a = 0.1, "gravity"_a = 0.0, "pressure"_a = 0.0, "traction"_a = py::none(),
-        "point_loads"_a = py::list(), "supports"_a = py::list(), "probes"_a = py::list(), "interpolate"_a = false,
-        "surface"_a = py::none(), "degree"_a = 6, "tiles"_a = 4,
+        "mesh"_a, "scheme"_a, py::kw_only(), "levels"_a = 0, "E"_a = 1.0, "nu"_a = 0.3, "thickness"_a = 0.1,
+        "gravity"_a = 0.0, "pressure"_a = 0.0, "traction"_a = py::none(), "point_loads"_a = py::list(),
+        "supports"_a = py::list(), "probes"_a = py::list(), "interpolate"_a = false, "surface"_a = py::none(),
+        "degree"_a = 6, "tiles"_a = 4,
         R"(Linear Kirchhoff–Love thin shell (membrane and bending) on the limit surface of a Catmull–Clark or
 Loop control mesh, on the mesh and on it refined 1..levels times: `limsurf shell --json`'s numbers
 under the same keys (consistent units).

@@ -8,6 +8,10 @@
 #include "common.h"
 #include "limsurf/core/version.h"
 
+namespace limsurf::python {
+void bind_tuning(py::module_& m);  // bind_tuning.cpp (declared here: common.h lists the layers up to membrane)
+}  // namespace limsurf::python
+
 PYBIND11_MODULE(_limsurf, m) {
     namespace py = pybind11;
     m.doc() = "limsurf: exact computation on subdivision surfaces (compiled core).";
@@ -25,4 +29,5 @@ PYBIND11_MODULE(_limsurf, m) {
     limsurf::python::bind_vector_field(m);
     limsurf::python::bind_hodge(m);
     limsurf::python::bind_membrane(m);
+    limsurf::python::bind_tuning(m);
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -169,6 +170,47 @@ TEST(CliPlate, BadLoadFilesAreRefused) {
     EXPECT_EQ(run.exit_code, 2);
     run = limsurf({"plate", square_plate(), "--pressure", "5", "--load-file", short_file.string()});
     EXPECT_EQ(run.exit_code, 2);
+}
+
+// --tuned (iga-tuned-catmull-clark-weights §4): cup and saddle put Table 1's weights at the four
+// valence-5 vertices of plate_ev35 (valence 3 keeps Catmull–Clark's); auto reports the cup pass,
+// R per vertex, and follows R; the plate stays its bounding square (the Navier comparison holds).
+TEST(CliPlate, TunedWeightsAtTheValenceFiveVertices) {
+    const std::string mesh = (test::mesh_dir() / "plate_ev35.obj").string();
+    for (const auto& [shape, alpha, beta] :
+         {std::tuple{"cup", 13.4575, 0.999938}, std::tuple{"saddle", 13.9851, 0.824885}}) {
+        const CliRun run = limsurf({"plate", mesh, "--tuned", shape, "--json"});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        const auto out = nlohmann::json::parse(run.out);
+        const auto& vertices = out.at("levels").at(0).at("tuned_vertices");
+        ASSERT_EQ(vertices.size(), 4u);
+        for (const auto& v : vertices) {
+            EXPECT_EQ(v.at("valence"), 5);
+            EXPECT_EQ(v.at("shape"), shape);
+            EXPECT_NEAR(v.at("alpha").get<double>(), alpha, 5e-5);
+            EXPECT_NEAR(v.at("beta").get<double>(), beta, 1e-6);
+        }
+        EXPECT_TRUE(out.at("levels").at(0).contains("navier"));
+    }
+    const CliRun run = limsurf({"plate", mesh, "--load", "sinusoidal", "--tuned", "auto", "--levels", "1", "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto out = nlohmann::json::parse(run.out);
+    for (const auto& level : out.at("levels")) {
+        EXPECT_TRUE(level.at("first_pass").contains("navier"));
+        for (const auto& v : level.at("tuned_vertices")) {
+            const double R = v.at("decomposition").at("ratio").get<double>();
+            EXPECT_GT(R, 0.0);
+            EXPECT_EQ(v.at("shape"), R >= 1.0 ? "cup" : "saddle");
+        }
+    }
+}
+
+TEST(CliPlate, TuningWithoutExtraordinaryVerticesWarns) {
+    const CliRun run = limsurf({"plate", square_plate(), "--tuned", "auto", "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("warning:"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("valence 5"), std::string::npos) << run.err;
+    EXPECT_EQ(limsurf({"plate", square_plate(), "--tuned", "bowl"}).exit_code, 2);
 }
 
 }  // namespace

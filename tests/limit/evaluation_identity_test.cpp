@@ -14,6 +14,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/refine/refine.h"
 #include "limsurf/scheme/tuned_weights.h"
 #include "support/mesh_zoo.h"
 
@@ -328,6 +329,65 @@ TEST(LimitTunedWeights, PerVertexEqualsPerValenceAndActsLocally) {
         }
     }
     EXPECT_GT(changed, 1e-6 * m.scale);
+}
+
+// With own β, γ ≠ 1 a tuned vertex changes the edge and face points around it, so the patches
+// whose support holds it (its two rings of faces) are not plain B-splines: the limit function of
+// control values is the same whether evaluated on the control mesh or on the mesh refined once or
+// twice with the same weights (values carried by S0), everywhere near the vertex.
+TEST(LimitTunedWeights, OwnEdgeAndFaceWeightsAreRefinementInvariant) {
+    const Loaded m = load("quad_valence_5");
+    TunedWeights w;
+    Index tuned = invalid_index;
+    for (Index v = 0; v < m.topology.num_vertices(); ++v) {
+        if (!m.topology.is_boundary_vertex(v) && m.topology.valence(v) == 5) {
+            w.set_vertex(v, {13.9851, 0.6, 0.8});  // β ≠ γ, far from Catmull–Clark's (15, 1, 1)
+            tuned = v;
+        }
+    }
+    ASSERT_NE(tuned, invalid_index);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    Points P = m.X;
+    for (Index i = 0; i < P.rows(); ++i) {
+        P.row(i) += 0.1 * m.scale * Eigen::RowVector3d(unit(rng), unit(rng), unit(rng));
+    }
+    const Level one = refine(m.topology, SchemeKind::CatmullClark, m.options, w);
+    const Points P1 = one.S0 * P;
+    const LimitBasis coarse(m.topology, SchemeKind::CatmullClark, m.options, w);
+    const LimitBasis fine(one.topology, SchemeKind::CatmullClark, m.options, w);
+    // Child face of parent quad f at corner k: quad_split numbering (level.h provenance); its ptex
+    // (u, v) maps to the parent's by the corner's half-square.
+    double largest = 0.0;
+    for (Index c = 0; c < one.topology.num_faces(); ++c) {
+        const Index f = one.provenance.face_parent[static_cast<std::size_t>(c)];
+        const Index k = one.provenance.face_parent_corner[static_cast<std::size_t>(c)];
+        if (m.topology.face_degree(f) != 4) {
+            continue;
+        }
+        for (const auto& uv : sample_domain(true, rng, 3)) {
+            // The child's value at its own (u, v); the parent's at the same limit point, found by
+            // matching positions over the parent's corner quadrant (both are the same surface).
+            const auto x = fine.evaluate(P1, {fine.first_ptex_face(c), uv.x(), uv.y()}, DerivativeOrder::Value);
+            double best = 1e300;
+            for (int rot = 0; rot < 8; ++rot) {
+                Eigen::Vector2d q = uv;
+                if (rot & 4) {
+                    std::swap(q.x(), q.y());
+                }
+                for (int r = 0; r < (rot & 3); ++r) {
+                    q = Eigen::Vector2d(1.0 - q.y(), q.x());
+                }
+                static const Eigen::Vector2d corner[4] = {{0, 0}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+                const Eigen::Vector2d parent = corner[k] + 0.5 * q;
+                const auto y =
+                    coarse.evaluate(P, {coarse.first_ptex_face(f), parent.x(), parent.y()}, DerivativeOrder::Value);
+                best = std::min(best, (x.row(0) - y.row(0)).norm());
+            }
+            largest = std::max(largest, best);
+        }
+    }
+    EXPECT_LT(largest, 1e-11 * m.scale);
 }
 
 TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {

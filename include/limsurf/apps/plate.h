@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "limsurf/analysis/weight_tuning.h"
 #include "limsurf/core/types.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/fem/plate.h"
@@ -48,6 +49,22 @@ struct PlateLoad {
     Eigen::VectorXd values;    ///< Values: one per control vertex of the control mesh
 };
 
+/// Tuned Catmull–Clark weights in the analysis (iga-tuned-catmull-clark-weights §3.4, §4) at every
+/// interior extraordinary vertex of valence ≥ 5 (valence 3 keeps Catmull–Clark's: the paper does not
+/// tune it, its rings shrink faster than the others' and the gain is negligible).
+enum class PlateTuning {
+    None,    ///< Catmull–Clark's own weights
+    Cup,     ///< tuned_vertex_weights(valence, Cup) at every such vertex
+    Saddle,  ///< tuned_vertex_weights(valence, Saddle)
+    /// Two passes per level: cup weights; the decomposition (38) of that solution at each vertex; then
+    /// cup weights where R ≥ 1 and saddle weights where R < 1 (§3.4).
+    Auto
+};
+/// "none", "cup", "saddle", "auto".
+[[nodiscard]] const char* to_string(PlateTuning tuning) noexcept;
+/// @throws InputError naming the accepted names
+[[nodiscard]] PlateTuning parse_plate_tuning(const std::string& name);
+
 struct PlateStudyOptions {
     PlateMaterial material;
     /// SimplySupported or Clamped (ClampedNitsche is refused: the per-vertex load has no penalty).
@@ -55,6 +72,8 @@ struct PlateStudyOptions {
     SchemeKind scheme = SchemeKind::CatmullClark;  ///< of the basis and the refinement (default rules)
     int levels = 0;                                ///< also solve on the control mesh refined 1..levels times (0..6)
     SamplerOptions quadrature{6, 6, 0};            ///< degree per tile, tile levels
+    PlateTuning tuning = PlateTuning::None;        ///< Catmull–Clark only
+    TuningOptions tuning_options;                  ///< how tuned_vertex_weights() integrates
 };
 
 /// The bounding rectangle [x0, x0 + a] × [y0, y0 + b] of the control points.
@@ -75,17 +94,43 @@ struct PlateNavierComparison {
     double energy_relative_error = 0.0;
 };
 
+/// One solve on one level: the deflection and its checks.
+struct PlatePass {
+    PlateSolution solution;
+    std::optional<double> centre_deflection;
+    std::optional<double> quarter_deflection;
+    double max_deflection = 0.0;
+    std::optional<PlateNavierComparison> navier;
+};
+
+/// The weights of one tuned vertex at one level.
+struct PlateTunedVertex {
+    Index vertex = invalid_index;  ///< control-mesh index (refinement keeps it)
+    int valence = 0;
+    QuadraticShape shape = QuadraticShape::Cup;
+    TunedVertex weights;
+    /// PlateTuning::Auto: the decomposition of the first (cup) pass at this level. At level 0 it is
+    /// read one level finer and scaled back, k_j / λ_j (⟨l_j, S p⟩ = λ_j ⟨l_j, p⟩): the control mesh's
+    /// one-rings may hold two tuned vertices, which the closed form does not cover.
+    std::optional<ShapeDecomposition> decomposition;
+};
+
 /// One level of solve_plate_levels.
 struct PlateLevel {
     int level = 0;
     Topology topology;
-    Points X;                      ///< control points (S0 applied `level` times)
-    Eigen::VectorXd load_values;   ///< PlateLoadShape::Values: the load's control values here; else empty
-    PlateSolution solution;        ///< w: #V control values of the deflection
+    Points X;                                  ///< control points (S0 applied `level` times)
+    Eigen::VectorXd load_values;               ///< PlateLoadShape::Values: the load's control values here; else empty
+    PlateSolution solution;                    ///< w: #V control values of the deflection
     std::optional<double> centre_deflection;   ///< at the centre of the rectangle; empty off the plate
     std::optional<double> quarter_deflection;  ///< at (x0 + a/4, y0 + b/4); empty off the plate
     double max_deflection = 0.0;               ///< max |w_h| over the quadrature points
     std::optional<PlateNavierComparison> navier;
+    /// The tuned vertices and their weights (empty for PlateTuning::None).
+    std::vector<PlateTunedVertex> tuned_vertices;
+    /// PlateTuning::Auto: the first pass, with cup weights at every tuned vertex (the fields above
+    /// are the second pass's).
+    std::optional<PlatePass> first_pass;
 };
 
 struct PlateStudy {
@@ -98,13 +143,17 @@ struct PlateStudy {
     /// is a b within 1e-6 relative.
     bool rectangle_plate = false;
     std::vector<PlateLevel> levels;
+    /// What the caller should tell the user (a tuning with no vertex to tune, ...).
+    std::vector<std::string> warnings;
 };
 
 /// @brief Solves the plate on the planar control mesh (@p topology, @p X, z = 0) refined
 ///   0..options.levels times (solve_plate on each) and measures each level's deflection.
+///   With a tuning, each tuned vertex's weights act on every level (tuned_weights.h); a mesh with no
+///   interior extraordinary vertex of valence ≥ 5 is solved with Catmull–Clark's weights and a warning.
 /// @throws InputError for levels outside 0..6, a ClampedNitsche support, load values of the wrong
-///   size, a Function load without a function; otherwise as solve_plate (closed or non-planar mesh,
-///   material out of range, a load that fails or is not finite)
+///   size, a Function load without a function, a tuning with a scheme other than Catmull–Clark; otherwise as
+///   solve_plate (closed or non-planar mesh, material out of range, a load that fails or is not finite)
 [[nodiscard]] PlateStudy solve_plate_levels(const Topology& topology, const Points& X, const PlateLoad& load,
                                             const PlateStudyOptions& options);
 

@@ -11,11 +11,12 @@
 #include "limsurf/core/error.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/refine/refine.h"
-#include "local_complex.h"
+#include "local_subdivision.h"
 
 namespace limsurf {
 namespace {
 
+using detail::Neighbourhood;
 using Complex = std::complex<double>;
 
 std::size_t at(Index i) {
@@ -59,16 +60,6 @@ void check_request(const EigenRequest& r) {
     LIMSURF_CHECK(s != SchemeKind::C2g0 || r.valence == 3 || r.valence == 6, InputError,
                   "eigen-analysis: C2g0 has valences 3 and 6 only, got ", r.valence);
 }
-
-/// The neighbourhood and its numbering: `order` lists local-complex vertices in sector-major
-/// order, `sector` gives each one's sector, `orbits`/`fixed` describe the rotation.
-struct Neighbourhood {
-    std::vector<Index> order;
-    std::vector<int> sector;
-    Index fixed = 0;   ///< how many leading entries the rotation fixes
-    Index orbits = 0;  ///< entries per sector after them
-    int sectors = 1;   ///< 1 without rotational symmetry
-};
 
 /// Orders the vertices within @p rings face rings of the centre: with a rotation, the fixed
 /// vertices, then each orbit's representative for sector 0, their images for sector 1, ...
@@ -130,57 +121,12 @@ Complex phase(Index j, int k, int n) {
     return std::polar(1.0, 2.0 * std::numbers::pi * static_cast<double>((j * k) % n) / static_cast<double>(n));
 }
 
-/// @brief The Fourier block B_k = E_kᴴ S E_k of frequency k, where E_k's columns are the fixed
-///   vertices (k = 0 only) and, per orbit m, Σ_j e^{2πijk/n} e_{sector j, m} / √n. S is block
-///   circulant in sector-major order, so B_k(m, m') = Σ_d S(sector 0 m, sector d m') e^{2πidk/n}:
-///   O(n·M²) per block, not the O(N²·M) of the products.
-Eigen::MatrixXcd fourier_block(const Eigen::MatrixXd& S, const Neighbourhood& n, int k) {
-    const Index F = k == 0 ? n.fixed : 0;
-    const Index M = n.orbits;
-    const double root = std::sqrt(static_cast<double>(n.sectors));
-    const auto index = [&](Index j, Index m) { return n.fixed + j * M + m; };
-    Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(F + M, F + M);
-    for (Index f = 0; f < F; ++f) {
-        for (Index g = 0; g < F; ++g) {
-            B(f, g) = S(f, g);
-        }
-        for (Index m = 0; m < M; ++m) {
-            double row = 0.0;
-            for (Index j = 0; j < n.sectors; ++j) {
-                row += S(f, index(j, m));
-            }
-            B(f, F + m) = row / root;
-            B(F + m, f) = root * S(index(0, m), f);
-        }
-    }
-    for (Index d = 0; d < n.sectors; ++d) {
-        const Complex w = phase(d, k, n.sectors);
-        for (Index m = 0; m < M; ++m) {
-            for (Index mm = 0; mm < M; ++mm) {
-                B(F + m, F + mm) += S(index(0, m), index(d, mm)) * w;
-            }
-        }
-    }
-    return B;
-}
-
 /// Maps block coordinates back to the neighbourhood (E_k y, or y itself without symmetry).
 struct BlockBasis {
     const Neighbourhood* n = nullptr;  ///< null: the identity
     int frequency = 0;
     [[nodiscard]] Eigen::VectorXcd expand(const Eigen::VectorXcd& y) const {
-        if (n == nullptr) {
-            return y;
-        }
-        const Index F = frequency == 0 ? n->fixed : 0;
-        Eigen::VectorXcd x = Eigen::VectorXcd::Zero(static_cast<Index>(n->order.size()));
-        x.head(F) = y.head(F);
-        const double root = std::sqrt(static_cast<double>(n->sectors));
-        for (Index j = 0; j < n->sectors; ++j) {
-            x.segment(n->fixed + j * n->orbits, n->orbits) =
-                y.tail(n->orbits) * (phase(j, frequency, n->sectors) / root);
-        }
-        return x;
+        return n == nullptr ? y : detail::fourier_expand(*n, frequency, y);
     }
 };
 
@@ -546,20 +492,52 @@ SchemeSpectrum analyse_scheme(const EigenRequest& request) {
     SchemeSpectrum out;
     out.request = request;
     out.rings = request.rings > 0 ? request.rings : default_rings(request.scheme);
-    const int rings = out.rings;
-    const detail::LocalComplex complex =
-        detail::make_local_complex(request.scheme, request.valence, request.boundary, rings);
-    const Topology& t = complex.topology;
-    TunedWeights weights;
-    if (request.weights) {
-        weights.set_vertex(complex.centre[0], *request.weights);
+    const detail::LocalSubdivision local = detail::local_subdivision(request, out.rings);
+    const Neighbourhood& n = local.neighbourhood;
+    const int sectors = n.sectors;
+    out.S = local.S;
+    out.sector = n.sector;
+
+    if (sectors > 1) {
+        out.symmetry_residual = symmetry_residual(out.S, n);
+        LIMSURF_CHECK(out.symmetry_residual <= 1e-12, NumericalError,
+                      "eigen-analysis: S does not commute with the rotation (residual ", out.symmetry_residual, ")");
+        for (int k = 0; k < sectors; ++k) {
+            analyse_block(fourier_block(out.S, n, k), BlockBasis{&n, k}, k, out.eigenvalues);
+        }
+    } else {
+        analyse_block(out.S.cast<Complex>(), BlockBasis{}, -1, out.eigenvalues);
     }
-    const std::vector<int> ring = detail::face_rings(t, complex.centre, rings);
+    // By decreasing modulus (equal to 1e-9 counts as equal), then frequency.
+    const auto key = [](const EigenvalueEntry& e) {
+        return std::make_pair(-std::llround(std::abs(e.value) * 1e9), e.frequency);
+    };
+    std::stable_sort(out.eigenvalues.begin(), out.eigenvalues.end(),
+                     [&](const EigenvalueEntry& a, const EigenvalueEntry& b) { return key(a) < key(b); });
+    rank_moduli(out);
+    out.characteristic_map = characteristic_map(request, local.complex, n, out, local.weights);
+    judge(out, sectors);
+    return out;
+}
+
+namespace detail {
+
+LocalSubdivision local_subdivision(const EigenRequest& request, int rings) {
+    LocalSubdivision out;
+    out.rings = rings;
+    out.complex = make_local_complex(request.scheme, request.valence, request.boundary, rings);
+    const LocalComplex& complex = out.complex;
+    const Topology& t = complex.topology;
+    if (request.weights) {
+        out.weights.set_vertex(complex.centre[0], *request.weights);
+    }
+    out.ring = face_rings(t, complex.centre, rings);
+    const std::vector<int>& ring = out.ring;
     const auto size = std::count_if(ring.begin(), ring.end(), [](int r) { return r >= 0; });
     LIMSURF_CHECK(size <= max_neighbourhood, InputError, "eigen-analysis: ", rings, " rings at valence ",
                   request.valence, " hold ", size, " vertices, more than the ", max_neighbourhood,
                   " the dense analysis takes: use fewer rings");
-    const Level level = refine(t, request.scheme, request.options, weights);
+    const Level level = refine(t, request.scheme, request.options, out.weights);
     // Every vertex of the neighbourhood has its whole one-ring in the complex (it has a ring more).
     const auto inside = [&](Index v) { return ring[at(v)] >= 0 && ring[at(v)] <= rings; };
 
@@ -588,7 +566,7 @@ SchemeSpectrum analyse_scheme(const EigenRequest& request) {
     }
     LIMSURF_CHECK(to_anchor != invalid_index, NumericalError, "eigen-analysis: no refined spoke found");
     const std::vector<Index> image =
-        detail::extend_correspondence(t, level.topology, from_vertex, to_vertex, from_anchor, to_anchor, inside);
+        extend_correspondence(t, level.topology, from_vertex, to_vertex, from_anchor, to_anchor, inside);
 
     std::vector<Index> rotation;
     const int sectors = request.boundary ? 1 : request.valence;
@@ -597,32 +575,70 @@ SchemeSpectrum analyse_scheme(const EigenRequest& request) {
                                       ? t.other_vertex(t.vertex_edges(from_vertex)[1], from_vertex)
                                       : complex.centre[2 % complex.centre.size()];
         const Index rotated_vertex = complex.centre_face == invalid_index ? from_vertex : complex.centre[1];
-        rotation = detail::extend_correspondence(t, t, from_vertex, rotated_vertex, from_anchor, next_anchor, inside);
+        rotation = extend_correspondence(t, t, from_vertex, rotated_vertex, from_anchor, next_anchor, inside);
     }
-    const Neighbourhood n = order_neighbourhood(complex, ring, rings, rotation, sectors);
-    out.S = local_matrix(level, n, image, t.num_vertices(), rings);
-    out.sector = n.sector;
-
-    if (sectors > 1) {
-        out.symmetry_residual = symmetry_residual(out.S, n);
-        LIMSURF_CHECK(out.symmetry_residual <= 1e-12, NumericalError,
-                      "eigen-analysis: S does not commute with the rotation (residual ", out.symmetry_residual, ")");
-        for (int k = 0; k < sectors; ++k) {
-            analyse_block(fourier_block(out.S, n, k), BlockBasis{&n, k}, k, out.eigenvalues);
-        }
-    } else {
-        analyse_block(out.S.cast<Complex>(), BlockBasis{}, -1, out.eigenvalues);
-    }
-    // By decreasing modulus (equal to 1e-9 counts as equal), then frequency.
-    const auto key = [](const EigenvalueEntry& e) {
-        return std::make_pair(-std::llround(std::abs(e.value) * 1e9), e.frequency);
-    };
-    std::stable_sort(out.eigenvalues.begin(), out.eigenvalues.end(),
-                     [&](const EigenvalueEntry& a, const EigenvalueEntry& b) { return key(a) < key(b); });
-    rank_moduli(out);
-    out.characteristic_map = characteristic_map(request, complex, n, out, weights);
-    judge(out, sectors);
+    out.neighbourhood = order_neighbourhood(complex, ring, rings, rotation, sectors);
+    out.S = local_matrix(level, out.neighbourhood, image, t.num_vertices(), rings);
     return out;
 }
+
+/// @brief The Fourier block B_k = E_kᴴ S E_k of frequency k, where E_k's columns are the fixed
+///   vertices (k = 0 only) and, per orbit m, Σ_j e^{2πijk/n} e_{sector j, m} / √n. S is block
+///   circulant in sector-major order, so B_k(m, m') = Σ_d S(sector 0 m, sector d m') e^{2πidk/n}:
+///   O(n·M²) per block, not the O(N²·M) of the products.
+Eigen::MatrixXcd fourier_block(const Eigen::MatrixXd& S, const Neighbourhood& n, int k) {
+    const Index F = k == 0 ? n.fixed : 0;
+    const Index M = n.orbits;
+    const double root = std::sqrt(static_cast<double>(n.sectors));
+    const auto index = [&](Index j, Index m) { return n.fixed + j * M + m; };
+    Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(F + M, F + M);
+    for (Index f = 0; f < F; ++f) {
+        for (Index g = 0; g < F; ++g) {
+            B(f, g) = S(f, g);
+        }
+        for (Index m = 0; m < M; ++m) {
+            double row = 0.0;
+            for (Index j = 0; j < n.sectors; ++j) {
+                row += S(f, index(j, m));
+            }
+            B(f, F + m) = row / root;
+            B(F + m, f) = root * S(index(0, m), f);
+        }
+    }
+    for (Index d = 0; d < n.sectors; ++d) {
+        const Complex w = phase(d, k, n.sectors);
+        for (Index m = 0; m < M; ++m) {
+            for (Index mm = 0; mm < M; ++mm) {
+                B(F + m, F + mm) += S(index(0, m), index(d, mm)) * w;
+            }
+        }
+    }
+    return B;
+}
+
+Eigen::VectorXcd fourier_expand(const Neighbourhood& n, int k, const Eigen::VectorXcd& y) {
+    const Index F = k == 0 ? n.fixed : 0;
+    Eigen::VectorXcd x = Eigen::VectorXcd::Zero(static_cast<Index>(n.order.size()));
+    x.head(F) = y.head(F);
+    const double root = std::sqrt(static_cast<double>(n.sectors));
+    for (Index j = 0; j < n.sectors; ++j) {
+        x.segment(n.fixed + j * n.orbits, n.orbits) = y.tail(n.orbits) * (phase(j, k, n.sectors) / root);
+    }
+    return x;
+}
+
+Eigen::VectorXcd fourier_coefficients(const Neighbourhood& n, int k, const Eigen::VectorXd& x) {
+    const Index F = k == 0 ? n.fixed : 0;
+    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(F + n.orbits);
+    y.head(F) = x.head(F).cast<Complex>();
+    const double root = std::sqrt(static_cast<double>(n.sectors));
+    for (Index j = 0; j < n.sectors; ++j) {
+        y.tail(n.orbits) +=
+            x.segment(n.fixed + j * n.orbits, n.orbits).cast<Complex>() * (std::conj(phase(j, k, n.sectors)) / root);
+    }
+    return y;
+}
+
+}  // namespace detail
 
 }  // namespace limsurf

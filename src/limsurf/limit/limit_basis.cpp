@@ -25,6 +25,7 @@
 #include "c2g0_limit.h"
 #include "doo_sabin_limit.h"
 #include "limsurf/core/error.h"
+#include "limsurf/detail/tuned_copy.h"
 #include "limsurf/limit/patch_basis.h"
 #include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/refine.h"
@@ -213,6 +214,22 @@ struct LimitBasis::Impl {
                     : detail::loop_regular_patch(t, f, options.boundary, out);
     }
 
+    /// Control vertex c carries own β or γ ≠ 1 where they act (a smooth vertex): the edge and face
+    /// points around it differ from Catmull–Clark's, so no patch whose support holds it is a plain
+    /// B-spline, and a local copy must apply them even where c is the copy's outer vertex.
+    [[nodiscard]] bool wide_weights(Index c) const {
+        if (!per_vertex_weights || c == invalid_index || topology.is_boundary_vertex(c) ||
+            topology.vertex_sharpness(c) != 0.0) {
+            return false;
+        }
+        const VertexRuleWeights w = weights.at(c, static_cast<int>(topology.valence(c)));
+        return w.beta != 1.0 || w.gamma != 1.0;
+    }
+    /// True when none of @p control is wide_weights().
+    [[nodiscard]] bool plain_support(const std::vector<Index>& control) const {
+        return std::none_of(control.begin(), control.end(), [&](Index c) { return wide_weights(c); });
+    }
+
     /// One refinement step of a one-ring copy whose local vertex i copies control vertex control[i].
     [[nodiscard]] Level refine_once(const Topology& t, const std::vector<Index>& control) const;
     /// The canonical signature, with the tuned weights of each local vertex when they vary per vertex.
@@ -266,14 +283,23 @@ Level LimitBasis::Impl::refine_once(const Topology& t, const std::vector<Index>&
     }
     // Per-vertex weights name control vertices: restate them for the local numbering.
     TunedWeights local;
+    std::vector<bool> forced(at(t.num_vertices()), false);
     for (Index v = 0; v < t.num_vertices(); ++v) {
         const int valence = t.valence(v);
+        const Index c = control[at(v)];
         if (valence >= 3) {
             local.set_valence(valence, weights.at(invalid_index, valence));
-            if (control[at(v)] != invalid_index) {
-                local.set_vertex(v, weights.at(control[at(v)], valence));
+            if (c != invalid_index) {
+                local.set_vertex(v, weights.at(c, valence));
             }
         }
+        if (quad && c != invalid_index && t.is_boundary_vertex(v) && wide_weights(c)) {
+            forced[at(v)] = true;  // an outer vertex of the copy, smooth in the mesh
+            local.set_vertex(v, weights.at(c, static_cast<int>(topology.valence(c))));
+        }
+    }
+    if (quad) {
+        return detail::refine_catmull_clark_forced(t, options, local, forced);
     }
     return refine(t, scheme, options, local);
 }
@@ -287,7 +313,7 @@ std::string LimitBasis::Impl::signature(const detail::PatchArrays& arrays, const
         for (const Index c : control) {
             const VertexRuleWeights w = weights.at(c, 0);
             const bool own = w.alpha != none.alpha || w.beta != none.beta || w.gamma != none.gamma;
-            const double values[3] = {own ? w.alpha : -1.0, w.beta, w.gamma};
+            const double values[4] = {own ? w.alpha : -1.0, w.beta, w.gamma, wide_weights(c) ? 1.0 : 0.0};
             bytes.append(reinterpret_cast<const char*>(values), sizeof values);
         }
     }
@@ -325,7 +351,13 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
     }
     if (pf.corner < 0) {
         detail::RegularPatch patch;
-        if (regular_patch(topology, f, patch)) {
+        bool plain = regular_patch(topology, f, patch);
+        for (int i = 0; plain && i < patch.size; ++i) {
+            for (int k = 0; k < patch.points[at(i)].size; ++k) {
+                plain = plain && !wide_weights(patch.points[at(i)].vertex[at(k)]);
+            }
+        }
+        if (plain) {
             // A template-free node read straight off the control mesh (regular patches with
             // phantom points; those without are the flat fast patches of find_fast_patches).
             auto node = std::make_unique<Node>();
@@ -380,7 +412,7 @@ const Template* LimitBasis::Impl::shape_of(detail::PatchArrays arrays, const std
     shape->control = control;
     shape->mesh = detail::make_patch_mesh(std::move(arrays));
     detail::RegularPatch patch;
-    if (regular_patch(shape->mesh.topology, 0, patch)) {
+    if (regular_patch(shape->mesh.topology, 0, patch) && plain_support(control)) {
         shape->kind = Template::Kind::Regular;
         shape->G = patch_matrix(patch, shape->num_local);
         shape->patch_frame = rotation(quad, patch.rotation);
@@ -587,7 +619,8 @@ void LimitBasis::Impl::find_fast_patches() {
         entry.rotation = patch.rotation;
         bool plain = true;
         for (int i = 0; i < patch.size && plain; ++i) {
-            plain = patch.points[at(i)].size == 1 && patch.points[at(i)].weight[0] == 1.0;
+            plain = patch.points[at(i)].size == 1 && patch.points[at(i)].weight[0] == 1.0 &&
+                    !wide_weights(patch.points[at(i)].vertex[0]);
             entry.points[at(i)] = patch.points[at(i)].vertex[0];
         }
         if (plain) {  // all corners smooth and interior: never a boundary face
@@ -653,7 +686,19 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
     m.scheme = scheme;
     m.options = options;
     m.weights = weights;
-    m.per_vertex_weights = weights.largest_vertex() != invalid_index;
+    if (scheme == SchemeKind::CatmullClark && !weights.is_catmull_clark()) {
+        // Own β, γ reach beyond a vertex's faces (wide_weights): name every tuned vertex so that
+        // local copies know which of their vertices carry them.
+        for (Index v = 0; v < topology.num_vertices(); ++v) {
+            const int n = static_cast<int>(topology.valence(v));
+            const VertexRuleWeights w = weights.at(v, n);
+            const VertexRuleWeights own = catmull_clark_weights(n);
+            if (n >= 3 && (w.alpha != own.alpha || w.beta != own.beta || w.gamma != own.gamma)) {
+                m.weights.set_vertex(v, w);
+            }
+        }
+    }
+    m.per_vertex_weights = m.weights.largest_vertex() != invalid_index;
     for (Index v = 0; m.per_vertex_weights && v <= std::min(weights.largest_vertex(), topology.num_vertices() - 1);
          ++v) {
         const VertexRuleWeights own = weights.at(v, 4);

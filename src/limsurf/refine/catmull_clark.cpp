@@ -7,6 +7,7 @@
 
 #include "limsurf/core/magnitude.h"
 #include "limsurf/detail/refine_face_split.h"
+#include "limsurf/detail/tuned_copy.h"
 #include "limsurf/refine/refine.h"
 #include "limsurf/scheme/tuned_weights.h"
 
@@ -68,7 +69,8 @@ Eigen::Vector3d scale_free(const Eigen::Vector3d& w) {
 /// β and γ of every vertex whose rule is the smooth one (Smooth, Dart, or the smooth part of a
 /// semi-sharp blend) and whose weights are tuned; (1, 1) elsewhere. Empty for Catmull–Clark's own.
 OwnEdgeFaceWeights own_edge_face_weights(const Topology& parent, const detail::EffectiveSharpness& effective,
-                                         CreasingMethod creasing, const TunedWeights& weights) {
+                                         CreasingMethod creasing, const TunedWeights& weights,
+                                         const std::vector<bool>& forced) {
     OwnEdgeFaceWeights own;
     if (weights.is_catmull_clark()) {
         return own;
@@ -86,6 +88,10 @@ OwnEdgeFaceWeights own_edge_face_weights(const Topology& parent, const detail::E
             any = any || w.beta != 1.0 || w.gamma != 1.0;
         };
         detail::vertex_mask(parent, effective, creasing, v, record, mask, work);
+        if (!forced.empty() && forced[at(v)]) {  // smooth in the mesh this copy came from
+            detail::VertexMask unused;
+            record(v, unused);
+        }
     }
     if (!any) {
         own = {};
@@ -96,6 +102,11 @@ OwnEdgeFaceWeights own_edge_face_weights(const Topology& parent, const detail::E
 }  // namespace
 
 Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options, const TunedWeights& weights) {
+    return detail::refine_catmull_clark_forced(parent, options, weights, {});
+}
+
+Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOptions& options,
+                                          const TunedWeights& weights, const std::vector<bool>& forced) {
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
@@ -108,7 +119,7 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
     // extraordinary vertex's own weights in its vertex rule, in the edge rule of its edges and in the
     // face rule of its faces; neighbours, other corners and new face points weigh 1; each rule is
     // normalised to sum to 1. Catmull–Clark's own: α = n(n−2), β = γ = 1.
-    const OwnEdgeFaceWeights own = own_edge_face_weights(parent, effective, options.creasing, weights);
+    const OwnEdgeFaceWeights own = own_edge_face_weights(parent, effective, options.creasing, weights, forced);
 
     // Vertex points: (α v + Σ neighbours + Σ new face points) / (α + 2n).
     const auto smooth = [&](Index v, detail::VertexMask& mask) {

@@ -3,7 +3,8 @@
 
 For each input (the committed corpus in tests/data/malformed and tests/cli/adversarial/corpus,
 plus inputs generated here: huge faces and valences, scaled and flattened meshes, byte-order
-marks, CR line endings, special files) and each command, a run must:
+marks, CR line endings, special files) and each command, and for the commands that read no mesh
+(tune) once each with bad options, a run must:
   - end within its time bound (no hang), with exit code 0, 1 or 2 (never 3, never a signal);
   - on failure, print exactly one "error: " line on stderr (as its last line), at most
     max_warning_lines warnings, and leave no output file and no temporary file;
@@ -183,6 +184,52 @@ def commands(mesh, out_dir, is_huge):
     ]
 
 
+def standalone(out_dir):
+    """(label, argv, output files it may write) for the commands that read no mesh, run once each:
+    tune's refusals (valence 4, out-of-range valences and lambdas, malformed ranges, too few samples,
+    options out of range, an unwritable curve) and two quick runs that succeed."""
+    def o(name):
+        return os.path.join(out_dir, name)
+    tune = ["tune", "--valence"]
+    return [
+        ("tune valence 4", tune + ["4"], []),
+        ("tune valence 4 at lambda", tune + ["4", "--lambda", "0.55"], []),
+        ("tune valence 2", tune + ["2"], []),
+        ("tune valence -1", tune + ["-1"], []),
+        ("tune valence 129", tune + ["129", "--lambda", "0.6"], []),
+        ("tune valence 2^31", tune + ["2147483648"], []),
+        ("tune valence text", tune + ["five"], []),
+        ("tune lambda above", tune + ["5", "--lambda", "0.9"], []),
+        ("tune lambda below", tune + ["5", "--lambda", "0.1"], []),
+        ("tune lambda nan", tune + ["5", "--lambda", "nan"], []),
+        ("tune lambda inf", tune + ["5", "--lambda", "inf"], []),
+        ("tune lambda 1e400", tune + ["5", "--lambda", "1e400"], []),
+        ("tune range reversed", tune + ["5", "--lambda-range", "0.6,0.5"], []),
+        ("tune range empty", tune + ["5", "--lambda-range", "0.5,0.5"], []),
+        ("tune range one value", tune + ["5", "--lambda-range", "0.5"], []),
+        ("tune range three values", tune + ["5", "--lambda-range", "0.4,0.5,0.6"], []),
+        ("tune range nan", tune + ["5", "--lambda-range", "nan,0.6"], []),
+        ("tune range outside", tune + ["5", "--lambda-range", "0.1,0.6"], []),
+        ("tune samples 2", tune + ["5", "--samples", "2", "--curve", o("t.csv")], [o("t.csv")]),
+        ("tune samples huge", tune + ["5", "--samples", "1000000000"], []),
+        ("tune quadrature 0", tune + ["5", "--quadrature", "0"], []),
+        ("tune quadrature 11", tune + ["5", "--lambda", "0.55", "--quadrature", "11"], []),
+        ("tune tile levels -1", tune + ["5", "--tile-levels", "-1"], []),
+        ("tune tile levels 21", tune + ["5", "--lambda", "0.55", "--tile-levels", "21"], []),
+        ("tune poisson nan", tune + ["5", "--lambda", "0.55", "--poisson-ratio", "nan"], []),
+        ("tune poisson -1", tune + ["5", "--lambda", "0.55", "--poisson-ratio", "-1"], []),
+        ("tune shape", tune + ["5", "--shape", "bowl"], []),
+        ("tune lambda with search options", tune + ["5", "--lambda", "0.55", "--samples", "5"], []),
+        ("tune curve into a directory", tune + ["5", "--samples", "3", "--quadrature", "1", "--tile-levels", "2",
+                                                "--curve", out_dir], []),
+        ("tune curve in a missing folder", tune + ["5", "--samples", "3", "--quadrature", "1", "--tile-levels", "2",
+                                                   "--curve", o("missing/t.csv")], []),
+        ("tune at lambda", tune + ["7", "--lambda", "0.6", "--json"], []),
+        ("tune search and curve", tune + ["3", "--shape", "saddle", "--samples", "5", "--quadrature", "2",
+                                          "--tile-levels", "4", "--curve", o("t.csv"), "--json"], [o("t.csv")]),
+    ]
+
+
 # ---------------------------------------------------------------------------- checks
 
 def check(limsurf, name, label, argv, outputs, out_dir, is_huge):
@@ -261,6 +308,8 @@ def main():
     for index, (name, (path, is_huge)) in enumerate(sorted(inputs.items())):
         for label, argv, outputs in commands(path, "@OUT@", is_huge):
             jobs.append((name, label, argv, outputs, is_huge, index))
+    for label, argv, outputs in standalone("@OUT@"):
+        jobs.append(("no input", label, argv, outputs, False, len(inputs)))
 
     local = threading.local()  # one output folder per worker thread
 
