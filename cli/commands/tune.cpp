@@ -193,8 +193,8 @@ nlohmann::json at_lambda(const TuneOptions& options) {
     const TuningOptions o = tuning_options(options);
     const LambdaRange feasible = feasible_subdominant_range(options.valence);
     nlohmann::json candidates = nlohmann::json::array();
-    for (const TunedVertex& v : weights_for_subdominant(options.valence, options.lambda)) {
-        candidates.push_back(weights_json(v, quadratic_shape_errors(options.valence, v.weights, o)));
+    for (const TuningSample& c : candidates_at(options.valence, options.lambda, o)) {
+        candidates.push_back(weights_json(c.vertex, c.errors));
     }
     const TunedVertex classical = one_ring_spectrum(options.valence, catmull_clark_weights(options.valence));
     nlohmann::json out = common_json(options, feasible);
@@ -215,17 +215,14 @@ nlohmann::json search(const TuneOptions& options) {
     }
     request.curve_samples = options.samples;
     request.protect_other_shape = !options.no_protect;
-    const LambdaRange feasible = feasible_subdominant_range(options.valence);
     const TuningResult r = tune_weights(request);
     nlohmann::json curve = nlohmann::json::array();
     for (const TuningSample& s : r.curve) {
         curve.push_back(weights_json(s.vertex, s.errors));
     }
-    const bool whole = request.lambda_low == 0.0 && request.lambda_high == 0.0;
-    nlohmann::json out = common_json(options, feasible);
+    nlohmann::json out = common_json(options, r.feasible);
     out["shape"] = to_string(request.shape);
-    out["search_range"] =
-        whole ? range_json(feasible.low, feasible.high) : range_json(request.lambda_low, request.lambda_high);
+    out["search_range"] = range_json(r.searched.low, r.searched.high);
     out["protect_other_shape"] = request.protect_other_shape;
     out["protection_binds"] = r.protection_binds;
     out["tuned"] = weights_json(r.tuned, r.tuned_errors);

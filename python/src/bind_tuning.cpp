@@ -93,16 +93,13 @@ py::dict tune(int valence, const std::string& shape, const TuningOptions& option
     }
     request.curve_samples = samples;
     request.protect_other_shape = protect;
-    LambdaRange feasible;
     TuningResult result;
     {
         const py::gil_scoped_release release;
         result = tune_weights(request);
-        feasible = feasible_subdominant_range(valence);
     }
-    const bool whole = request.lambda_low == 0.0 && request.lambda_high == 0.0;
-    const std::pair<double, double> search =
-        whole ? std::pair(feasible.low, feasible.high) : std::pair(request.lambda_low, request.lambda_high);
+    const LambdaRange& feasible = result.feasible;
+    const std::pair<double, double> search(result.searched.low, result.searched.high);
     return py::dict(
         "valence"_a = valence, "shape"_a = to_string(request.shape), "quadrature_points"_a = options.quadrature_points,
         "tile_levels"_a = options.tile_levels, "poisson_ratio"_a = options.poisson_ratio,

@@ -90,5 +90,6 @@ void bind_geodesics(py::module_& m);
 void bind_vector_field(py::module_& m);
 void bind_hodge(py::module_& m);
 void bind_membrane(py::module_& m);
+void bind_tuning(py::module_& m);
 
 }  // namespace limsurf::python

@@ -8,10 +8,6 @@
 #include "common.h"
 #include "limsurf/core/version.h"
 
-namespace limsurf::python {
-void bind_tuning(py::module_& m);  // bind_tuning.cpp (declared here: common.h lists the layers up to membrane)
-}  // namespace limsurf::python
-
 PYBIND11_MODULE(_limsurf, m) {
     namespace py = pybind11;
     m.doc() = "limsurf: exact computation on subdivision surfaces (compiled core).";

@@ -126,6 +126,8 @@ struct TuningRequest {
 
 struct TuningResult {
     TuningRequest request;
+    LambdaRange feasible;      ///< feasible_subdominant_range(valence)
+    LambdaRange searched;      ///< the interval the grid covered
     TunedVertex tuned;         ///< the minimiser of the requested shape's error (under the protection)
     ShapeErrors tuned_errors;  ///< both shapes' errors with the tuned weights
     /// The minimiser of the shape's error alone (equal to `tuned` when the protection does not bind).
@@ -144,6 +146,10 @@ struct TuningResult {
 /// @throws InputError as feasible_subdominant_range, a range outside the feasible one, fewer than 3
 ///   samples; as quadratic_shape_errors
 [[nodiscard]] TuningResult tune_weights(const TuningRequest& request);
+
+/// @brief weights_for_subdominant() with both errors of each candidate (quadratic_shape_errors).
+/// @throws as weights_for_subdominant and quadratic_shape_errors
+[[nodiscard]] std::vector<TuningSample> candidates_at(int valence, double lambda, const TuningOptions& options = {});
 
 /// @brief The weights a user gets for @p shape at @p valence: tune_weights() with the protection,
 ///   its λ rounded to three decimals as Table 1 prints it, and weights_for_subdominant() there (the

@@ -537,6 +537,8 @@ TuningResult tune_weights(const TuningRequest& request) {
                       high <= feasible.high,
                   InputError, "weight tuning: the lambda interval [", low, ", ", high,
                   "] is not inside the feasible range [", feasible.low, ", ", feasible.high, "] at valence ", n);
+    out.feasible = feasible;
+    out.searched = {low, high};
     LIMSURF_CHECK(request.curve_samples >= 3 && request.curve_samples <= 10000, InputError,
                   "weight tuning: the curve needs 3..10000 samples, got ", request.curve_samples);
     LIMSURF_CHECK(request.lambda_tolerance > 0.0, InputError, "weight tuning: the lambda tolerance must be > 0");
@@ -638,6 +640,14 @@ TuningResult tune_weights(const TuningRequest& request) {
     return out;
 }
 
+std::vector<TuningSample> candidates_at(int valence, double lambda, const TuningOptions& options) {
+    std::vector<TuningSample> out;
+    for (const TunedVertex& v : weights_for_subdominant(valence, lambda)) {
+        out.push_back({v, quadratic_shape_errors(valence, v.weights, options)});
+    }
+    return out;
+}
+
 TunedVertex tuned_vertex_weights(int valence, QuadraticShape shape, const TuningOptions& options) {
     TuningRequest request;
     request.valence = valence;
@@ -645,15 +655,13 @@ TunedVertex tuned_vertex_weights(int valence, QuadraticShape shape, const Tuning
     request.options = options;
     const TuningResult result = tune_weights(request);
     const double lambda = std::round(result.tuned.lambda * 1000.0) / 1000.0;
-    std::optional<TuningSample> best;
-    for (const TunedVertex& v : weights_for_subdominant(valence, lambda)) {
-        const ShapeErrors e = quadratic_shape_errors(valence, v.weights, options);
-        const double error = shape == QuadraticShape::Cup ? e.cup : e.saddle;
-        if (!best || error < (shape == QuadraticShape::Cup ? best->errors.cup : best->errors.saddle)) {
-            best = TuningSample{v, e};
-        }
-    }
-    return best->vertex;
+    const auto error = [&](const TuningSample& s) {
+        return shape == QuadraticShape::Cup ? s.errors.cup : s.errors.saddle;
+    };
+    const std::vector<TuningSample> candidates = candidates_at(valence, lambda, options);
+    return std::min_element(candidates.begin(), candidates.end(),
+                            [&](const TuningSample& a, const TuningSample& b) { return error(a) < error(b); })
+        ->vertex;
 }
 
 std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const Points& P, const TunedWeights& weights,
