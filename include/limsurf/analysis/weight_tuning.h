@@ -172,6 +172,9 @@ struct ShapeDecomposition {
     [[nodiscard]] bool cup_dominates() const noexcept { return ratio >= 1.0; }
 };
 
+/// R of (38): k₃² / (k₄² + k₅²) · (1 + μ)/(1 − μ); +inf when k₄ = k₅ = 0.
+[[nodiscard]] double cup_saddle_ratio(double k3, double k4, double k5, double poisson_ratio);
+
 /// @brief Decomposes the control points @p P (#V × 3; for a plate, (x, y, w)) at every interior
 ///   vertex of valence ≥ @p min_valence whose faces are all quads, with that vertex's weights in
 ///   @p weights: ⟨l_j, P n⟩ / ⟨l_j, u_j(r₁, r₂)⟩ for the one-ring's left eigenvectors l_j (the

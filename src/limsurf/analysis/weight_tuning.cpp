@@ -664,6 +664,12 @@ TunedVertex tuned_vertex_weights(int valence, QuadraticShape shape, const Tuning
         ->vertex;
 }
 
+double cup_saddle_ratio(double k3, double k4, double k5, double poisson_ratio) {
+    const double saddle = k4 * k4 + k5 * k5;
+    return saddle > 0.0 ? k3 * k3 / saddle * (1.0 + poisson_ratio) / (1.0 - poisson_ratio)
+                        : std::numeric_limits<double>::infinity();
+}
+
 std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const Points& P, const TunedWeights& weights,
                                                  int min_valence, double poisson_ratio) {
     LIMSURF_CHECK(P.rows() == topology.num_vertices() && P.allFinite(), InputError, "shape decomposition: expected ",
@@ -724,17 +730,8 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
             M << a + a * b * coupling(n, k), a * b * (1.0 + std::conj(omega)), b * (1.0 + omega), b;
             return M;
         };
-        const auto left = [](const Eigen::MatrixXcd& M, Complex mu) {
-            // l with lᴴ M = μ lᴴ: the kernel of (M − μ)ᴴ.
-            const Eigen::MatrixXcd K = (M - mu * Eigen::MatrixXcd::Identity(M.rows(), M.cols())).adjoint();
-            const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(K, Eigen::ComputeFullV);
-            return Eigen::VectorXcd(svd.matrixV().col(M.cols() - 1));
-        };
-        const auto right = [](const Eigen::MatrixXcd& M, Complex mu) {
-            const Eigen::MatrixXcd K = M - mu * Eigen::MatrixXcd::Identity(M.rows(), M.cols());
-            const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(K, Eigen::ComputeFullV);
-            return Eigen::VectorXcd(svd.matrixV().col(M.cols() - 1));
-        };
+        // l with lᴴ M = μ lᴴ (μ real): the eigenvector of Mᴴ.
+        const auto left = [](const Eigen::MatrixXcd& M, double mu, int k) { return eigenvector(M.adjoint(), mu, k); };
         // Fourier coefficient of one-ring data g at frequency k: Σ_j g_j ω^{−jk} / n (per ring part).
         const auto coefficients = [&](const std::vector<Complex>& edge_values, const std::vector<Complex>& face_values,
                                       int k) {
@@ -748,7 +745,7 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
         };
         // Characteristic map on the one-ring: z_e, z_f (frequency 1), the first spoke on +ξ₁.
         const Eigen::Matrix2cd B1 = block(1);
-        Eigen::Vector2cd r1 = right(B1, s.lambda);
+        Eigen::Vector2cd r1 = eigenvector(B1, s.lambda, 1);
         r1 /= r1(0);
         std::vector<Complex> ze(at(n)), zf(at(n));
         for (int j = 0; j < n; ++j) {
@@ -757,7 +754,7 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
             zf[at(j)] = r1(1) * phase;
         }
         // Tangents ⟨l₁, P⟩, ⟨l₂, P⟩ through the complex coefficient at frequency 1, and the normal (34).
-        const Eigen::Vector2cd l1 = left(B1, s.lambda);
+        const Eigen::Vector2cd l1 = left(B1, s.lambda, 1);
         const auto project1 = [&](int column) {
             std::vector<Complex> ev(at(n)), fvv(at(n));
             for (int j = 0; j < n; ++j) {
@@ -800,7 +797,7 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
         const double gc = P.row(v).dot(normal);
         // Cup: frequency 0 on (c, ē, f̄), the left eigenvector of λ₃.
         const Eigen::Matrix3cd B0 = block_zero(n, w).cast<Complex>();
-        const Eigen::VectorXcd l3 = left(B0, s.lambda3);
+        const Eigen::VectorXcd l3 = left(B0, s.lambda3, 0);
         const auto cup_coefficient = [&](Complex centre, const std::vector<Complex>& ev,
                                          const std::vector<Complex>& fvv) {
             const Eigen::Vector2cd c = coefficients(ev, fvv, 0);
@@ -815,15 +812,13 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
         // (docs/tuning.md); g's saddle part is Re(κ z²) = Re κ u₄ − Im κ u₅.
         const int k = saddle_frequency(n);
         const Eigen::Matrix2cd B2 = block(k);
-        const Eigen::Vector2cd l4 = left(B2, s.lambda4);
+        const Eigen::Vector2cd l4 = left(B2, s.lambda4, k);
         const Complex alpha_g = l4.dot(coefficients(ge, gf, k));
         const Complex alpha_z = l4.dot(coefficients(z2e, z2f, k));
         const Complex kappa = (2 * k == n ? 1.0 : 2.0) * alpha_g / alpha_z;
         d.k4 = kappa.real();
         d.k5 = -kappa.imag();
-        const double saddle = d.k4 * d.k4 + d.k5 * d.k5;
-        d.ratio = saddle > 0.0 ? d.k3 * d.k3 / saddle * (1.0 + poisson_ratio) / (1.0 - poisson_ratio)
-                               : std::numeric_limits<double>::infinity();
+        d.ratio = cup_saddle_ratio(d.k3, d.k4, d.k5, poisson_ratio);
         out.push_back(d);
     }
     return out;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <numbers>
 #include <utility>
@@ -283,20 +282,18 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
     const auto decompose = [&](const Refined& mesh, const Eigen::VectorXd& w, const TunedWeights& weights, int level) {
         Points P = mesh.X;
         P.col(2) = w;
+        const double nu = material.nu;  // μ of (38): the plate's own
         if (level > 0) {
-            return decompose_shapes(mesh.t, P, weights);
+            return decompose_shapes(mesh.t, P, weights, 5, nu);
         }
         const Level finer = refine(mesh.t, options.scheme, SchemeOptions{}, weights);
-        auto d = decompose_shapes(finer.topology, Points(finer.S0 * P), weights);
+        auto d = decompose_shapes(finer.topology, Points(finer.S0 * P), weights, 5, nu);
         for (ShapeDecomposition& e : d) {  // back to level 0: k_j / λ_j
             const TunedVertex s = one_ring_spectrum(e.valence, weights.at(e.vertex, e.valence));
             e.k3 /= s.lambda3;
             e.k4 /= s.lambda4;
             e.k5 /= s.lambda4;
-            const double saddle = e.k4 * e.k4 + e.k5 * e.k5;
-            const double nu = options.tuning_options.poisson_ratio;
-            e.ratio =
-                saddle > 0.0 ? e.k3 * e.k3 / saddle * (1.0 + nu) / (1.0 - nu) : std::numeric_limits<double>::infinity();
+            e.ratio = cup_saddle_ratio(e.k3, e.k4, e.k5, nu);
         }
         return d;
     };
