@@ -106,6 +106,11 @@ class Mesh:
         self.required_valences = tuple(required_valences)
         # OpenSubdiv subdivision tags ("t crease 2/1/0 0 1 10.0"), 0-based, written after the faces.
         self.tags = []
+        # Material group name per face (written as `usemtl NAME` before each run), or None.
+        self.face_groups = None
+        # Periodic unit-square meshes: boundary only on the sides of [0 1]^2, opposite sides with the
+        # same node coordinates, each square corner a corner of one face, every face convex.
+        self.periodic_square = False
 
 
 class Builder:
@@ -475,6 +480,173 @@ def make_plate_asym():
                 b.verts, b.faces, 0, 1, 1, "plus_z", (3, 5, 6))
 
 
+# --------------------------------------------------------------------------
+# Periodic unit squares for plane elasticity (docs/io.md "Face groups")
+# --------------------------------------------------------------------------
+
+def split_polygons(points, polygons):
+    """Catmull-Clark topology of a planar partition: each polygon becomes one quad per corner
+    (corner, edge midpoint, centroid, edge midpoint). Returns (Builder, parent polygon per quad)."""
+    b = Builder()
+    for name, (x, y) in points.items():
+        b.vertex(("V", name), (x, y, 0.0))
+
+    def midpoint(u, v):
+        (x0, y0), (x1, y1) = points[u], points[v]
+        return b.vertex(("E",) + tuple(sorted((u, v))), ((x0 + x1) / 2, (y0 + y1) / 2, 0.0))
+
+    parent = []
+    for k, poly in enumerate(polygons):
+        n = len(poly)
+        centre = b.vertex(("F", k), (sum(points[v][0] for v in poly) / n, sum(points[v][1] for v in poly) / n, 0.0))
+        for i in range(n):
+            b.face((b.index[("V", poly[i])], midpoint(poly[i], poly[(i + 1) % n]), centre,
+                    midpoint(poly[i - 1], poly[i])))
+            parent.append(k)
+    return b, parent
+
+
+def split_quads_in_four(verts, quads):
+    """Each quad into four (edge midpoints and the centroid): all new vertices regular."""
+    b = Builder()
+    for i, p in enumerate(verts):
+        b.vertex(("V", i), p)
+
+    def mid(u, v):
+        p, q = verts[u], verts[v]
+        return b.vertex(("E", min(u, v), max(u, v)), ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2, 0.0))
+
+    for k, q in enumerate(quads):
+        c = b.vertex(("F", k), tuple(sum(verts[v][j] for v in q) / 4 for j in range(3)))
+        for i in range(4):
+            b.face((b.index[("V", q[i])], mid(q[i], q[(i + 1) % 4]), c, mid(q[i - 1], q[i])))
+    return b.verts, b.faces
+
+
+def make_rve_block():
+    """The seed's block of material with imperfections (Fig. 20, section 6) as a periodic RVE of the
+    unit square: a partition into six polygons (a hexagon, three pentagons, a quad, a triangle) whose
+    side points match across opposite sides, split into quads about the centroids (face points of
+    valence 6, 5, 5, 5, 4, 3; partition corners of valence 3) and then each quad into four. The faces
+    around four vertices are `grain` (the imperfections), the rest `matrix`. The
+    partition's inner corners were placed (a search, rounded to 0.01) for the quads' angles (34 to 146
+    degrees)."""
+    p = {"P0": (0.0, 0.0), "P1": (0.5, 0.0), "P2": (1.0, 0.0), "P3": (1.0, 0.45), "P4": (1.0, 1.0),
+         "P5": (0.5, 1.0), "P6": (0.0, 1.0), "P7": (0.0, 0.45),
+         "A": (0.46, 0.31), "K": (0.53, 0.45), "B": (0.73, 0.54), "C": (0.51, 0.83), "E": (0.28, 0.5)}
+    polygons = [("P7", "P0", "P1", "A", "E"), ("P1", "P2", "P3", "B", "K", "A"), ("P3", "P4", "P5", "C", "B"),
+                ("P5", "P6", "P7", "E", "C"), ("A", "K", "E"), ("K", "B", "C", "E")]
+    coarse, _ = split_polygons(p, polygons)
+    verts, faces = split_quads_in_four(coarse.verts, coarse.faces)
+    # Grains: the faces around four vertices: the face points of the hexagon (valence 6) and of the
+    # bottom-left and top-right pentagons (valence 5), and the partition corner E: 6 + 5 + 5 + 4 faces.
+    def nearest(x, y):
+        return min(range(len(verts)), key=lambda v: (verts[v][0] - x) ** 2 + (verts[v][1] - y) ** 2)
+
+    def centroid(poly):
+        return (sum(p[v][0] for v in poly) / len(poly), sum(p[v][1] for v in poly) / len(poly))
+
+    centres = [nearest(*centroid(polygons[k])) for k in (1, 0, 2)] + [nearest(*p["E"])]
+    groups = ["matrix"] * len(faces)
+    for c in centres:
+        for k, f in enumerate(faces):
+            if c in f:
+                if groups[k] == "grain":
+                    raise MeshError("rve_block: grains overlap")
+                groups[k] = "grain"
+    mesh = Mesh("rve_block", "periodic unit square (plane elasticity RVE; the seed's block with imperfections): "
+                "six polygons split into quads and each quad into four; interior valences 3 and 5 and 6; side "
+                "nodes match across opposite sides; each square corner in one face; usemtl matrix and grain",
+                verts, faces, 0, 1, 1, "plus_z", (3, 5, 6))
+    mesh.face_groups = groups
+    mesh.periodic_square = True
+    return mesh
+
+
+def make_square_inclusion():
+    """The unit square with a centred circular inclusion (limit radius 0.25): a frame of grid cells
+    (lines 0, 0.08, 0.16 and 0.84, 0.92, 1) around an O-grid: 6 cells per side of the central block
+    [0.16 0.84]^2 go in 2 radial cells to 24 interface vertices at 15 degree steps, then in 2 more
+    cells to the sides of a 6x6 grid [0.39 0.61]^2 at the centre. The central block's corners get
+    valence 5, the inner grid's corners valence 3. The interface edges are infinitely sharp creases,
+    so the interface is the closed uniform cubic B-spline of its 24 vertices, placed on the radius R
+    with (2 + cos(15 deg)) / 3 * R = 0.25 (the B-spline's radius at its vertices)."""
+    m = 6                                   # cells per side of the central block and of the inner grid
+    outer = [0.0, 0.08, 0.16]               # frame lines; mirrored about 0.5
+    lo, hi = outer[-1], 1.0 - outer[-1]
+    lines = outer + [lo + (hi - lo) * i / m for i in range(1, m)] + [1.0 - x for x in reversed(outer)]
+    n = len(lines) - 1                      # cells per side of the frame grid
+    first = len(outer) - 1                  # grid index of the central block's first line
+    radius = 0.75 / (2.0 + math.cos(2.0 * math.pi / (4 * m)))
+    half = 0.11                             # half-width of the inner grid
+    b = Builder()
+    groups = []
+
+    def grid(i, j):
+        return b.vertex(("G", i, j), (lines[i], lines[j], 0.0))
+
+    for j in range(n):
+        for i in range(n):
+            if first <= i < first + m and first <= j < first + m:
+                continue
+            b.face((grid(i, j), grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1)))
+            groups.append("matrix")
+
+    # The central block's boundary walked counter-clockwise: 4m points, point 0 at its
+    # lower-left corner; the interface and the inner grid's boundary are walked the same way.
+    def block_index(k):
+        side, t = divmod(k % (4 * m), m)
+        return [(first + t, first), (first + m, first + t), (first + m - t, first + m), (first, first + m - t)][side]
+
+    def inner_point(k):
+        side, t = divmod(k % (4 * m), m)
+        s = -half + 2.0 * half * t / m
+        return [(s, -half), (half, s), (-s, half), (-half, -s)][side]
+
+    def ring(level, k):
+        """Vertex k of ring `level`: 0 the central block, 2 the interface, 4 the inner grid's boundary."""
+        k %= 4 * m
+        if level == 0:
+            return grid(*block_index(k))
+        if level == 4:
+            x, y = inner_point(k)
+            return b.vertex(("I", round(x, 12), round(y, 12)), (0.5 + x, 0.5 + y, 0.0))
+        angle = 2.0 * math.pi * (k / (4.0 * m)) - 0.75 * math.pi
+        circle = (radius * math.cos(angle), radius * math.sin(angle))
+        if level == 2:
+            return b.vertex(("R", 2, k), (0.5 + circle[0], 0.5 + circle[1], 0.0))
+        if level < 2:
+            i, j = block_index(k)
+            start, t = (lines[i] - 0.5, lines[j] - 0.5), level / 2.0
+        else:
+            start, t = inner_point(k), (4 - level) / 2.0
+        return b.vertex(("R", level, k), (0.5 + circle[0] * t + start[0] * (1 - t),
+                                          0.5 + circle[1] * t + start[1] * (1 - t), 0.0))
+
+    for level in range(4):
+        for k in range(4 * m):
+            b.face((ring(level, k), ring(level, k + 1), ring(level + 1, k + 1), ring(level + 1, k)))
+            groups.append("matrix" if level < 2 else "inclusion")
+
+    def inner(i, j):
+        x, y = -half + 2.0 * half * i / m, -half + 2.0 * half * j / m
+        return b.vertex(("I", round(x, 12), round(y, 12)), (0.5 + x, 0.5 + y, 0.0))
+
+    for j in range(m):
+        for i in range(m):
+            b.face((inner(i, j), inner(i + 1, j), inner(i + 1, j + 1), inner(i, j + 1)))
+            groups.append("inclusion")
+    mesh = Mesh("square_inclusion", "periodic unit square with a centred circular inclusion (limit radius 0.25; "
+                "volume fraction 0.196): an O-grid in a frame of grid cells; interior valences 3 and 5; the 24 "
+                "interface edges infinitely sharp creases; usemtl matrix and inclusion",
+                b.verts, b.faces, 0, 1, 1, "plus_z", (3, 5))
+    for k in range(4 * m):
+        mesh.tags.append("t crease 2/1/0 %d %d 10.0" % (ring(2, k), ring(2, k + 1)))
+    mesh.face_groups = groups
+    mesh.periodic_square = True
+    return mesh
+
+
 def make_cube_ngons():
     t = 0.25
     vs = [v for v in cube_verts() if v != (0.5, 0.5, 0.5)]
@@ -824,6 +996,7 @@ def all_meshes():
     meshes += [make_tetra_sphere(j) for j in range(0, 5)]
     meshes += [make_c2g0_torus(4, 5), make_c2g0_torus(8, 10)]
     meshes += [make_plate_ev35(), make_plate_asym()]
+    meshes += [make_rve_block(), make_square_inclusion()]
     meshes += [make_shell_scordelis_lo(), make_shell_pinched_cylinder(), make_shell_hemisphere()]
     return meshes
 
@@ -943,6 +1116,10 @@ def analyse(mesh):
     closed = loops == 0
 
     check_orientation(mesh, comp_of, closed)
+    if mesh.face_groups is not None and len(mesh.face_groups) != len(mesh.faces):
+        fail(mesh, "%d face groups for %d faces" % (len(mesh.face_groups), len(mesh.faces)))
+    if mesh.periodic_square:
+        check_periodic_square(mesh, boundary_next)
 
     # Valences (number of incident edges).
     valence = [0] * nv
@@ -1026,6 +1203,49 @@ def check_orientation(mesh, comp_of, closed):
         fail(mesh, "unknown orientation check %r" % mesh.orientation)
 
 
+def check_periodic_square(mesh, boundary_next):
+    """Boundary vertices lie on the sides of [0 1]^2 with the same coordinates on opposite sides,
+    the square's corners are vertices of one face each, every other vertex is inside, and every
+    face is strictly convex and counter-clockwise (no fold-over of the control net)."""
+    on_side = {"left": [], "right": [], "bottom": [], "top": []}
+    for v in boundary_next:
+        x, y, _ = mesh.verts[v]
+        sides = [name for name, ok in (("left", x == 0.0), ("right", x == 1.0), ("bottom", y == 0.0),
+                                       ("top", y == 1.0)) if ok]
+        if not sides:
+            fail(mesh, "boundary vertex %d at (%r, %r) is not on a side of the unit square" % (v, x, y))
+        for name in sides:
+            on_side[name].append(y if name in ("left", "right") else x)
+    if sorted(on_side["left"]) != sorted(on_side["right"]):
+        fail(mesh, "left and right sides do not match: %r vs %r" % (sorted(on_side["left"]), sorted(on_side["right"])))
+    if sorted(on_side["bottom"]) != sorted(on_side["top"]):
+        fail(mesh, "bottom and top sides do not match")
+    for v, p in enumerate(mesh.verts):
+        if not (0.0 <= p[0] <= 1.0 and 0.0 <= p[1] <= 1.0):
+            fail(mesh, "vertex %d outside the unit square" % v)
+    for corner in ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)):
+        ids = [v for v, p in enumerate(mesh.verts) if (p[0], p[1]) == corner]
+        if len(ids) != 1 or sum(1 for f in mesh.faces if ids[0] in f) != 1:
+            fail(mesh, "square corner %r is not a vertex of exactly one face" % (corner,))
+    for f in mesh.faces:
+        for k in range(len(f)):
+            a, b, c = mesh.verts[f[k - 1]], mesh.verts[f[k]], mesh.verts[f[(k + 1) % len(f)]]
+            turn = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
+            if not turn > 1e-9:
+                fail(mesh, "face %r is not strictly convex at vertex %d" % (f, f[k]))
+
+
+def corner_angles(mesh):
+    """Smallest and largest interior angle (degrees) of the faces of a planar mesh."""
+    angles = []
+    for f in mesh.faces:
+        for k in range(len(f)):
+            a, b, c = mesh.verts[f[k - 1]], mesh.verts[f[k]], mesh.verts[f[(k + 1) % len(f)]]
+            u, w = vsub(a, b), vsub(c, b)
+            angles.append(math.degrees(math.acos(dot(u, w) / (norm(u) * norm(w)))))
+    return min(angles), max(angles)
+
+
 # --------------------------------------------------------------------------
 # Output
 # --------------------------------------------------------------------------
@@ -1034,7 +1254,9 @@ def obj_text(mesh):
     lines = ["# generated by %s \u2014 %s" % (SCRIPT, mesh.description)]
     for p in mesh.verts:
         lines.append("v %r %r %r" % p)
-    for f in mesh.faces:
+    for k, f in enumerate(mesh.faces):
+        if mesh.face_groups is not None and (k == 0 or mesh.face_groups[k] != mesh.face_groups[k - 1]):
+            lines.append("usemtl " + mesh.face_groups[k])
         lines.append("f " + " ".join(str(v + 1) for v in f))
     lines.extend(mesh.tags)
     return "\n".join(lines) + "\n"
@@ -1076,6 +1298,20 @@ a corner of one face only (a corner shared by two faces converges only like h).
 quad and a triangle, each split into quads about its centroid through its edge
 midpoints; the partition's corners were placed for the fine quads' angles
 (35 to 146 degrees).
+
+Periodic unit squares (plane elasticity with periodic conditions, the seed's
+§6 block of material): `rve_block` and `square_inclusion` are planar control
+meshes of [0 1]^2 whose boundary vertices lie on the sides, with the same
+coordinates on opposite sides (left and right: the same y; bottom and top: the
+same x), each square corner a valence-2 corner of one face, and only strictly
+convex counter-clockwise faces (the script checks all of it). Their faces carry
+material groups (`usemtl`, docs/io.md "Face groups"). `rve_block` (groups
+`matrix`, `grain`) has interior valences 3, 5 and 6; the grains are the faces
+around four of its vertices. `square_inclusion` (groups `matrix`, `inclusion`)
+is an O-grid around a centred disc; its 24 interface edges are infinitely sharp
+creases, so the interface is the closed cubic B-spline of its vertices, placed
+on the radius R with (2 + cos 15°)/3 · R = 0.25: the limit interface passes
+through radius 0.25 at its vertices (volume fraction about π/16 = 0.196).
 
 Shells (`limsurf shell`, docs/fem.md "Shells", docs/guide/shell.md): the shell
 obstacle course. `shell_scordelis_lo`, `shell_pinched_cylinder` and

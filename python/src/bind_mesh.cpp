@@ -167,12 +167,10 @@ py::dict info(const Mesh& m) {
         "interior_valence_histogram"_a = histogram(stats.interior_valences),
         "boundary_valence_histogram"_a = histogram(stats.boundary_valences),
         "bounding_box"_a = py::dict("min"_a = vec(stats.bounding_box_min), "max"_a = vec(stats.bounding_box_max)),
-        "sharpness"_a = py::dict("num_sharp_edges"_a = s.num_sharp_edges,
-                                 "num_infinitely_sharp_edges"_a = s.num_infinitely_sharp_edges,
-                                 "max_semi_sharp_edge"_a = s.max_semi_sharp_edge,
-                                 "num_sharp_vertices"_a = s.num_sharp_vertices,
-                                 "num_infinitely_sharp_vertices"_a = s.num_infinitely_sharp_vertices,
-                                 "num_holes"_a = s.num_holes),
+        "sharpness"_a = py::dict(
+            "num_sharp_edges"_a = s.num_sharp_edges, "num_infinitely_sharp_edges"_a = s.num_infinitely_sharp_edges,
+            "max_semi_sharp_edge"_a = s.max_semi_sharp_edge, "num_sharp_vertices"_a = s.num_sharp_vertices,
+            "num_infinitely_sharp_vertices"_a = s.num_infinitely_sharp_vertices, "num_holes"_a = s.num_holes),
         "scheme_hints"_a = hints_dict(m.mesh.hints()), "validation"_a = py::dict("issues"_a = issues));
 }
 
@@ -186,6 +184,16 @@ PlyEncoding encoding_from(const std::string& name) {
     LIMSURF_CHECK(name == "binary-be", InputError, "ply_encoding: expected ascii, binary-le or binary-be, got '", name,
                   "'");
     return PlyEncoding::BinaryBigEndian;
+}
+
+/// (face_group, names): int32 #F group numbers (-1: no group) and the group names; all -1 and []
+/// when there are no groups.
+py::tuple groups_tuple(const FaceGroups& groups, Index num_faces) {
+    py::array_t<Index> face_group(static_cast<py::ssize_t>(num_faces));
+    for (Index f = 0; f < num_faces; ++f) {
+        face_group.mutable_data()[f] = groups.group_of(f);
+    }
+    return py::make_tuple(std::move(face_group), groups.names);
 }
 
 std::string repr(const Mesh& m) {
@@ -215,8 +223,7 @@ module (limsurf.MeshWarning).)")
                                          isolated);
              }),
              "V"_a, "F"_a, py::kw_only(), "creases"_a = py::none(), "corners"_a = py::none(), "holes"_a = py::none(),
-             "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
-             "isolated"_a = "error",
+             "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(), "isolated"_a = "error",
              R"(Builds a mesh from arrays.
 
 V: (n, 3) real array (any dtype or strides; copied). F: (m, k) integer array (all faces of
@@ -281,7 +288,8 @@ Raises InputError naming the array, row and problem; TopologyError for unusable 
             },
             "Sharp vertices as rows (v, sharpness) (float64).")
         .def_property_readonly(
-            "file", [](const Mesh& self) { return self.source.file.empty() ? std::optional<std::string>() : self.source.file; },
+            "file",
+            [](const Mesh& self) { return self.source.file.empty() ? std::optional<std::string>() : self.source.file; },
             "The file the mesh was read from, or None.")
         .def(
             "with_positions",
@@ -295,15 +303,24 @@ Raises InputError naming the array, row and problem; TopologyError for unusable 
 
     m.def(
         "read_mesh",
-        [](const std::filesystem::path& path, const std::string& isolated) {
+        [](const std::filesystem::path& path, const std::string& isolated, bool groups) -> py::object {
             BuildOptions options;
             options.isolated_vertices = isolated_from(isolated);
             BuildResult built = read_mesh(path, options);
             warn_about(built.report);
-            return Mesh{std::move(built.mesh), std::move(built.source), std::move(built.report)};
+            const Index num_faces = built.mesh.num_faces();
+            py::object mesh = py::cast(Mesh{std::move(built.mesh), std::move(built.source), std::move(built.report)});
+            if (!groups) {
+                return mesh;
+            }
+            const py::tuple g = groups_tuple(built.groups, num_faces);
+            return py::make_tuple(mesh, g[0], g[1]);
         },
-        "path"_a, py::kw_only(), "isolated"_a = "drop",
+        "path"_a, py::kw_only(), "isolated"_a = "drop", "groups"_a = false,
         "Reads an OBJ, OFF or PLY mesh with its subdivision tags (OpenSubdiv's t crease/corner/hole lines).\n"
+        "groups=True returns (mesh, face_group, group_names): face_group is an int32 array (#F) of indices\n"
+        "into group_names (the OBJ's usemtl, else g, names), -1 for a face in no group; all -1 and [] for\n"
+        "a file without groups.\n"
         "Raises InputError or TopologyError with 'file:line: element: problem'.");
     m.def(
         "write_mesh",

@@ -59,14 +59,19 @@ struct BuildResult {
     /// Where the mesh's elements came from, renumbered to the mesh (vertex v: line of
     /// source_vertex[v]; faces keep their numbers): for naming file and line in later errors.
     SourceMap source;
+    /// The soup's face groups (materials), unchanged: faces keep their numbers. Empty when the
+    /// source had none.
+    FaceGroups groups;
 };
 
 /// @brief Validates @p soup and builds a ControlMesh from it.
 /// @throws InputError / TopologyError naming file, line and element of the
-///   first error, with the number of further problems (see validate()).
+///   first error, with the number of further problems (see validate()); InputError when
+///   soup.groups is malformed (FaceGroups::check()).
 [[nodiscard]] BuildResult build_control_mesh(const PolygonSoup& soup, const BuildOptions& options = {});
 
-/// The faces, positions and tags of @p mesh as a PolygonSoup (for writers).
+/// The faces, positions and tags of @p mesh as a PolygonSoup (for writers). A ControlMesh has
+/// no face groups: set soup.groups from BuildResult::groups to write them.
 [[nodiscard]] PolygonSoup to_polygon_soup(const ControlMesh& mesh);
 
 }  // namespace limsurf

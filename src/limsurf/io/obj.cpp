@@ -17,8 +17,9 @@ using detail::io_fail;
 using detail::io_quote;
 
 /// Keywords that carry nothing limsurf uses; accepted and ignored.
-constexpr std::string_view ignored_keywords[] = {"vp",    "g",        "o",        "s",          "usemtl",   "mtllib",
-                                                 "l",     "p",        "mg",       "usemap",     "maplib",   "lod",
+/// (`g` and `usemtl` are read: they name the face groups.)
+constexpr std::string_view ignored_keywords[] = {"vp",    "o",        "s",        "mtllib",     "l",
+                                                 "p",     "mg",       "usemap",   "maplib",     "lod",
                                                  "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj"};
 
 /// Free-form geometry: it describes surfaces limsurf cannot represent.
@@ -89,6 +90,11 @@ class ObjReader {
             ++num_normals_;
         } else if (key == "t") {
             parse_tag(line);
+        } else if (key == "g") {
+            by_group_.current = group_number(by_group_);
+        } else if (key == "usemtl") {
+            by_material_.current = group_number(by_material_);
+            saw_material_ = saw_material_ || by_material_.current >= 0;
         } else if (contains(ignored_keywords, key)) {
             return;
         } else if (contains(freeform_keywords, key)) {
@@ -199,6 +205,31 @@ class ObjReader {
             io_fail(file_, line, "too many face corners");
         }
         soup_.add_face(corners_, static_cast<int>(line));
+        by_group_.face_group.push_back(by_group_.current);
+        by_material_.face_group.push_back(by_material_.current);
+    }
+
+    /// The group named by a `g` or `usemtl` line: its first name, or -1 (none) without one.
+    Index group_number(FaceGroups& groups) const {
+        return tokens_.size() < 2 ? Index{-1} : groups.add_name(tokens_[1]);
+    }
+
+    /// The face groups: by `usemtl` when the file names a material, else by `g`; names are
+    /// numbered in the order faces first use them, and names no face uses are dropped.
+    void finish_groups() {
+        const FaceGroups& read = saw_material_ ? by_material_ : by_group_;
+        std::vector<Index> renumber(read.names.size(), -1);
+        FaceGroups groups;
+        groups.face_group.reserve(read.face_group.size());
+        for (const Index g : read.face_group) {
+            if (g >= 0 && renumber[static_cast<std::size_t>(g)] < 0) {
+                renumber[static_cast<std::size_t>(g)] = groups.add_name(read.names[static_cast<std::size_t>(g)]);
+            }
+            groups.face_group.push_back(g >= 0 ? renumber[static_cast<std::size_t>(g)] : Index{-1});
+        }
+        if (!groups.names.empty()) {
+            soup_.groups = std::move(groups);
+        }
     }
 
     /// Texture and normal indices are not used, but must be valid integers in range.
@@ -405,6 +436,7 @@ class ObjReader {
         }
         check_largest(largest_texcoord_, "texture coordinate", num_texcoords_);
         check_largest(largest_normal_, "normal", num_normals_);
+        finish_groups();
         soup_.positions.resize(nv, 3);
         for (Index v = 0; v < nv; ++v) {
             for (Index c = 0; c < 3; ++c) {
@@ -426,6 +458,9 @@ class ObjReader {
     long long first_huge_line_ = 0;
     long long first_huge_value_ = 0;
     bool saw_content_ = false;
+    FaceGroups by_group_;     ///< faces' groups by `g`
+    FaceGroups by_material_;  ///< faces' groups by `usemtl`
+    bool saw_material_ = false;
 };
 
 void write_tag_counts(std::ostream& out, const char* name, std::size_t nints, std::size_t nfloats,
@@ -448,9 +483,23 @@ namespace {
 
 void write_obj_tags(std::ostream& out, const PolygonSoup& soup);
 
+/// Group names go on `g` lines: one token, nothing a reader would split or cut at.
+void check_group_names(const FaceGroups& groups, Index num_faces) {
+    groups.check(num_faces);
+    for (const std::string& name : groups.names) {
+        for (const char c : name) {
+            const auto byte = static_cast<unsigned char>(c);
+            LIMSURF_CHECK(byte > ' ' && byte != 0x7f && c != '#' && c != '\\', InputError,
+                          "cannot write face group name ", detail::io_quote(name),
+                          " to OBJ: a name must not contain blanks, control characters, '#' or '\\'");
+        }
+    }
+}
+
 /// The `v` (and with texture coordinates `vt`) and `f` lines, then the tags.
 void write_obj_lines(std::ostream& out, const PolygonSoup& soup, const Eigen::MatrixXd* texcoords) {
     detail::io_check_soup(soup);
+    check_group_names(soup.groups, soup.num_faces());
     if (texcoords != nullptr) {
         LIMSURF_CHECK(texcoords->rows() == soup.num_vertices() && texcoords->cols() == 2, InputError,
                       "texture coordinates: expected ", soup.num_vertices(), " × 2 values, got ", texcoords->rows(),
@@ -476,6 +525,10 @@ void write_obj_lines(std::ostream& out, const PolygonSoup& soup, const Eigen::Ma
         }
     }
     for (Index f = 0; f < soup.num_faces(); ++f) {
+        if (!soup.groups.empty() && (f == 0 || soup.groups.group_of(f) != soup.groups.group_of(f - 1))) {
+            const Index g = soup.groups.group_of(f);
+            out << (g >= 0 ? "g " + soup.groups.names[static_cast<std::size_t>(g)] : std::string("g")) << '\n';
+        }
         out << 'f';
         for (const Index v : soup.face(f)) {
             const long long index = static_cast<long long>(v) + 1;

@@ -63,6 +63,7 @@ BuildResult build_control_mesh(const PolygonSoup& soup, const BuildOptions& opti
         }
     }
     report.throw_if_errors();
+    soup.groups.check(soup.num_faces());
 
     BuildResult result;
     const std::vector<Index> renumber = compact_vertices(soup, result.source_vertex);
@@ -89,6 +90,8 @@ BuildResult build_control_mesh(const PolygonSoup& soup, const BuildOptions& opti
     result.report = std::move(report);
     result.source.file = soup.source.file;
     result.source.face_lines = soup.source.face_lines;
+    result.groups = soup.groups;  // faces keep their numbers
+    result.groups.current = -1;
     if (!soup.source.vertex_lines.empty()) {
         for (const Index v : result.source_vertex) {
             result.source.vertex_lines.push_back(soup.source.vertex_lines[at(v)]);

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 #include <tiny_obj_loader.h>
+#include <unistd.h>
 
 #include "limsurf/io/obj.h"
 #include "support/paths.h"
@@ -103,6 +104,36 @@ TEST(ObjPeer, TinyObjLoaderReadsTheSameFacesAndPositions) {
         }
         EXPECT_EQ(peer_faces, our_faces);
     }
+}
+
+TEST(ObjPeer, TinyObjLoaderSeesTheGroupsWeWrite) {
+    // write_obj puts a `g NAME` line before each run of faces of one group; tinyobjloader starts
+    // a shape named after each `g` line: every face's shape name must be our group name.
+    PolygonSoup soup = read_obj(test::mesh_dir() / "rve_block.obj");
+    ASSERT_EQ(soup.groups.names.size(), 2U);
+    std::ostringstream text;
+    write_obj(text, soup);
+    const fs::path path =
+        fs::temp_directory_path() / ("limsurf_obj_peer_groups_" + std::to_string(::getpid()) + ".obj");
+    {
+        std::ofstream out(path);
+        out << text.str();
+    }
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false;
+    tinyobj::ObjReader peer;
+    const bool parsed = peer.ParseFromFile(path.string(), config);
+    fs::remove(path);
+    ASSERT_TRUE(parsed) << peer.Error();
+    std::vector<std::string> peer_groups;
+    for (const auto& shape : peer.GetShapes()) {
+        peer_groups.insert(peer_groups.end(), shape.mesh.num_face_vertices.size(), shape.name);
+    }
+    std::vector<std::string> our_groups;
+    for (Index f = 0; f < soup.num_faces(); ++f) {
+        our_groups.push_back(soup.groups.names.at(static_cast<std::size_t>(soup.groups.group_of(f))));
+    }
+    EXPECT_EQ(peer_groups, our_groups);
 }
 
 }  // namespace
