@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
     add_hodge_command(app, status);
     add_membrane_command(app, status);
     add_tune_command(app, status);
+    add_reverse_command(app, status);
+    add_elasticity_command(app, status);
 
     return run_guarded([&]() -> int {
         try {

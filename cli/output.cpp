@@ -163,4 +163,25 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
+bool parse_size(const std::string& text, int& width, int& height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos || text.find_first_not_of("0123456789x") != std::string::npos || x == 0 ||
+        x + 1 == text.size() || x > 5 || text.size() - x - 1 > 5) {
+        return false;
+    }
+    width = std::stoi(text.substr(0, x));
+    height = std::stoi(text.substr(x + 1));
+    return width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
+}
+
+CLI::Validator size_validator() {
+    return CLI::Validator(
+        [](const std::string& text) {
+            int w = 0;
+            int h = 0;
+            return parse_size(text, w, h) ? std::string() : "expected WIDTHxHEIGHT, each in 16..8192";
+        },
+        "WxH");
+}
+
 }  // namespace limsurf::cli

@@ -68,6 +68,13 @@ void add_memory_option(CLI::App* cmd, std::string& text);
 /// The extension of @p path in lower case, with its dot (".vtk"); empty when it has none.
 std::string lower_extension(const std::string& path);
 
+/// --size "W x H" as two integers in 16..8192 (limsurf render, limsurf elasticity --png).
+/// @return false when the text is not of that form or out of range
+bool parse_size(const std::string& text, int& width, int& height);
+
+/// The CLI11 check of a --size option (parse_size).
+CLI::Validator size_validator();
+
 /// Registers --format obj|off|ply on @p cmd: the output format where the path's extension does
 /// not say it (/dev/stdout, a pipe).
 void add_format_option(CLI::App* cmd, std::string& text);

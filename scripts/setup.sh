@@ -33,6 +33,8 @@ packages=(
     libspectra-dev
     # biomembranes: Ipopt for the constrained shape optimisation; Surface Evolver as a test-only peer
     coinor-libipopt-dev evolver
+    # plane elasticity: FreeFem++ as a test-only peer (body-fitted P2 homogenisation of the cell)
+    freefem++
 )
 
 # `setup.sh --fuzz` adds what the libFuzzer targets need (make fuzz).

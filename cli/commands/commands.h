@@ -27,5 +27,7 @@ void add_vector_field_command(CLI::App& app, CommandStatus& status);
 void add_hodge_command(CLI::App& app, CommandStatus& status);
 void add_membrane_command(CLI::App& app, CommandStatus& status);
 void add_tune_command(CLI::App& app, CommandStatus& status);
+void add_reverse_command(CLI::App& app, CommandStatus& status);
+void add_elasticity_command(CLI::App& app, CommandStatus& status);
 
 }  // namespace limsurf::cli

@@ -75,18 +75,6 @@ std::string check_field(const std::string& text) {
     return {};
 }
 
-/// "W x H" as two integers.
-bool parse_size(const std::string& text, int& width, int& height) {
-    const auto x = text.find('x');
-    if (x == std::string::npos || text.find_first_not_of("0123456789x") != std::string::npos || x == 0 ||
-        x + 1 == text.size() || x > 5 || text.size() - x - 1 > 5) {
-        return false;
-    }
-    width = std::stoi(text.substr(0, x));
-    height = std::stoi(text.substr(x + 1));
-    return width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
-}
-
 /// "MIN,MAX" as two finite numbers, MIN <= MAX.
 std::optional<std::array<double, 2>> parse_range(const std::string& text) {
     const auto comma = text.find(',');
@@ -230,13 +218,7 @@ void add_render_command(CLI::App& app, CommandStatus& status) {
             },
             "VIEW"));
     cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT, 16..8192 each (default 1200x900)")
-        ->check(CLI::Validator(
-            [](const std::string& text) {
-                int w = 0;
-                int h = 0;
-                return parse_size(text, w, h) ? std::string() : "expected WIDTHxHEIGHT, each in 16..8192";
-            },
-            "WxH"));
+        ->check(size_validator());
     cmd->add_option("--resolution", options->resolution,
                     "Segments per ptex face edge of the tessellation (1..256; default: about 250000 points)")
         ->check(CLI::Range(1, 256));

@@ -63,7 +63,11 @@ class Mesh:
     def file(self) -> str | None: ...
     def with_positions(self, V: ArrayLike) -> Mesh: ...
 
-def read_mesh(path: PathLike, *, isolated: Literal["error", "drop"] = "drop") -> Mesh: ...
+@overload
+def read_mesh(path: PathLike, *, isolated: Literal["error", "drop"] = "drop", groups: Literal[False] = False) -> Mesh: ...
+@overload
+def read_mesh(path: PathLike, *, isolated: Literal["error", "drop"] = "drop",
+              groups: Literal[True]) -> tuple[Mesh, IndexArray, list[str]]: ...
 def write_mesh(path: PathLike, mesh: Mesh, *, ply_encoding: Literal["ascii", "binary-le", "binary-be"] = "ascii") -> None: ...
 def info(mesh: Mesh) -> dict[str, object]: ...
 
@@ -393,3 +397,57 @@ def decompose_shapes(mesh: Mesh, P: ArrayLike | None = None, *, weights: TunedWe
 def decompose_shapes(V: ArrayLike, F: ArrayLike | list[ArrayLike], P: ArrayLike | None = None, *,
                      weights: TunedWeightsSpec = None, min_valence: int = 5,
                      poisson_ratio: float = 0.3) -> list[ShapeDecomposition]: ...
+
+# Plane elasticity and homogenisation (docs/guide/elasticity.md).
+RectangleSide = Literal["left", "right", "bottom", "top"]
+
+class ElasticityFields(TypedDict):
+    positions: FloatArray
+    triangles: IndexArray
+    displacement: FloatArray
+    strain: FloatArray
+    stress: FloatArray
+    von_mises: FloatArray
+    material: IndexArray
+    resolution: int
+
+@overload
+def elasticity(mesh: Mesh, *, E: float = 1.0, nu: float = 0.3, plane_stress: bool = False,
+               boundary: Literal["periodic", "affine", "loaded"] = "periodic",
+               macro_deformation: ArrayLike | None = None, face_material: ArrayLike | None = None,
+               materials: list[tuple[float, float]] | None = None, levels: int = 0, quadrature: int = 6,
+               effective_stiffness: bool = True, crease_interfaces: bool = False,
+               clamp: tuple[RectangleSide, ...] | list[RectangleSide] = (),
+               tractions: list[tuple[RectangleSide, tuple[float, float]]] | tuple[()] = (),
+               body_force: tuple[float, float] = (0.0, 0.0), resolution: int = 0) -> dict[str, object]:
+    """`limsurf elasticity --json`'s numbers with the displacement's control values (and fields when resolution > 0)."""
+@overload
+def elasticity(V: ArrayLike, F: ArrayLike | list[ArrayLike], *, E: float = 1.0, nu: float = 0.3,
+               plane_stress: bool = False, boundary: Literal["periodic", "affine", "loaded"] = "periodic",
+               macro_deformation: ArrayLike | None = None, face_material: ArrayLike | None = None,
+               materials: list[tuple[float, float]] | None = None, levels: int = 0, quadrature: int = 6,
+               effective_stiffness: bool = True, crease_interfaces: bool = False,
+               clamp: tuple[RectangleSide, ...] | list[RectangleSide] = (),
+               tractions: list[tuple[RectangleSide, tuple[float, float]]] | tuple[()] = (),
+               body_force: tuple[float, float] = (0.0, 0.0), resolution: int = 0) -> dict[str, object]: ...
+
+# Reverse Catmull–Clark (docs/guide/reverse.md).
+class ReverseLevel(TypedDict):
+    fine_vertices: int
+    fine_faces: int
+    coarse_vertices: int
+    coarse_faces: int
+    residual_max: float
+    residual_rms: float
+    unique: bool
+    fine_vertex: list[int]
+
+class ReverseInfo(TypedDict):
+    method: Literal["least-squares"]
+    levels_reversed: int
+    per_level: list[ReverseLevel]
+
+def reverse_catmull_clark(mesh: Mesh, levels: int = -1, *, tolerance: float = 1e-9, boundary: Boundary | None = None,
+                          creasing: Creasing | None = None,
+                          triangles: Triangles | None = None) -> tuple[Mesh, ReverseInfo]:
+    """The coarse control mesh that Catmull–Clark refines to `mesh` (`limsurf reverse --json`'s numbers)."""

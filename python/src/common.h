@@ -91,5 +91,7 @@ void bind_vector_field(py::module_& m);
 void bind_hodge(py::module_& m);
 void bind_membrane(py::module_& m);
 void bind_tuning(py::module_& m);
+void bind_reverse(py::module_& m);
+void bind_elasticity(py::module_& m);
 
 }  // namespace limsurf::python

@@ -26,4 +26,6 @@ PYBIND11_MODULE(_limsurf, m) {
     limsurf::python::bind_hodge(m);
     limsurf::python::bind_membrane(m);
     limsurf::python::bind_tuning(m);
+    limsurf::python::bind_reverse(m);
+    limsurf::python::bind_elasticity(m);
 }

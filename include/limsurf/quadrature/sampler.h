@@ -12,8 +12,11 @@
 //
 // Accuracy near extraordinary vertices. The limit surface is C2 (a polynomial per
 // tile) away from extraordinary vertices, but at an extraordinary vertex (valence
-// != 4 for Catmull–Clark, != 6 for Loop, a boundary, corner or crease vertex) it is
-// only C1 and its parameterisation is piecewise polynomial on infinitely many rings
+// != 4 for Catmull–Clark, != 6 for Loop, a boundary vertex of another valence than
+// half that, a corner, a vertex with a semi-sharp crease, or a crease vertex other
+// than a regular vertex crossed straight by one infinitely sharp crease — each side
+// of that one is a B-spline patch with phantom points) it is only C1 and its
+// parameterisation is piecewise polynomial on infinitely many rings
 // of Stam's tiles shrinking towards the vertex. A Gauss rule on the whole ptex face
 // then integrates a non-smooth function and converges slowly (algebraically, at a
 // rate set by the subdominant eigenvalue) instead of exactly. With

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "limsurf/core/error.h"
+#include "limsurf/mesh/sharpness.h"
 #include "limsurf/quadrature/rules.h"
 
 namespace limsurf {
@@ -25,18 +26,28 @@ struct Tile {
 /// True where the limit surface is not a plain polynomial patch around control vertex v.
 /// A boundary vertex with half the regular number of faces (2 quads, 3 triangles) is a
 /// regular boundary: its patches are B-spline/box-spline patches with phantom points.
+/// An interior vertex of the regular valence crossed by one infinitely sharp crease (two sharp edges
+/// opposite each other) is regular too: each side is a B-spline patch with phantom points beyond
+/// the crease, as beyond a boundary (iga-with-catmull-clark §4).
 bool is_irregular_vertex(const Topology& t, Index v, int regular_valence) {
     const auto faces = static_cast<int>(t.vertex_faces(v).size());
     const bool regular = t.is_boundary_vertex(v) ? 2 * faces == regular_valence : faces == regular_valence;
     if (!regular || t.vertex_sharpness(v) > 0.0) {
         return true;
     }
-    for (const Index e : t.vertex_edges(v)) {
-        if (t.edge_sharpness(e) > 0.0) {
-            return true;
+    const auto edges = t.vertex_edges(v);
+    std::vector<std::size_t> sharp;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        const double s = t.edge_sharpness(edges[i]);
+        if (s > 0.0 && (s < infinite_sharpness || t.is_boundary_vertex(v))) {
+            return true;  // semi-sharp creases decay over levels: not a stationary patch
+        }
+        if (s > 0.0) {
+            sharp.push_back(i);
         }
     }
-    return false;
+    return !(sharp.empty() ||
+             (sharp.size() == 2 && 2 * (sharp[1] - sharp[0]) == edges.size()));  // a straight-through crease
 }
 
 /// Parameter points of the irregular corners of ptex face p.

@@ -132,6 +132,8 @@ def commands(mesh, out_dir, is_huge):
         ("subdivide doo-sabin", ["subdivide", mesh, "--scheme", "doo-sabin", "--levels", "1", "-o", o("d.ply")],
          [o("d.ply")]),
         ("subdivide c2g0", ["subdivide", mesh, "--scheme", "c2g0", "--levels", "1", "-o", o("g.obj")], [o("g.obj")]),
+        # Reverse Catmull-Clark: almost every input here is not a subdivided topology (refused naming it).
+        ("reverse json", ["reverse", mesh, "-o", o("rv.obj"), "--json"], [o("rv.obj")]),
     ]
     if is_huge:
         return runs + [
@@ -181,6 +183,10 @@ def commands(mesh, out_dir, is_huge):
         ("membrane canham", ["membrane", mesh, "--scheme", "catmull-clark", "--area", "1", "--reduced-volume", "0.9",
                              "--max-iterations", "5", "--degree", "4", "-o", o("m.obj"), "--field-output", o("m.vtk"),
                              "--resolution", "2"], [o("m.obj"), o("m.vtk")]),
+        ("elasticity", ["elasticity", mesh, "--levels", "1", "--json", "-o", o("el.vtk"), "--png", o("el.png"),
+                        "--size", "64x48", "--resolution", "2"], [o("el.vtk"), o("el.png")]),
+        ("elasticity affine plane stress", ["elasticity", mesh, "--boundary", "affine", "--plane-stress",
+                                            "--no-stiffness", "--macro-strain", "1e300,0;0,1"], []),
     ]
 
 
@@ -227,6 +233,66 @@ def standalone(out_dir):
         ("tune at lambda", tune + ["7", "--lambda", "0.6", "--json"], []),
         ("tune search and curve", tune + ["3", "--shape", "saddle", "--samples", "5", "--quadrature", "2",
                                           "--tile-levels", "4", "--curve", o("t.csv"), "--json"], [o("t.csv")]),
+    ]
+
+
+def elasticity_cases(root, work, out_dir):
+    """(label, argv, output files it may write) for `limsurf elasticity` on the bundled cells: bad
+    materials, matrices, sides and files (refused), a failed second output (no file left), and runs
+    that succeed."""
+    def o(name):
+        return os.path.join(out_dir, name)
+    block = os.path.join(root, "data", "meshes", "rve_block.obj")
+    inclusion = os.path.join(root, "data", "meshes", "square_inclusion.obj")
+    # A 3 x 3 grid whose right side's middle vertices sit off the left side's heights.
+    grid = ["v %d %r 0" % (i, 2.0 * j / 3 + (0.1 if i == 3 and 0 < j < 3 else 0.0))
+            for j in range(4) for i in range(4)]
+    grid += ["f %d %d %d %d" % (4 * j + i + 1, 4 * j + i + 2, 4 * j + i + 6, 4 * j + i + 5)
+             for j in range(3) for i in range(3)]
+    unmatched = write(os.path.join(work, "unmatched_sides.obj"), grid)
+    few = write(os.path.join(work, "few_materials.txt"), ["0", "1", "1"])
+    e = ["elasticity", block]
+    return [
+        ("elasticity nu 0.5", e + ["--nu", "0.5"], []),
+        ("elasticity nu nan", e + ["--nu", "nan"], []),
+        ("elasticity E 0", e + ["--E", "0"], []),
+        ("elasticity E -1", e + ["--E", "-1"], []),
+        ("elasticity E 1e400", e + ["--E", "1e400"], []),
+        ("elasticity matrix short", e + ["--macro-strain", "1,0;0"], []),
+        ("elasticity matrix words", e + ["--macro-strain", "a,b;c,d"], []),
+        ("elasticity matrix three rows", e + ["--macro-strain", "1,0;0,1;1,1"], []),
+        ("elasticity matrix nan", e + ["--macro-deformation", "nan,0;0,1"], []),
+        ("elasticity matrix huge", e + ["--macro-strain", "1e308,1e308;1e308,1e308"], []),
+        ("elasticity material unknown group", e + ["--material", "stone:2,0.3"], []),
+        ("elasticity material one number", e + ["--material", "grain:2"], []),
+        ("elasticity material nu 0.5", e + ["--material", "grain:2,0.5"], []),
+        ("elasticity material twice", e + ["--material", "grain:2,0.3", "--material", "grain:3,0.3"], []),
+        ("elasticity face materials missing", e + ["--face-materials", o("missing.txt"), "--material", "1:2,0.3"],
+         []),
+        ("elasticity face materials too few", e + ["--face-materials", few, "--material", "1:2,0.3"], []),
+        ("elasticity face materials a mesh", e + ["--face-materials", block, "--material", "1:2,0.3"], []),
+        ("elasticity loaded without clamp", e + ["--boundary", "loaded"], []),
+        ("elasticity clamp when periodic", e + ["--clamp", "left"], []),
+        ("elasticity clamp middle", e + ["--boundary", "loaded", "--clamp", "middle"], []),
+        ("elasticity traction malformed", e + ["--boundary", "loaded", "--clamp", "left", "--traction", "right:1"],
+         []),
+        ("elasticity body force malformed", e + ["--body-force", "1"], []),
+        ("elasticity periodic contradicts", e + ["--periodic", "--boundary", "affine"], []),
+        ("elasticity levels 7", e + ["--levels", "7"], []),
+        ("elasticity quadrature 0", e + ["--quadrature", "0"], []),
+        ("elasticity output obj", e + ["-o", o("el.obj")], []),
+        ("elasticity png jpg", e + ["--png", o("el.jpg")], []),
+        ("elasticity output over input", e + ["-o", block], []),
+        ("elasticity png in a missing folder", e + ["-o", o("el.vtk"), "--png", o("missing/el.png"),
+                                                    "--resolution", "1", "--size", "32x32"], []),
+        ("elasticity unmatched sides", ["elasticity", unmatched], []),
+        ("elasticity grains", e + ["--material", "grain:10,0.3", "--levels", "1", "--json", "-o", o("el.vtu"),
+                                   "--png", o("el.png"), "--png-field", "von-mises", "--size", "64x48"],
+         [o("el.vtu"), o("el.png")]),
+        ("elasticity inclusion plane stress affine", ["elasticity", inclusion, "--material", "inclusion:10,0.2",
+                                                      "--plane-stress", "--boundary", "affine", "--json"], []),
+        ("elasticity loaded", e + ["--boundary", "loaded", "--clamp", "left", "--clamp", "bottom", "--traction",
+                                   "right:1,0.5", "--body-force", "0,-1", "-o", o("el.vtk")], [o("el.vtk")]),
     ]
 
 
@@ -310,6 +376,8 @@ def main():
             jobs.append((name, label, argv, outputs, is_huge, index))
     for label, argv, outputs in standalone("@OUT@"):
         jobs.append(("no input", label, argv, outputs, False, len(inputs)))
+    for label, argv, outputs in elasticity_cases(args.root, args.work, "@OUT@"):
+        jobs.append(("bundled cells", label, argv, outputs, False, len(inputs)))
 
     local = threading.local()  # one output folder per worker thread
 
