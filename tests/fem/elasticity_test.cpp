@@ -418,6 +418,21 @@ TEST(ElasticityRefusals, BadMaterialsSidesAndMeshes) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("no partner"), std::string::npos) << e.what();
     }
+    // A corner tag on one side only: the two traces would live in different spaces.
+    SharpnessTags tags;
+    for (Index v = 0; v < c.topology.num_vertices(); ++v) {
+        if (c.X(v, 0) == 2.0 && c.X(v, 1) > 0.0 && c.X(v, 1) < 1.0) {
+            tags.corners.push_back(CornerTag{v, infinite_sharpness, 0});
+            break;
+        }
+    }
+    const Topology tagged(c.topology.num_vertices(), c.topology.face_offsets(), c.topology.all_face_vertices(), tags);
+    try {
+        (void)match_periodic_sides(tagged, c.X);
+        ADD_FAILURE() << "a corner on one side only accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("different sharpness"), std::string::npos) << e.what();
+    }
     Cell bent = c;
     bent.X(5, 2) = 0.1;
     EXPECT_THROW((void)solve_elasticity_levels(bent.topology, bent.X, options), InputError);
