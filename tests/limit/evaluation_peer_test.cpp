@@ -19,6 +19,7 @@
 #include "deep_subdivision.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/mesh/sharpness.h"
 #include "limsurf/refine/refine.h"
 #include "osd_limit.h"
 #include "support/mesh_zoo.h"
@@ -240,6 +241,56 @@ TEST_P(LimitPeer, GregoryEndCapsApproximateTheExactSurface) {
               << " end-cap points (isolation 3), max position deviation " << position << " (relative to size), "
               << "max normal deviation " << normal << "\n";
     EXPECT_LT(position, 1e-2);
+}
+
+TEST(LimitHoles, NoneBoundaryKeepsTheFacesOfInfinitelySharpBoundaryEdgesAsFar) {
+    // OpenSubdiv's rule under VTX_BOUNDARY_NONE: a face is a hole when a corner is a boundary vertex
+    // with a boundary edge that is not infinitely sharp. Here the boundary edges on the grid's left and
+    // bottom sides are infinitely sharp: the faces along them (away from the other sides) are kept.
+    for (const auto& [name, scheme] : {std::pair<const char*, SchemeKind>{"quad_grid", SchemeKind::CatmullClark},
+                                       std::pair<const char*, SchemeKind>{"tri_grid", SchemeKind::Loop}}) {
+        SCOPED_TRACE(name);
+        const BuildResult built = read_mesh(find_bundled(name).path);
+        const Topology& plain = built.mesh.topology();
+        const Points& X = built.mesh.positions();
+        const double x0 = X.col(0).minCoeff(), y0 = X.col(1).minCoeff();
+        SharpnessTags tags;
+        for (Index e = 0; e < plain.num_edges(); ++e) {
+            const auto [a, b] = plain.edge_vertices(e);
+            const bool left = X(a, 0) == x0 && X(b, 0) == x0, bottom = X(a, 1) == y0 && X(b, 1) == y0;
+            if (plain.is_boundary_edge(e) && (left || bottom)) {
+                tags.creases.push_back(CreaseTag{a, b, infinite_sharpness, 0});
+            }
+        }
+        ASSERT_FALSE(tags.creases.empty());
+        const Topology t(plain.num_vertices(), plain.face_offsets(), plain.all_face_vertices(), tags);
+        SchemeOptions options;
+        options.boundary = BoundaryInterpolation::None;
+        const LimitBasis basis(t, scheme, options);
+        std::vector<SurfacePoint> points;
+        for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+            points.push_back({p, 0.3, 0.2});
+        }
+        const std::vector<OsdPointEval> far = osd_evaluate(t, X, scheme, options, points);
+        Index kept_on_boundary = 0;
+        for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+            const OsdPointEval& f = far[static_cast<std::size_t>(p)];
+            ASSERT_EQ(basis.has_limit_surface(p), f.has_patch) << "ptex face " << p;
+            if (!f.has_patch) {
+                continue;
+            }
+            bool touches = false;
+            for (const Index v : t.face_vertices(basis.ptex_face(p).control_face)) {
+                touches = touches || t.is_boundary_vertex(v);
+            }
+            kept_on_boundary += touches ? 1 : 0;
+            if (f.regular) {
+                const Eigen::Matrix<double, 6, 3> ours = basis.evaluate(X, points[static_cast<std::size_t>(p)]);
+                EXPECT_LT((ours - f.value).cwiseAbs().maxCoeff(), 1e-10) << "ptex face " << p;
+            }
+        }
+        EXPECT_GT(kept_on_boundary, 0);  // the old rule dropped every face touching the boundary
+    }
 }
 
 std::string case_name(const PeerCase& c) {

@@ -122,8 +122,9 @@ class LimitBasis {
     [[nodiscard]] PtexFace ptex_face(Index p) const;
     /// First ptex face of control face f (its sub-faces follow consecutively).
     [[nodiscard]] Index first_ptex_face(Index control_face) const;
-    /// False for ptex faces without a limit surface: holes, and faces touching the
-    /// boundary under BoundaryInterpolation::None (as OpenSubdiv).
+    /// False for ptex faces without a limit surface: holes, and under BoundaryInterpolation::None
+    /// faces with a corner on the boundary whose boundary edges are not all infinitely sharp (as
+    /// OpenSubdiv's Far::TopologyRefinerFactory makes them holes).
     [[nodiscard]] bool has_limit_surface(Index p) const;
 
     /// @brief Weights of the limit surface at @p point.

@@ -342,8 +342,18 @@ std::unique_ptr<Root> LimitBasis::Impl::build_root(Index p) const {
     const auto corners = topology.face_vertices(f);
     root->has_limit = !topology.is_hole(f);
     if (options.boundary == BoundaryInterpolation::None) {
+        // OpenSubdiv's rule (Far::TopologyRefinerFactory, boundary faces made holes): a face has no
+        // limit surface when one of its corners is a boundary vertex with a boundary edge that is
+        // not infinitely sharp; infinitely sharp boundary edges keep their faces (boundary patches).
         for (Index v : corners) {
-            root->has_limit = root->has_limit && !topology.is_boundary_vertex(v);
+            if (!topology.is_boundary_vertex(v)) {
+                continue;
+            }
+            for (const Index e : topology.vertex_edges(v)) {
+                if (topology.is_boundary_edge(e) && topology.edge_sharpness(e) < infinite_sharpness) {
+                    root->has_limit = false;
+                }
+            }
         }
     }
     if (!root->has_limit) {
