@@ -4,6 +4,9 @@ limsurf_add_test(limit_identity_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluatio
 if(TARGET limsurf::peer_opensubdiv)
     limsurf_add_test(limit_peer_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_peer_test.cpp LABELS peer
                      LIBRARIES limsurf_osd_limit limsurf_limit_reference)
+    # OpenSubdiv's regression shapes (tests/data/opensubdiv_shapes): patches, holes and vertex limits.
+    limsurf_add_test(limit_opensubdiv_shapes_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/opensubdiv_shapes_limit_test.cpp
+                     LABELS peer LIBRARIES limsurf_osd_limit)
 endif()
 # Published limit masks (regular and extraordinary Catmull–Clark, Loop, boundary curve).
 limsurf_add_test(limit_published_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_published_test.cpp LABELS published)

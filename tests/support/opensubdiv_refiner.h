@@ -26,7 +26,7 @@ struct OsdPoint {
     }
 };
 
-/// @brief Far's refiner for @p t under Catmull–Clark (any other kind) or Loop, with @p o
+/// @brief Far's refiner for @p t under Loop, bilinear or Catmull–Clark (any other kind), with @p o
 ///   mapped onto Sdc::Options; nullptr when Far refuses the topology.
 inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner(const Topology& t, SchemeKind kind,
                                                                                  const SchemeOptions& o) {
@@ -78,7 +78,9 @@ inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner
     desc.numHoles = static_cast<int>(holes.size());
     desc.holeIndices = holes.data();
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    const auto type = kind == SchemeKind::Loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK;
+    const auto type = kind == SchemeKind::Loop       ? Sdc::SCHEME_LOOP
+                      : kind == SchemeKind::Bilinear ? Sdc::SCHEME_BILINEAR
+                                                     : Sdc::SCHEME_CATMARK;
     return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(type, options)));
 }
 

@@ -25,6 +25,11 @@
 // skips the rational multipliers' derivatives), and at asymmetric valence-3 vertices
 // the Gregory corner's tangent plane is only approximate (error shrinking with the
 // isolation level). Use end-cap values as rough witnesses only.
+// Two more approximations, found on OpenSubdiv's regression shapes
+// (opensubdiv_shapes_limit_test): patches at the deepest isolation level are flagged regular even
+// next to an irregular feature (a Loop dart at isolation 4: 4e-5 off; exact from 6), and
+// PrimvarRefiner::Limit applies the smooth mask at darts and interior valence-2 vertices, which is
+// not their limit (refinement converges to limsurf's value there).
 #pragma once
 
 #include <memory>
