@@ -74,24 +74,7 @@ struct Shape {
 Shape load(const OpenSubdivShape& s) {
     const BuildResult built = read_mesh(s.path);
     const Topology& t = built.mesh.topology();
-    SharpnessTags tags;
-    for (Index e = 0; e < t.num_edges(); ++e) {
-        if (t.edge_sharpness(e) > 0.0) {
-            const auto ends = t.edge_vertices(e);
-            tags.creases.push_back({ends[0], ends[1], static_cast<float>(t.edge_sharpness(e)), 0});
-        }
-    }
-    for (Index v = 0; v < t.num_vertices(); ++v) {
-        if (t.vertex_sharpness(v) > 0.0) {
-            tags.corners.push_back({v, static_cast<float>(t.vertex_sharpness(v)), 0});
-        }
-    }
-    for (Index f = 0; f < t.num_faces(); ++f) {
-        if (t.is_hole(f)) {
-            tags.holes.push_back({f, 0});
-        }
-    }
-    Shape m{Topology(t.num_vertices(), t.face_offsets(), t.all_face_vertices(), tags), built.mesh.positions(), {}, 1};
+    Shape m{with_float_sharpness(t), built.mesh.positions(), {}, 1};
     const SchemeHints& hints = built.mesh.hints();
     m.options.boundary = hints.boundary.value_or(m.options.boundary);
     m.options.creasing = hints.creasing.value_or(m.options.creasing);

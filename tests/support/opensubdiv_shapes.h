@@ -12,6 +12,7 @@
 
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/sharpness.h"
+#include "limsurf/mesh/topology.h"
 #include "limsurf/scheme/scheme.h"
 
 namespace limsurf::test {
@@ -51,5 +52,9 @@ struct OpenSubdivShapeFile {
 
 /// @throws std::runtime_error when the file cannot be read or a line is malformed
 [[nodiscard]] OpenSubdivShapeFile read_opensubdiv_shape(const std::filesystem::path& path);
+
+/// @p t with every edge and vertex sharpness rounded to float, as Far stores it (a file's "0.1" is
+/// 0.1f to Far): the input both sides of a peer test get.
+[[nodiscard]] Topology with_float_sharpness(const Topology& t);
 
 }  // namespace limsurf::test

@@ -112,28 +112,6 @@ TEST_P(AcceptedShape, IsReadAsOpenSubdivReadsIt) {
     EXPECT_EQ(built.mesh.hints().triangles, file.hints.triangles);
 }
 
-/// @p t with every sharpness rounded to float, as Far stores it.
-Topology with_float_sharpness(const Topology& t) {
-    SharpnessTags tags;
-    for (Index e = 0; e < t.num_edges(); ++e) {
-        if (t.edge_sharpness(e) > 0.0) {
-            const auto ends = t.edge_vertices(e);
-            tags.creases.push_back({ends[0], ends[1], static_cast<float>(t.edge_sharpness(e)), 0});
-        }
-    }
-    for (Index v = 0; v < t.num_vertices(); ++v) {
-        if (t.vertex_sharpness(v) > 0.0) {
-            tags.corners.push_back({v, static_cast<float>(t.vertex_sharpness(v)), 0});
-        }
-    }
-    for (Index f = 0; f < t.num_faces(); ++f) {
-        if (t.is_hole(f)) {
-            tags.holes.push_back({f, 0});
-        }
-    }
-    return Topology(t.num_vertices(), t.face_offsets(), t.all_face_vertices(), tags);
-}
-
 TEST_P(AcceptedShape, RefinesAsFar) {
     const BuildResult built = read_mesh(GetParam().path);
     const Topology t = with_float_sharpness(built.mesh.topology());
