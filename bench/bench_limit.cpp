@@ -53,6 +53,7 @@
 
 #include "bench_heap.h"
 #include "limsurf/io/obj.h"
+#include "limsurf/limit/batch_evaluation.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/refine/hierarchy.h"
@@ -215,6 +216,24 @@ void limsurf_warm(benchmark::State& state, const Mesh& mesh, DerivativeOrder ord
     report(state, mesh, sum);
 }
 
+/// Warm evaluation as one batch (limit/batch_evaluation.h) on state.range(0) threads: the
+/// multi-threaded form of limsurf_warm (same points, same basis, results independent of threads).
+void limsurf_batch(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
+    if (!mesh.warm) {
+        mesh.warm = std::make_unique<limsurf::LimitBasis>(mesh.topology, mesh.scheme);
+        (void)limsurf_pass(*mesh.warm, mesh, order);
+    }
+    const int threads = static_cast<int>(state.range(0));
+    double sum = 0.0;
+    for (auto _ : state) {
+        const limsurf::PointValues values =
+            limsurf::evaluate_points(*mesh.warm, mesh.positions, mesh.points, order, threads);
+        sum = values.sum();
+        benchmark::DoNotOptimize(sum);
+    }
+    report(state, mesh, sum);
+}
+
 // --- OpenSubdiv Far ---------------------------------------------------------------------
 
 struct OsdPoint {
@@ -366,6 +385,16 @@ void osd_evaluate(benchmark::State& state, const Mesh& mesh, DerivativeOrder ord
 
 // --- registration -----------------------------------------------------------------------
 
+void BM_limsurf_batch_CCdense_d1(benchmark::State& s) {
+    limsurf_batch(s, cc_dense(), DerivativeOrder::First);
+}
+void BM_limsurf_batch_CCsparse_d1(benchmark::State& s) {
+    limsurf_batch(s, cc_sparse(), DerivativeOrder::First);
+}
+void BM_limsurf_batch_Loop_d1(benchmark::State& s) {
+    limsurf_batch(s, loop(), DerivativeOrder::First);
+}
+
 void BM_limsurf_first_CCdense_d1(benchmark::State& s) {
     limsurf_first(s, cc_dense(), DerivativeOrder::First);
 }
@@ -452,6 +481,10 @@ void BM_OpenSubdiv_eval_Loop_d2(benchmark::State& s) {
 LIMSURF_MESH(CCdense);
 LIMSURF_MESH(CCsparse);
 LIMSURF_MESH(Loop);
+// Warm batches on 1 and 2 threads (run with --benchmark_filter=batch).
+LIMSURF_ONCE(BM_limsurf_batch_CCdense_d1)->ArgName("threads")->Arg(1)->Arg(2);
+LIMSURF_ONCE(BM_limsurf_batch_CCsparse_d1)->ArgName("threads")->Arg(1)->Arg(2);
+LIMSURF_ONCE(BM_limsurf_batch_Loop_d1)->ArgName("threads")->Arg(1)->Arg(2);
 
 int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);

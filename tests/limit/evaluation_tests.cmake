@@ -1,5 +1,7 @@
 # The limit basis (Catmull–Clark, Loop): identities on every bundled mesh.
 limsurf_add_test(limit_identity_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_identity_test.cpp LABELS identity)
+# Batches of points on several threads: bit for bit the point-by-point evaluation.
+limsurf_add_test(limit_batch_evaluation_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/batch_evaluation_test.cpp LABELS identity)
 # Peers: OpenSubdiv Far (regular patches, vertex limits, Gregory deviation) and deep subdivision.
 if(TARGET limsurf::peer_opensubdiv)
     limsurf_add_test(limit_peer_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/evaluation_peer_test.cpp LABELS peer

@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/mesh/sharpness.h"
 #include "limsurf/quadrature/rules.h"
 
@@ -166,48 +164,7 @@ void place_tiles(const QuadratureRule& rule, const Tile& tile, Index face, const
     place_rule(rule, tile, face, out);
 }
 
-int thread_count(int requested, Index n) {
-    const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    const int wanted = requested > 0 ? requested : hardware;
-    return static_cast<int>(std::clamp<Index>(n / 64, 1, wanted));
-}
-
-/// body(begin, end) on exactly @p threads contiguous ranges of [0, n), one std::thread each.
-void run_ranges(Index n, int threads, const std::function<void(Index, Index)>& body) {
-    if (threads <= 1) {
-        body(0, n);
-        return;
-    }
-    std::vector<std::thread> pool;
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    for (int t = 0; t < threads; ++t) {
-        const Index begin = static_cast<Index>(std::int64_t{n} * t / threads);
-        const Index end = static_cast<Index>(std::int64_t{n} * (t + 1) / threads);
-        pool.emplace_back([&, begin, end] {
-            try {
-                body(begin, end);
-            } catch (...) {
-                const std::lock_guard lock(failure_mutex);
-                if (!failure) {
-                    failure = std::current_exception();
-                }
-            }
-        });
-    }
-    for (std::thread& thread : pool) {
-        thread.join();
-    }
-    if (failure) {
-        std::rethrow_exception(failure);
-    }
-}
-
 }  // namespace
-
-void parallel_ranges(Index n, int num_threads, const std::function<void(Index, Index)>& body) {
-    run_ranges(n, thread_count(num_threads, n), body);
-}
 
 LimitSampler::LimitSampler(const LimitBasis& basis, int degree, int subdivide_near_extraordinary)
     : LimitSampler(basis, SamplerOptions{degree, subdivide_near_extraordinary, 0}) {}

@@ -1,0 +1,30 @@
+// Evaluating the limit surface at many points at once, on several threads: the batch form of
+// LimitBasis::evaluate(X, point, order) for samplers, picture makers and the Python module.
+#pragma once
+
+#include <span>
+
+#include <Eigen/Core>
+
+#include "limsurf/core/types.h"
+#include "limsurf/limit/limit_basis.h"
+
+namespace limsurf {
+
+/// Positions and derivatives at N points, one row per point. Columns: 3 per requested row of
+/// LimitWeights — value (x, y, z), then ∂u, ∂v for DerivativeOrder::First, then ∂uu, ∂uv, ∂vv for
+/// Second: N × 3, N × 9 or N × 18.
+using PointValues = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// @brief The limit surface of control points @p X at @p points (ptex face, u, v).
+/// @param X           #V × 3 control points of basis.topology()
+/// @param num_threads 0: hardware concurrency; the result does not depend on it (every point is
+///   evaluated alone, bit for bit as LimitBasis::evaluate)
+/// @throws InputError when X has the wrong shape, or naming the first point (its index) that is
+///   out of range, outside its domain or on a face without a limit surface — checked before any
+///   evaluation, so nothing is half done
+[[nodiscard]] PointValues evaluate_points(const LimitBasis& basis, const Points& X,
+                                          std::span<const SurfacePoint> points,
+                                          DerivativeOrder order = DerivativeOrder::First, int num_threads = 0);
+
+}  // namespace limsurf

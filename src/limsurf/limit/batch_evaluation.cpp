@@ -1,0 +1,59 @@
+#include "limsurf/limit/batch_evaluation.h"
+
+#include <cmath>
+#include <cstddef>
+
+#include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
+
+namespace limsurf {
+namespace {
+
+int rows_of(DerivativeOrder order) {
+    return order == DerivativeOrder::Value ? 1 : order == DerivativeOrder::First ? 3 : 6;
+}
+
+/// The checks LimitBasis::evaluate makes, for every point before any work, naming the point.
+void check_point(const LimitBasis& basis, const SurfacePoint& p, std::size_t i) {
+    constexpr double tolerance = 1e-12;  // as LimitBasis::evaluate: clamped into the domain
+    LIMSURF_CHECK(p.face >= 0 && p.face < basis.num_ptex_faces(), InputError, "point ", i, ": ptex face ", p.face,
+                  " out of range (", basis.num_ptex_faces(), " ptex faces)");
+    const bool quad = basis.domain() == ParameterDomain::Quad;
+    const bool inside = std::isfinite(p.u) && std::isfinite(p.v) && p.u >= -tolerance && p.v >= -tolerance &&
+                        (quad ? p.u <= 1 + tolerance && p.v <= 1 + tolerance : p.u + p.v <= 1 + tolerance);
+    LIMSURF_CHECK(inside, InputError, "point ", i, ": parameter (", p.u, ", ", p.v, ") is outside the ",
+                  quad ? "unit square" : "triangle u, v >= 0, u + v <= 1", " of ptex face ", p.face);
+    LIMSURF_CHECK(basis.has_limit_surface(p.face), InputError, "point ", i, ": ptex face ", p.face,
+                  " has no limit surface (a hole, or a boundary face under boundary interpolation none)");
+}
+
+}  // namespace
+
+PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<const SurfacePoint> points,
+                            DerivativeOrder order, int num_threads) {
+    LIMSURF_CHECK(X.rows() == basis.topology().num_vertices() && X.cols() == 3, InputError,
+                  "limit evaluation: positions are ", X.rows(), " × ", X.cols(), ", expected ",
+                  basis.topology().num_vertices(), " × 3");
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        check_point(basis, points[i], i);
+    }
+    const int rows = rows_of(order);
+    const auto n = static_cast<Index>(points.size());
+    PointValues out(n, 3 * rows);
+    parallel_ranges(n, num_threads, [&](Index begin, Index end) {
+        LimitWeights weights;  // reused: one allocation per thread, not per point
+        for (Index i = begin; i < end; ++i) {
+            basis.evaluate(points[static_cast<std::size_t>(i)], weights, order);
+            for (int r = 0; r < rows; ++r) {
+                Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+                for (std::size_t k = 0; k < weights.vertices.size(); ++k) {
+                    sum += weights.w(r, static_cast<Eigen::Index>(k)) * X.row(weights.vertices[k]);
+                }
+                out.block<1, 3>(i, 3 * r) = sum;
+            }
+        }
+    });
+    return out;
+}
+
+}  // namespace limsurf

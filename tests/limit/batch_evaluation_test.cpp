@@ -1,0 +1,101 @@
+// evaluate_points (limit/batch_evaluation.h): bit for bit LimitBasis::evaluate at every point, for any
+// thread count, every scheme with a limit basis; bad points refused before any work, naming the point.
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "limsurf/core/error.h"
+#include "limsurf/io/mesh_io.h"
+#include "limsurf/limit/batch_evaluation.h"
+#include "support/mesh_zoo.h"
+
+namespace limsurf::test {
+namespace {
+
+std::vector<SurfacePoint> random_points(const LimitBasis& basis, int count) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<Index> face(0, basis.num_ptex_faces() - 1);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    std::vector<SurfacePoint> points;
+    while (static_cast<int>(points.size()) < count) {
+        SurfacePoint p{face(rng), uniform(rng), uniform(rng)};
+        if (basis.domain() == ParameterDomain::Triangle && p.u + p.v > 1.0) {
+            p = {p.face, 1.0 - p.u, 1.0 - p.v};
+        }
+        if (basis.has_limit_surface(p.face)) {
+            points.push_back(p);
+        }
+    }
+    points.push_back({points.front().face, 0.0, 0.0});  // a corner: a vertex of the control mesh
+    return points;
+}
+
+TEST(BatchEvaluation, EqualsPointByPointEvaluationForAnyThreadCount) {
+    const std::pair<const char*, SchemeKind> cases[] = {{"genus2", SchemeKind::CatmullClark},
+                                                        {"cube_creases", SchemeKind::CatmullClark},
+                                                        {"disk_ev7_tris", SchemeKind::Loop},
+                                                        {"dodecahedron", SchemeKind::DooSabin},
+                                                        {"tetra_1", SchemeKind::C2g0}};
+    for (const auto& [name, scheme] : cases) {
+        SCOPED_TRACE(name);
+        const BuildResult built = read_mesh(find_bundled(name).path);
+        const Points& X = built.mesh.positions();
+        const LimitBasis basis(built.mesh.topology(), scheme);
+        const std::vector<SurfacePoint> points = random_points(basis, 500);
+        for (const auto order : {DerivativeOrder::Value, DerivativeOrder::First, DerivativeOrder::Second}) {
+            const int rows = order == DerivativeOrder::Value ? 1 : order == DerivativeOrder::First ? 3 : 6;
+            for (const int threads : {1, 2, 3}) {
+                const PointValues values = evaluate_points(basis, X, points, order, threads);
+                ASSERT_EQ(values.rows(), static_cast<Eigen::Index>(points.size()));
+                ASSERT_EQ(values.cols(), 3 * rows);
+                for (std::size_t i = 0; i < points.size(); ++i) {
+                    const Eigen::Matrix<double, 6, 3> one = basis.evaluate(X, points[i], order);
+                    for (int r = 0; r < rows; ++r) {
+                        for (int c = 0; c < 3; ++c) {
+                            ASSERT_EQ(values(static_cast<Eigen::Index>(i), 3 * r + c), one(r, c))
+                                << "point " << i << " row " << r << " threads " << threads;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(BatchEvaluation, RefusesBadPointsNamingThem) {
+    const BuildResult built = read_mesh(find_bundled("quad_grid").path);
+    const Points& X = built.mesh.positions();
+    SchemeOptions none;
+    none.boundary = BoundaryInterpolation::None;
+    const LimitBasis basis(built.mesh.topology(), SchemeKind::CatmullClark, none);
+    Index hole = 0;
+    while (basis.has_limit_surface(hole)) {
+        ++hole;
+    }
+    const auto message = [&](std::vector<SurfacePoint> points, const Points& positions) {
+        try {
+            (void)evaluate_points(basis, positions, points, DerivativeOrder::First, 2);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    Index inside = 0;
+    while (!basis.has_limit_surface(inside)) {
+        ++inside;
+    }
+    const SurfacePoint good{inside, 0.5, 0.5};
+    EXPECT_NE(message({good, good, {basis.num_ptex_faces(), 0.5, 0.5}}, X).find("point 2: ptex face"),
+              std::string::npos);
+    EXPECT_NE(message({good, {inside, 1.5, 0.5}}, X).find("point 1: parameter (1.5, 0.5) is outside"),
+              std::string::npos);
+    EXPECT_NE(message({good, {inside, std::nan(""), 0.5}}, X).find("point 1"), std::string::npos);
+    EXPECT_NE(message({{hole, 0.5, 0.5}}, X).find("point 0: ptex face " + std::to_string(hole) + " has no limit"),
+              std::string::npos);
+    EXPECT_NE(message({good}, X.topRows(3)).find("positions are 3 × 3"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace limsurf::test
