@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands/commands.h"
+#include "commands/ply_encoding_option.h"
 #include "limsurf/io/mesh_io.h"
 #include "output.h"
 
@@ -26,10 +27,8 @@ int run_convert(const ConvertOptions& options) {
         read_mesh(options.input,
                   {.isolated_vertices = options.strict_isolated ? IsolatedVertices::Error : IsolatedVertices::Drop});
     print_warnings(built.report);
-    const PlyEncoding encoding = options.ply_encoding == "binary-le"   ? PlyEncoding::BinaryLittleEndian
-                                 : options.ply_encoding == "binary-be" ? PlyEncoding::BinaryBigEndian
-                                                                       : PlyEncoding::Ascii;
-    print_warnings(write_mesh(options.output, built.mesh, {.ply_encoding = encoding, .format = format}));
+    print_warnings(write_mesh(options.output, built.mesh,
+                              {.ply_encoding = ply_encoding_from(options.ply_encoding), .format = format}));
     return exit_ok;
 }
 
@@ -41,8 +40,7 @@ void add_convert_command(CLI::App& app, CommandStatus& status) {
     convert->add_option("input", options->input, "Input mesh (.obj, .off, .ply)")->required();
     convert->add_option("output", options->output, "Output mesh (.obj, .off, .ply); written atomically")->required();
     add_format_option(convert, options->format);
-    convert->add_option("--ply-encoding", options->ply_encoding, "PLY encoding (default ascii)")
-        ->check(CLI::IsMember({"ascii", "binary-le", "binary-be"}));
+    add_ply_encoding_option(convert, options->ply_encoding);
     convert->add_flag("--strict-isolated", options->strict_isolated,
                       "Treat vertices in no face as errors (default: dropped with a warning)");
     convert->callback([options, &status] { status.exit_code = run_guarded([&] { return run_convert(*options); }); });

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
+#include "commands/ply_encoding_option.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/refine/hierarchy.h"
 #include "output.h"
@@ -30,6 +31,7 @@ struct SubdivideOptions {
     std::int64_t max_faces = RefineOptions{}.max_faces;
     std::string max_memory;
     std::string format;
+    std::string ply_encoding = "ascii";
     bool json = false;
 };
 
@@ -98,7 +100,8 @@ int run_subdivide(const SubdivideOptions& options) {
         hints.creasing = refine.scheme_options.creasing;
         hints.triangles = refine.scheme_options.triangles;
         const ControlMesh finest(hierarchy.topology(hierarchy.num_steps()), positions, hints);
-        print_warnings(write_mesh(options.output, finest, {.format = format}));
+        print_warnings(write_mesh(options.output, finest,
+                                  {.ply_encoding = ply_encoding_from(options.ply_encoding), .format = format}));
 
         if (options.json) {
             nlohmann::json levels = nlohmann::json::array();
@@ -155,6 +158,7 @@ void add_subdivide_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--max-faces", options->max_faces, "Refuse when the finest level would have more faces")
         ->check(CLI::PositiveNumber);
     add_memory_option(cmd, options->max_memory);
+    add_ply_encoding_option(cmd, options->ply_encoding);
     cmd->add_flag("--json", options->json, "Print a JSON summary");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_subdivide(*options); }); });
 }

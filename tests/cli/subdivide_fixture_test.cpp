@@ -39,6 +39,8 @@ std::vector<FixtureCase> fixture_cases() {
         {"annulus_cc2_edge_only.off",
          {"annulus.obj", "--scheme", "catmull-clark", "--levels", "2", "--boundary", "edge-only"}},
         {"genus2_cc2.ply", {"genus2.obj", "--scheme", "catmull-clark", "--levels", "2"}},
+        {"genus2_cc2_binary.ply",
+         {"genus2.obj", "--scheme", "catmull-clark", "--levels", "2", "--ply-encoding", "binary-le"}},
         {"quad_valence_5_cc2_cup.obj",
          {"quad_valence_5.obj", "--scheme", "catmull-clark", "--levels", "2", "--weights", "cup"}},
         {"icosahedron_loop3.obj", {"icosahedron.obj", "--scheme", "loop", "--levels", "3"}},
@@ -68,6 +70,17 @@ TEST_P(SubdivideFixture, OutputIsUnchanged) {
     const std::string written = slurp(out);
     EXPECT_EQ(written.size(), expected.size());
     EXPECT_TRUE(written == expected) << c.name << " differs from the fixture";
+    std::filesystem::remove_all(dir);
+}
+
+TEST(SubdivideFixtures, BinaryPlyHoldsTheSameMeshAsAscii) {
+    // Exact doubles both ways: the binary fixture converted to ASCII is the ASCII fixture, byte for byte.
+    const auto dir = make_temp_dir("subdivide-binary");
+    const auto fixtures = test_data_dir() / "subdivide_fixtures";
+    const CliRun run =
+        run_limsurf({"convert", (fixtures / "genus2_cc2_binary.ply").string(), (dir / "ascii.ply").string()}, dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_TRUE(slurp(dir / "ascii.ply") == slurp(fixtures / "genus2_cc2.ply"));
     std::filesystem::remove_all(dir);
 }
 

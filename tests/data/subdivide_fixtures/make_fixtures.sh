@@ -15,6 +15,7 @@ run tetrahedron_cc2_smooth.obj tetrahedron.obj --scheme catmull-clark --levels 2
 run quad_grid_cc2_none.obj quad_grid.obj --scheme catmull-clark --levels 2 --boundary none
 run annulus_cc2_edge_only.off annulus.obj --scheme catmull-clark --levels 2 --boundary edge-only
 run genus2_cc2.ply genus2.obj --scheme catmull-clark --levels 2
+run genus2_cc2_binary.ply genus2.obj --scheme catmull-clark --levels 2 --ply-encoding binary-le
 run quad_valence_5_cc2_cup.obj quad_valence_5.obj --scheme catmull-clark --levels 2 --weights cup
 run icosahedron_loop3.obj icosahedron.obj --scheme loop --levels 3
 run disk_ev7_tris_loop2_edge_only.obj disk_ev7_tris.obj --scheme loop --levels 2 --boundary edge-only

@@ -1,0 +1,27 @@
+// --ply-encoding for the commands that write meshes (convert, subdivide).
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "limsurf/io/ply.h"
+
+namespace limsurf::cli {
+
+/// Registers `--ply-encoding ascii|binary-le|binary-be` (default ascii) on @p cmd.
+inline void add_ply_encoding_option(CLI::App* cmd, std::string& name) {
+    cmd->add_option("--ply-encoding", name,
+                    "PLY encoding: ascii (default), binary-le or binary-be (binary: exact doubles, several times "
+                    "smaller and faster to write)")
+        ->check(CLI::IsMember({"ascii", "binary-le", "binary-be"}));
+}
+
+/// The encoding a checked --ply-encoding value names.
+[[nodiscard]] inline PlyEncoding ply_encoding_from(const std::string& name) {
+    return name == "binary-le"   ? PlyEncoding::BinaryLittleEndian
+           : name == "binary-be" ? PlyEncoding::BinaryBigEndian
+                                 : PlyEncoding::Ascii;
+}
+
+}  // namespace limsurf::cli
