@@ -175,27 +175,25 @@ Index Topology::find_edge(Index a, Index b) const {
 }
 
 void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
-    // Corners grouped by vertex, in face order.
+    // Per vertex: its number of corners, and the corner its walk starts at — the first corner in
+    // face order, or for a boundary vertex the corner whose outgoing edge is its (single, the
+    // vertex is manifold) outgoing boundary edge. No per-vertex corner lists are needed.
     std::vector<Index> offsets(at(num_vertices_) + 1, 0);
-    for (const Index v : face_vertices_) {
-        ++offsets[at(v) + 1];
+    std::vector<Index> start(at(num_vertices_), invalid_index);
+    for (size_t c = 0; c < face_vertices_.size(); ++c) {
+        const auto v = at(face_vertices_[c]);
+        ++offsets[v + 1];
+        start[v] = start[v] == invalid_index ? static_cast<Index>(c) : start[v];
     }
     std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-    std::vector<Index> corners(face_vertices_.size());
-    std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-    for (size_t c = 0; c < face_vertices_.size(); ++c) {
-        corners[at(fill[at(face_vertices_[c])]++)] = static_cast<Index>(c);
+    vertex_is_boundary_.assign(at(num_vertices_), 0);
+    for (Index e = 0; e < num_edges(); ++e) {
+        if (edge_face_offsets_[at(e) + 1] - edge_face_offsets_[at(e)] == 1) {
+            const Index c = edge_face_corners[at(edge_face_offsets_[at(e)])];
+            start[at(face_vertices_[at(c)])] = c;
+            vertex_is_boundary_[at(face_vertices_[at(c)])] = 1;
+        }
     }
-    std::vector<Index> corner_face(face_vertices_.size());
-    for (Index f = 0; f < num_faces(); ++f) {
-        std::fill(corner_face.begin() + face_offsets_[at(f)], corner_face.begin() + face_offsets_[at(f) + 1], f);
-    }
-    auto incoming_edge = [&](Index corner) {  // edge from the previous corner to this one
-        const Index f = corner_face[at(corner)];
-        const Index k = corner - face_offsets_[at(f)];
-        const Index n = face_degree(f);
-        return face_edges_[at(face_offsets_[at(f)] + (k + n - 1) % n)];
-    };
 
     vertex_face_offsets_.reserve(at(num_vertices_) + 1);
     vertex_edge_offsets_.reserve(at(num_vertices_) + 1);
@@ -204,41 +202,48 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     vertex_faces_.reserve(face_vertices_.size());
     vertex_face_corners_.reserve(face_vertices_.size());
     vertex_edges_.reserve(face_vertices_.size() + at(num_vertices_));  // + one per boundary vertex at most
-    vertex_is_boundary_.assign(at(num_vertices_), 0);
-    for (Index v = 0; v < num_vertices_; ++v) {
-        const auto mine =
-            std::span<const Index>(corners).subspan(at(offsets[at(v)]), at(offsets[at(v) + 1] - offsets[at(v)]));
-        // A boundary vertex starts at the corner whose outgoing edge is a boundary edge.
-        Index start = mine.front();
-        for (const Index c : mine) {
-            if (is_boundary_edge(face_edges_[at(c)])) {
-                start = c;
-                vertex_is_boundary_[at(v)] = 1;
-                break;
+
+    // The walk, for a way of finding a corner's face: arithmetic when all faces have one degree
+    // (every refined level of Catmull–Clark and Loop), a table otherwise.
+    const auto walk = [&](const auto& face_of) {
+        for (Index v = 0; v < num_vertices_; ++v) {
+            const Index count = offsets[at(v) + 1] - offsets[at(v)];
+            Index corner = start[at(v)];
+            for (Index step = 0; step < count; ++step) {
+                const Index f = face_of(corner);
+                const Index first = face_offsets_[at(f)];
+                vertex_faces_.push_back(f);
+                vertex_face_corners_.push_back(corner - first);
+                vertex_edges_.push_back(face_edges_[at(corner)]);
+                // Counter-clockwise, the next face shares this face's incoming edge (from the previous corner).
+                const Index previous = corner == first ? face_offsets_[at(f) + 1] - 1 : corner - 1;
+                const Index in = face_edges_[at(previous)];
+                const Index across = edge_face_offsets_[at(in)];
+                if (edge_face_offsets_[at(in) + 1] - across == 1) {
+                    vertex_edges_.push_back(in);  // closing boundary edge
+                    break;
+                }
+                // The other face runs that edge from v: its half-edge there starts at its corner at v
+                // (looked up, not searched: a face of 10⁵ corners must not make the walk quadratic).
+                const Index other = edge_faces_[at(across)] == f ? 1 : 0;
+                corner = edge_face_corners[at(across + other)];
             }
+            LIMSURF_ASSERT(static_cast<Index>(vertex_faces_.size()) - vertex_face_offsets_.back() == count,
+                           "one-ring walk of vertex ", v, " missed faces");
+            vertex_face_offsets_.push_back(static_cast<Index>(vertex_faces_.size()));
+            vertex_edge_offsets_.push_back(static_cast<Index>(vertex_edges_.size()));
         }
-        Index corner = start;
-        for (size_t step = 0; step < mine.size(); ++step) {
-            const Index f = corner_face[at(corner)];
-            vertex_faces_.push_back(f);
-            vertex_face_corners_.push_back(corner - face_offsets_[at(f)]);
-            vertex_edges_.push_back(face_edges_[at(corner)]);
-            // Counter-clockwise, the next face shares this face's incoming edge.
-            const Index in = incoming_edge(corner);
-            const auto across = edge_faces(in);
-            if (across.size() == 1) {
-                vertex_edges_.push_back(in);  // closing boundary edge
-                break;
-            }
-            // The other face runs that edge from v: its half-edge there starts at its corner at v
-            // (looked up, not searched: a face of 10⁵ corners must not make the walk quadratic).
-            const size_t other = across[0] == f ? 1 : 0;
-            corner = edge_face_corners[at(edge_face_offsets_[at(in)]) + other];
+    };
+    if (all_faces_have_degree(4)) {
+        walk([](Index corner) { return corner / 4; });
+    } else if (all_faces_have_degree(3)) {
+        walk([](Index corner) { return corner / 3; });
+    } else {
+        std::vector<Index> corner_face(face_vertices_.size());
+        for (Index f = 0; f < num_faces(); ++f) {
+            std::fill(corner_face.begin() + face_offsets_[at(f)], corner_face.begin() + face_offsets_[at(f) + 1], f);
         }
-        LIMSURF_ASSERT(vertex_faces_.size() - at(vertex_face_offsets_.back()) == mine.size(),
-                       "one-ring walk of vertex ", v, " missed faces");
-        vertex_face_offsets_.push_back(static_cast<Index>(vertex_faces_.size()));
-        vertex_edge_offsets_.push_back(static_cast<Index>(vertex_edges_.size()));
+        walk([&](Index corner) { return corner_face[at(corner)]; });
     }
 }
 
