@@ -102,57 +102,56 @@ Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vect
 }
 
 std::vector<Index> Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
-    // half_edges is sorted by (edge key, face): each run of equal keys is one edge.
-    std::vector<Index> group_begin;
-    std::vector<Index> group_of_corner(face_vertices_.size(), invalid_index);
+    // half_edges is sorted by (edge key, face): each run of equal keys is one edge (a group).
+    std::vector<Index> group_of_corner(face_vertices_.size());
+    std::vector<Index> group_size;
     for (size_t i = 0; i < half_edges.size(); ++i) {
         if (i == 0 || half_edges[i].key != half_edges[i - 1].key) {
-            group_begin.push_back(static_cast<Index>(i));
+            group_size.push_back(0);
         }
-        group_of_corner[at(half_edges[i].corner)] = static_cast<Index>(group_begin.size()) - 1;
+        group_of_corner[at(half_edges[i].corner)] = static_cast<Index>(group_size.size()) - 1;
+        ++group_size.back();
     }
-    const auto num_groups = static_cast<Index>(group_begin.size());
-    group_begin.push_back(static_cast<Index>(half_edges.size()));
+    const auto num_groups = static_cast<Index>(group_size.size());
 
-    // Number edges in order of first appearance in the face list (locality, like Vtr).
-    std::vector<Index> group_of_edge;
-    group_of_edge.reserve(at(num_groups));
+    // Edges numbered in order of first appearance in the face list (locality, like Vtr), in one pass
+    // over the corners; then each edge lists the face traversing it lower -> higher first, then the
+    // other (at most two: validated), in a second pass.
     std::vector<Index> edge_of_group(at(num_groups), invalid_index);
-    for (const Index g : group_of_corner) {
-        if (edge_of_group[at(g)] == invalid_index) {
-            edge_of_group[at(g)] = static_cast<Index>(group_of_edge.size());
-            group_of_edge.push_back(g);
+    face_edges_.resize(face_vertices_.size());
+    face_edge_signs_.resize(face_vertices_.size());
+    edge_vertices_.resize(2 * at(num_groups));
+    edge_face_offsets_.assign(at(num_groups) + 1, 0);
+    Index num_numbered = 0;
+    for (Index f = 0; f < num_faces(); ++f) {
+        const Index first = face_offsets_[at(f)];
+        const Index last = face_offsets_[at(f) + 1] - 1;
+        for (Index c = first; c <= last; ++c) {
+            const Index a = face_vertices_[at(c)];
+            const Index b = face_vertices_[at(c == last ? first : c + 1)];
+            const Index g = group_of_corner[at(c)];
+            Index& e = edge_of_group[at(g)];
+            if (e == invalid_index) {
+                e = num_numbered++;
+                edge_vertices_[2 * at(e)] = std::min(a, b);
+                edge_vertices_[2 * at(e) + 1] = std::max(a, b);
+                edge_face_offsets_[at(e) + 1] = group_size[at(g)];
+            }
+            face_edges_[at(c)] = e;
+            face_edge_signs_[at(c)] = a < b ? 1 : -1;
         }
     }
-
-    face_edges_.assign(face_vertices_.size(), invalid_index);
-    face_edge_signs_.assign(face_vertices_.size(), 0);
-    edge_vertices_.resize(2 * at(num_groups));
-    edge_face_offsets_.reserve(at(num_groups) + 1);
-    edge_face_offsets_.assign(1, 0);
-    edge_faces_.reserve(half_edges.size());
-    std::vector<Index> edge_face_corners;  // parallel to edge_faces_: the corner where that face enters the edge
-    edge_face_corners.reserve(half_edges.size());
-    for (Index e = 0; e < num_groups; ++e) {
-        const Index g = group_of_edge[at(e)];
-        const detail::HalfEdge& first = half_edges[at(group_begin[at(g)])];
-        const auto lo = static_cast<Index>(first.key >> 32U);
-        edge_vertices_[2 * at(e)] = lo;
-        edge_vertices_[2 * at(e) + 1] = static_cast<Index>(first.key & 0xffffffffU);
-        // The face traversing lower -> higher first, then the other (at most two: validated).
-        for (const bool forward_pass : {true, false}) {
-            for (Index i = group_begin[at(g)]; i < group_begin[at(g) + 1]; ++i) {
-                const detail::HalfEdge& h = half_edges[at(i)];
-                const bool forward = face_vertices_[at(h.corner)] == lo;
-                if (forward == forward_pass) {
-                    face_edges_[at(h.corner)] = e;
-                    face_edge_signs_[at(h.corner)] = forward ? 1 : -1;
-                    edge_faces_.push_back(h.face);
-                    edge_face_corners.push_back(h.corner);
-                }
-            }
+    std::partial_sum(edge_face_offsets_.begin(), edge_face_offsets_.end(), edge_face_offsets_.begin());
+    edge_faces_.resize(face_vertices_.size());
+    std::vector<Index> edge_face_corners(face_vertices_.size());  // parallel to edge_faces_: where each enters
+    for (Index f = 0; f < num_faces(); ++f) {
+        for (Index c = face_offsets_[at(f)]; c < face_offsets_[at(f) + 1]; ++c) {
+            const Index e = face_edges_[at(c)];
+            const Index slot =
+                face_edge_signs_[at(c)] > 0 ? edge_face_offsets_[at(e)] : edge_face_offsets_[at(e) + 1] - 1;
+            edge_faces_[at(slot)] = f;
+            edge_face_corners[at(slot)] = c;
         }
-        edge_face_offsets_.push_back(static_cast<Index>(edge_faces_.size()));
     }
     return edge_face_corners;
 }
