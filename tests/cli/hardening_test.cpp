@@ -15,8 +15,10 @@
 #include <thread>
 #include <vector>
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "cli_runner.h"
 #include "limsurf/io/mesh_io.h"
@@ -313,6 +315,12 @@ TEST(CliHardening, AFifoIsWrittenThroughToItsReader) {
     std::string received;
     std::thread reader([&] { received = test::slurp(fifo); });
     const CliRun run = limsurf({"convert", bundled("cube"), fifo.string()});
+    // Should limsurf never have opened the FIFO (it failed to start), the reader would wait for a
+    // writer forever: open and close one without blocking (ENXIO, harmless, when the reader is done).
+    const int unblock = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+    if (unblock >= 0) {
+        ::close(unblock);
+    }
     reader.join();
     EXPECT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(received.find("f 5 7 8 6"), std::string::npos) << received;
