@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <mutex>
+#include <vector>
 
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/magnitude.h"
+#include "limsurf/core/parallel.h"
 
 namespace limsurf {
 namespace {
@@ -20,20 +20,25 @@ template <int N, class F>
 Eigen::Matrix<double, N, 1> reduce(const LimitSampler& sampler, const Points& X, F term) {
     LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "control points have ", X.rows(),
                   " rows, the sampler ", sampler.num_vertices(), " vertices");
-    // Partial sums keyed by their range and added in that order, not in the order the threads
-    // finish: the same input gives the same bits on every run, with any number of threads.
-    std::map<Index, Eigen::Matrix<double, N, 1>> partials;
-    std::mutex partials_mutex;
-    parallel_ranges(sampler.num_samples(), sampler.options().num_threads, [&](Index begin, Index end) {
-        Eigen::Matrix<double, N, 1> partial = Eigen::Matrix<double, N, 1>::Zero();
-        for (Index s = begin; s < end; ++s) {
-            partial += term(sampler.weight(s), sampler.evaluate(X, s));
+    // Partial sums over fixed blocks of samples, added in block order: the grouping of the sum does
+    // not depend on how the blocks are shared out, so the result has the same bits on every run and
+    // with any number of threads.
+    constexpr Index block = 256;
+    const Index n = sampler.num_samples();
+    const Index num_blocks = (n + block - 1) / block;
+    std::vector<Eigen::Matrix<double, N, 1>> partials(static_cast<std::size_t>(num_blocks),
+                                                      Eigen::Matrix<double, N, 1>::Zero());
+    const int threads = std::min<Index>(thread_count(sampler.options().num_threads, n), std::max<Index>(num_blocks, 1));
+    run_ranges(num_blocks, threads, [&](Index first_block, Index last_block) {
+        for (Index b = first_block; b < last_block; ++b) {
+            Eigen::Matrix<double, N, 1>& partial = partials[static_cast<std::size_t>(b)];
+            for (Index s = b * block; s < std::min(n, (b + 1) * block); ++s) {
+                partial += term(sampler.weight(s), sampler.evaluate(X, s));
+            }
         }
-        const std::lock_guard lock(partials_mutex);
-        partials.emplace(begin, partial);
     });
     Eigen::Matrix<double, N, 1> total = Eigen::Matrix<double, N, 1>::Zero();
-    for (const auto& [begin, partial] : partials) {
+    for (const auto& partial : partials) {
         total += partial;
     }
     return total;

@@ -466,52 +466,59 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
         all.bottomRows(n2) = second_level * all.middleRows(V, n1);
     }
     const unsigned threads = worker_count(options.num_threads, V);
-    std::vector<double> sums(threads, 0.0);
     std::vector<RowPoints> grads(gradient != nullptr ? threads : 0);
     for (RowPoints& g : grads) {
         g.setZero(V + D, 3);
     }
     const double* table = all.data();
+    // The volume is summed in fixed chunks of facets, added in order: its bits do not depend on the
+    // number of threads (the gradient's per-thread tables do, in the last bits).
+    constexpr Index chunk = 1024;
+    double volume = 0.0;
     for (const FacetBlock& block : blocks) {
         const Index n = block.size();
-        const unsigned workers = std::min(threads, worker_count(options.num_threads, n));
+        const Index num_chunks = (n + chunk - 1) / chunk;
+        std::vector<double> chunk_sums(at(num_chunks), 0.0);
+        const unsigned workers = std::min(
+            {threads, worker_count(options.num_threads, n), static_cast<unsigned>(std::max<Index>(num_chunks, 1))});
         run_parallel(workers, [&](unsigned w) {
-            const Index begin = n * static_cast<Index>(w) / static_cast<Index>(workers);
-            const Index end = n * static_cast<Index>(w + 1) / static_cast<Index>(workers);
+            const Index first_chunk = num_chunks * static_cast<Index>(w) / static_cast<Index>(workers);
+            const Index last_chunk = num_chunks * static_cast<Index>(w + 1) / static_cast<Index>(workers);
             std::vector<double> p;
             std::vector<double> g;
-            double sum = 0.0;
-            for (Index f = begin; f < end; ++f) {
-                const VolumeForm& form = forms[block.form[at(f)]];
-                const Index* facet = block.points.data() + block.offset[at(f)];
-                const auto m = at(form.size);
-                p.resize(3 * m);
-                for (std::size_t a = 0; a < m; ++a) {
-                    const double* q = table + 3 * at(facet[a]);
-                    p[3 * a] = q[0];
-                    p[3 * a + 1] = q[1];
-                    p[3 * a + 2] = q[2];
+            for (Index c = first_chunk; c < last_chunk; ++c) {
+                double sum = 0.0;
+                for (Index f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
+                    const VolumeForm& form = forms[block.form[at(f)]];
+                    const Index* facet = block.points.data() + block.offset[at(f)];
+                    const auto m = at(form.size);
+                    p.resize(3 * m);
+                    for (std::size_t a = 0; a < m; ++a) {
+                        const double* q = table + 3 * at(facet[a]);
+                        p[3 * a] = q[0];
+                        p[3 * a + 1] = q[1];
+                        p[3 * a + 2] = q[2];
+                    }
+                    if (gradient == nullptr) {
+                        sum += form.evaluate(p.data(), nullptr);
+                        continue;
+                    }
+                    g.assign(p.size(), 0.0);
+                    sum += form.evaluate(p.data(), g.data());
+                    double* out = grads[w].data();
+                    for (std::size_t a = 0; a < m; ++a) {
+                        double* row = out + 3 * at(facet[a]);
+                        row[0] += g[3 * a];
+                        row[1] += g[3 * a + 1];
+                        row[2] += g[3 * a + 2];
+                    }
                 }
-                if (gradient == nullptr) {
-                    sum += form.evaluate(p.data(), nullptr);
-                    continue;
-                }
-                g.assign(p.size(), 0.0);
-                sum += form.evaluate(p.data(), g.data());
-                double* out = grads[w].data();
-                for (std::size_t a = 0; a < m; ++a) {
-                    double* row = out + 3 * at(facet[a]);
-                    row[0] += g[3 * a];
-                    row[1] += g[3 * a + 1];
-                    row[2] += g[3 * a + 2];
-                }
+                chunk_sums[at(c)] = sum;
             }
-            sums[w] += sum;
         });
-    }
-    double volume = 0.0;
-    for (const double s : sums) {
-        volume += s;
+        for (const double s : chunk_sums) {
+            volume += s;
+        }
     }
     if (gradient != nullptr) {
         for (unsigned w = 1; w < threads; ++w) {
