@@ -1,6 +1,6 @@
 // limsurf elasticity MESH [--E E] [--nu NU] [--plane-stress] [--boundary periodic|affine|loaded | --periodic]
 //   [--macro-strain "F11,F12;F21,F22"] [--material NAME:E,NU]... [--face-materials FILE] [--clamp SIDE]...
-//   [--traction SIDE:TX,TY]... [--body-force FX,FY] [--levels L] [--quadrature D] [--no-stiffness]
+//   [--traction SIDE:TX,TY]... [--body-force FX,FY] [--levels L] [--quadrature D] [--threads N] [--no-stiffness]
 //   [--crease-interfaces]
 //   [-o fields.vtk|.vtu] [--png sxx.png [--png-field F] [--resolution N] [--size WxH]] [--json]:
 // plane linear elasticity on the limit surface of a planar Catmull–Clark control mesh
@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
+#include "commands/threads_option.h"
 #include "limsurf/io/face_groups.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vtk.h"
@@ -59,6 +60,7 @@ struct ElasticityCommandOptions {
     std::string png_field = "sxx";
     int resolution = 0;  // 0: automatic
     std::string size = "1200x1000";
+    int threads = 0;
     bool json = false;
 };
 
@@ -153,7 +155,7 @@ ElasticityStudyOptions study_options(const ElasticityCommandOptions& options) {
         study.body_force = Eigen::Vector2d(b[0], b[1]);
     }
     study.levels = options.levels;
-    study.quadrature = SamplerOptions{options.quadrature, 6, 0};
+    study.quadrature = SamplerOptions{options.quadrature, 6, options.threads};
     study.effective_stiffness = !options.no_stiffness && !loaded;
     study.crease_interfaces = options.crease_interfaces;
     return study;
@@ -548,6 +550,7 @@ void add_elasticity_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::Range(0, 6));
     cmd->add_option("--quadrature", options->quadrature, "Quadrature degree per tile (1..60, default 6)")
         ->check(CLI::Range(1, 60));
+    add_threads_option(cmd, options->threads);
     cmd->add_flag("--no-stiffness", options->no_stiffness, "Skip the effective stiffness (three solves per level)");
     cmd->add_flag("--crease-interfaces", options->crease_interfaces,
                   "Tag the edges between faces of different materials as infinitely sharp creases (the displacement "

@@ -1,6 +1,6 @@
 // limsurf geodesic MESH --scheme S --source V [--source V ...] [--method dec|decsnap|sec|secsnap]
 //   [--level L] [--gradient-level G] [--time-factor c] [--reference-level K] [--max-memory SIZE]
-//   [-o OUT.ply|.vtk|.vtu] [--png OUT.png] [--json]:
+//   [--threads N] [-o OUT.ply|.vtk|.vtu] [--png OUT.png] [--json]:
 // geodesic distance on the limit surface by the heat method (Crane et al. 2013) with the DEC or
 // SEC operators of --method (SEC §4.2; apps/geodesics.h). With --reference-level K it also runs
 // the heat method with DEC on the K-times subdivided mesh (the paper's reference, same t) and
@@ -15,6 +15,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/apps/geodesics.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
@@ -39,6 +40,7 @@ struct GeodesicCommandOptions {
     std::string output;
     std::string png;
     int isolines = 12;
+    int threads = 0;
     bool json = false;
 };
 
@@ -49,6 +51,7 @@ void write_picture(const ControlMesh& mesh, const std::string& scheme, const Eig
     const LimitBasis basis = make_limit_basis(mesh, limit_options);
     TessellationOptions tess;
     tess.resolution = automatic_resolution(basis);
+    tess.num_threads = options.threads;
     const LimitTessellation surface = tessellate_limit_surface(basis, mesh.positions(), tess);
     RenderOptions render;
     render.colormap = Colormap::Viridis;
@@ -68,6 +71,7 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     geodesic.heat.gradient_level = options.gradient_level;
     geodesic.heat.time_factor = options.time_factor;
     geodesic.heat.scheme_options = scheme_rules(mesh, limit_options);
+    geodesic.heat.num_threads = options.threads;
     if (options.reference_level >= 0) {
         geodesic.reference_level = options.reference_level;
     }
@@ -177,6 +181,7 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status) {
            "Also run the heat method with DEC on the K-times subdivided mesh and report the differences (0..7)")
         ->check(CLI::Range(0, 7));
     add_memory_option(cmd, options->max_memory);
+    add_threads_option(cmd, options->threads);
     cmd->add_option("-o,--output", options->output,
                     "Write the control mesh with fields distance and limit_distance (.ply, .vtk, .vtu)");
     cmd->add_option("--png", options->png, "Render the distance on the limit surface (PNG)");

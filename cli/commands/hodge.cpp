@@ -1,5 +1,5 @@
 // limsurf hodge MESH --scheme S [--method M] [--level L] (--one-form FILE | --random SEED | --field "X;Y;Z")
-//   [--reference-level K] [--no-basis] [--sample-level S] [--save-parts PREFIX] [-o PARTS.vtk] [--json]:
+//   [--reference-level K] [--threads N] [--no-basis] [--sample-level S] [--save-parts PREFIX] [-o PARTS.vtk] [--json]:
 // the Helmholtz–Hodge decomposition w = dα + δβ + h of a 1-form in the inner products of --method (SEC §2.3,
 // §4.3), the norms of the parts, their orthogonality, and the dimension of the harmonic space found
 // numerically against b1 from the Euler characteristic (apps/hodge.h).
@@ -16,6 +16,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "formula.h"
 #include "limsurf/apps/vector_field.h"
 #include "limsurf/io/mesh_io.h"
@@ -38,6 +39,7 @@ struct HodgeCommandOptions {
     int sample_level = 2;
     std::string save_parts;
     std::string output;
+    int threads = 0;
     bool json = false;
 };
 
@@ -73,6 +75,7 @@ int decompose_and_report(const BuildResult& built, const HodgeCommandOptions& o)
     HodgeOptions options;
     options.inner_products.method = parse_inner_product_method(o.method);
     options.inner_products.level = o.level;
+    options.inner_products.num_threads = o.threads;
     options.scheme_options = scheme_rules(mesh, o.scheme);
     options.basis = !o.no_basis;
     if (o.reference_level >= 0) {
@@ -192,6 +195,7 @@ void add_hodge_command(CLI::App& app, CommandStatus& status) {
     cmd->add_flag("--no-basis", o->no_basis, "Skip the harmonic basis (dimension and gap)");
     cmd->add_option("--sample-level", o->sample_level, "Level of the faces the vectors of -o are sampled at (0..6)")
         ->check(CLI::Range(0, 6));
+    add_threads_option(cmd, o->threads);
     cmd->add_option("--save-parts", o->save_parts,
                     "Write the parts as PREFIXexact.txt, PREFIXcoexact.txt, PREFIXharmonic.txt (one value per edge)");
     cmd->add_option("-o,--output", o->output, "Write the input and its parts as vectors (.vtk)");

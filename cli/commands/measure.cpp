@@ -1,4 +1,4 @@
-// limsurf measure MESH --scheme S [--degree D] [--tiles K] [--json]: area, enclosed
+// limsurf measure MESH --scheme S [--degree D] [--tiles K] [--threads N] [--json]: area, enclosed
 // volume, centroids and the solid's inertia tensor by quadrature, each with an error estimate.
 #include <iomanip>
 #include <iostream>
@@ -10,6 +10,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/quadrature/integrals.h"
 #include "output.h"
@@ -22,6 +23,7 @@ struct MeasureOptions {
     LimitSchemeOptions scheme;
     int degree = 12;
     int tiles = 10;
+    int threads = 0;
     bool json = false;
 };
 
@@ -34,7 +36,8 @@ int run_measure(const MeasureOptions& options) {
     print_warnings(built.report);
     const MeasureReport r = naming_file(built.source, {}, [&] {
         const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
-        return measure_with_error(basis, built.mesh.positions(), SamplerOptions{options.degree, options.tiles, 0});
+        return measure_with_error(basis, built.mesh.positions(),
+                                  SamplerOptions{options.degree, options.tiles, options.threads});
     });
     if (options.json) {
         nlohmann::json errors{{"area", r.error.area}, {"surface_centroid", r.error.surface_centroid}};
@@ -102,6 +105,7 @@ void add_measure_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (1..60)")->check(CLI::Range(1, 60));
     cmd->add_option("--tiles", options->tiles, "Tile levels towards extraordinary vertices (0..20)")
         ->check(CLI::Range(0, 20));
+    add_threads_option(cmd, options->threads);
     cmd->add_flag("--json", options->json, "Print JSON");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_measure(*options); }); });
 }

@@ -29,6 +29,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
@@ -156,8 +157,9 @@ struct FieldSurface {
     std::vector<VertexField> fields;
 };
 
-FieldSurface field_surface(const LimitBasis& basis, const Points& X, int resolution) {
+FieldSurface field_surface(const LimitBasis& basis, const Points& X, int resolution, int threads) {
     TessellationOptions tess;
+    tess.num_threads = threads;
     tess.resolution = resolution > 0 ? resolution : automatic_resolution(basis, field_points);
     const LimitTessellation t = tessellate_limit_surface(basis, X, tess);
     FieldSurface out;
@@ -224,7 +226,7 @@ int evaluate_and_report(const MembraneCommandOptions& options, const ControlMesh
     out.update(values_json(functionals.evaluate(mesh.positions()), options.spontaneous_curvature));
     std::optional<FieldSurface> surface;
     if (!options.field_output.empty()) {
-        surface = field_surface(basis, mesh.positions(), options.resolution);
+        surface = field_surface(basis, mesh.positions(), options.resolution, options.threads);
         out["field_output"] = options.field_output;
     }
     require_finite(out);
@@ -275,7 +277,7 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
     const MembraneResult& answer = run.final_result();
     std::optional<FieldSurface> surface;
     if (!options.field_output.empty()) {
-        surface = field_surface(basis, answer.positions, options.resolution);
+        surface = field_surface(basis, answer.positions, options.resolution, options.threads);
         out["field_output"] = options.field_output;
     }
     require_finite(out);  // before anything is written
@@ -372,8 +374,7 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
         "Also converged when the objective's relative change stays below this for 15 iterations with the "
         "constraints met (default 1e-7; 0: the KKT tolerance only)");
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (default 8)");
-    cmd->add_option("--threads", options->threads, "Threads (0: all cores; results do not depend on it)")
-        ->check(CLI::NonNegativeNumber);
+    add_threads_option(cmd, options->threads);
     CLI::Option* evaluate = cmd->add_flag(
         "--evaluate-only", options->evaluate_only,
         "Print the shape functionals of the input (no scaling, no solve); with --spontaneous-curvature also "

@@ -1,6 +1,6 @@
 // limsurf parameterize MESH --scheme loop|catmull-clark [--method dec|decsnap|sec|secsnap] [--level L]
 //   [--boundary free|circle] [--reference-level K] [--max-memory SIZE] [--degree D] [--tiles T]
-//   [-o OUT.obj|.vtk|.vtu|.ply] [--texture-png OUT.png [--squares N] [--view V] [--size WxH]] [--json]:
+//   [--threads N] [-o OUT.obj|.vtk|.vtu|.ply] [--texture-png OUT.png [--squares N] [--view V] [--size WxH]] [--json]:
 // a map of the limit surface to the plane, (u, v) per control vertex (SEC §4.1): spectral conformal
 // (Mullen et al. 2008, --boundary free) or the boundary on the unit circle by limit arc length with a
 // harmonic interior (--boundary circle), with the inner products of --method; reports the
@@ -16,6 +16,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/apps/parameterization.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/io/mesh_io.h"
@@ -44,6 +45,7 @@ struct ParameterizeCommandOptions {
     int squares = 10;
     std::string view = "iso";
     std::string size = "1200x900";
+    int threads = 0;
     bool json = false;
 };
 
@@ -161,6 +163,7 @@ int parameterize_and_report(const BuildResult& built, const ParameterizeCommandO
     p.scheme_options = scheme_rules(mesh, limit_options);
     p.distortion.degree = options.degree;
     p.distortion.tiles = options.tiles;
+    p.distortion.num_threads = options.threads;
     if (options.reference_level >= 0) {
         p.reference_level = options.reference_level;
     }
@@ -231,6 +234,7 @@ void add_parameterize_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--tiles", options->tiles,
                     "Distortion quadrature: tile levels towards extraordinary vertices (0..10, default 3)")
         ->check(CLI::Range(0, 10));
+    add_threads_option(cmd, options->threads);
     cmd->add_option("-o,--output", options->output,
                     "Write the control mesh with the map: .obj (vt per vertex), .vtk, .vtu or .ply (fields u, v)");
     cmd->add_option("--texture-png", options->texture_png, "Write a checkerboard texture view of the limit surface");

@@ -1,5 +1,5 @@
 // limsurf plate MESH (--load uniform|sinusoidal|single-wave|FORMULA [--pressure P] | --load-file FILE)
-//   --support simply|clamped [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--json]
+//   --support simply|clamped [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--threads N] [--json]
 //   [--tuned none|cup|saddle|auto] [-o deflection.vtk]:
 // Kirchhoff–Love bending of the planar plate bounded by the limit surface of a planar Catmull–Clark
 // control mesh (fem/plate.h). For each level 0..L (the control mesh refined l times: the same
@@ -25,6 +25,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "formula.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
@@ -47,6 +48,7 @@ struct PlateOptions {
     int degree = 6;
     std::string tuned = "none";
     std::string output;
+    int threads = 0;
     bool json = false;
 };
 
@@ -97,7 +99,7 @@ int run_plate(const PlateOptions& options) {
         study.material = PlateMaterial{options.E, options.nu, options.thickness};
         study.support = parse_plate_support(options.support);
         study.levels = options.levels;
-        study.quadrature = SamplerOptions{options.degree, 6, 0};
+        study.quadrature = SamplerOptions{options.degree, 6, options.threads};
         study.tuning = parse_plate_tuning(options.tuned);
         PlateLoad load;
         load.pressure = options.pressure;
@@ -224,6 +226,7 @@ void add_plate_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--nu", options->nu, "Poisson's ratio (default 0.3)");
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (1..60, default 6)")
         ->check(CLI::Range(1, 60));
+    add_threads_option(cmd, options->threads);
     cmd->add_option("--tuned", options->tuned,
                     "Tuned weights at interior extraordinary vertices of valence >= 5: none (default), cup, "
                     "saddle, or auto (a cup pass, the cup-saddle ratio R per vertex, then a second pass)")

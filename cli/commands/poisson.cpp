@@ -1,10 +1,13 @@
 // limsurf poisson MESH --scheme S --method M [--level L] (--rhs EXPR | --rhs-file FILE)
-//   [--boundary-value EXPR] [--reference-level K] [--max-memory SIZE] [-o OUT.ply|.vtk|.vtu] [--json]:
+//   [--boundary-value EXPR] [--reference-level K] [--max-memory SIZE] [--threads N]
+//   [-o OUT.ply|.vtk|.vtu] [--json]:
 // solves −Δu = f on the limit surface with the inner products of --method (dec, decsnap, sec,
 // secsnap; SEC §3) or with --method iga, Galerkin with the limit basis (fem/galerkin.h), all
 // unknowns on the control mesh. With --reference-level K it also solves with
 // DEC on the K-times subdivided mesh (the paper's reference construction) and reports the L² and
 // L∞ differences of the subdivided solution from it.
+#include "limsurf/apps/poisson.h"
+
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -16,8 +19,8 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "formula.h"
-#include "limsurf/apps/poisson.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
@@ -40,6 +43,7 @@ struct PoissonCommandOptions {
     int reference_level = -1;
     std::string max_memory;
     std::string output;
+    int threads = 0;
     bool json = false;
 };
 
@@ -56,6 +60,7 @@ int solve_and_report(const BuildResult& built, const PoissonCommandOptions& opti
     poisson.lumped = options.lumped;
     poisson.degree = options.degree;
     poisson.tiles = options.tiles;
+    poisson.num_threads = options.threads;
     poisson.scheme_options = scheme_rules(mesh, limit_options);
     if (options.reference_level >= 0) {
         LIMSURF_CHECK(options.rhs_file.empty(), InputError,
@@ -70,8 +75,7 @@ int solve_and_report(const BuildResult& built, const PoissonCommandOptions& opti
         data.f = [&](const Points& P) { return evaluate_formula("--rhs", options.rhs, P); };
     }
     data.boundary = [&](const Points& P) { return evaluate_formula("--boundary-value", options.boundary_value, P); };
-    const SurfacePoissonResult result =
-        solve_surface_poisson(mesh, limit_schemes().at(options.scheme), poisson, data);
+    const SurfacePoissonResult result = solve_surface_poisson(mesh, limit_schemes().at(options.scheme), poisson, data);
     const PoissonSolution& solution = result.solution;
     const std::optional<ReferenceComparison>& reference = result.reference;
     const bool iga = poisson.method == PoissonMethod::Iga;
@@ -166,6 +170,7 @@ void add_poisson_command(CLI::App& app, CommandStatus& status) {
                     "Also solve with DEC on the K-times subdivided mesh and report the differences (0..7)")
         ->check(CLI::Range(0, 7));
     add_memory_option(cmd, options->max_memory);
+    add_threads_option(cmd, options->threads);
     cmd->add_option("-o,--output", options->output, "Write the control mesh with fields u and f (.ply, .vtk, .vtu)");
     cmd->add_flag("--json", options->json, "Print JSON");
     cmd->callback([options, &status] {

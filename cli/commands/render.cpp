@@ -1,6 +1,6 @@
 // limsurf render MESH --scheme S [--field mean-curvature|gaussian-curvature|FILE.vtk:NAME] [--control-mesh]
 // [--isolines N] [--view iso|front|top|AZ,EL] [--size WxH] [--resolution N] [--range MIN,MAX]
-// [--colormap viridis|coolwarm] -o OUT.png|OUT.glb [--json]: a picture of the limit surface
+// [--colormap viridis|coolwarm] [--threads N] -o OUT.png|OUT.glb [--json]: a picture of the limit surface
 // (docs/guide/render.md), or its tessellation as glTF.
 #include "limsurf/render/render.h"
 
@@ -18,6 +18,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/io/gltf.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vtk.h"
@@ -40,6 +41,7 @@ struct RenderCommandOptions {
     int supersampling = 2;
     bool no_color_bar = false;
     std::string output;
+    int threads = 0;
     bool json = false;
 };
 
@@ -158,6 +160,7 @@ int run_render(const RenderCommandOptions& options) {
     const LimitTessellation tessellation = naming_file(built.source, {field.file, options.output}, [&] {
         const LimitBasis basis = make_limit_basis(mesh, options.scheme);
         TessellationOptions tess;
+        tess.num_threads = options.threads;
         tess.resolution = options.resolution > 0 ? options.resolution : automatic_resolution(basis);
         tess.curvature =
             field.kind == FieldRequest::Kind::MeanCurvature || field.kind == FieldRequest::Kind::GaussianCurvature;
@@ -233,6 +236,7 @@ void add_render_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::IsMember({"viridis", "coolwarm"}));
     cmd->add_option("--supersampling", options->supersampling, "Anti-aliasing samples per pixel side (1..4, default 2)")
         ->check(CLI::Range(1, 4));
+    add_threads_option(cmd, options->threads);
     cmd->add_flag("--no-color-bar", options->no_color_bar, "Leave out the colour bar");
     cmd->add_option("-o,--output", options->output, "Output .png (a picture) or .glb (glTF); written atomically")
         ->required();

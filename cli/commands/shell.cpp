@@ -1,6 +1,7 @@
 // limsurf shell MESH [--scheme catmull-clark|loop] [--levels L] [--E E --nu NU --thickness T]
 //   [--gravity G] [--pressure P] [--point-load 'x,y,z:fx,fy,fz']... [--fix 'FORMULA:xyz']...
-//   [--probe 'x,y,z']... [--interpolate] [--surface 'F(x,y,z)'] [--degree D --tiles K] [--json] [-o out.vtk]:
+//   [--probe 'x,y,z']... [--interpolate] [--surface 'F(x,y,z)'] [--degree D --tiles K] [--threads N]
+//   [--json] [-o out.vtk]:
 // linear Kirchhoff–Love shells on the limit surface (fem/shell.h). For each level 0..L it reports the
 // displacement at the probes (vector and normal component), the strain energy and the solve's
 // residual. Parsing and printing only: the problem is shell_problem (apps/shell.h), the levels
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
+#include "commands/threads_option.h"
 #include "formula.h"
 #include "limsurf/core/error.h"
 #include "limsurf/io/mesh_io.h"
@@ -45,6 +47,7 @@ struct ShellOptions {
     int degree = 6;
     int tiles = 4;
     std::string output;
+    int threads = 0;
     bool json = false;
 };
 
@@ -102,7 +105,7 @@ int run_shell(const ShellOptions& options) {
         study.material = ShellMaterial{options.E, options.nu, options.thickness};
         study.scheme = options.scheme == "loop" ? SchemeKind::Loop : SchemeKind::CatmullClark;
         study.levels = options.levels;
-        study.quadrature = SamplerOptions{options.degree, options.tiles, 0};
+        study.quadrature = SamplerOptions{options.degree, options.tiles, options.threads};
         study.interpolate = options.interpolate;
         if (!options.surface.empty()) {
             const std::string F = options.surface;
@@ -144,14 +147,15 @@ int run_shell(const ShellOptions& options) {
                             {"rigid_motions_removed", l.solution.free_rigid_motions},
                             {"probes", probes}});
         }
-        nlohmann::json out{{"scheme", options.scheme},
-                           {"E", options.E},
-                           {"nu", options.nu},
-                           {"thickness", options.thickness},
-                           {"interpolate", problem.interpolate},
-                           {"surface", options.surface.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.surface)},
-                           {"solver", levels.back().solution.solver},
-                           {"levels", rows}};
+        nlohmann::json out{
+            {"scheme", options.scheme},
+            {"E", options.E},
+            {"nu", options.nu},
+            {"thickness", options.thickness},
+            {"interpolate", problem.interpolate},
+            {"surface", options.surface.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.surface)},
+            {"solver", levels.back().solution.solver},
+            {"levels", rows}};
         require_finite(out);
         if (!options.output.empty()) {
             // The finest control topology at its vertices' limit points, with the limit displacement there.
@@ -186,8 +190,8 @@ int run_shell(const ShellOptions& options) {
 
 void add_shell_command(CLI::App& app, CommandStatus& status) {
     auto options = std::make_shared<ShellOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "shell", "Linear Kirchhoff-Love thin shell on the limit surface (catmull-clark or loop)");
+    CLI::App* cmd =
+        app.add_subcommand("shell", "Linear Kirchhoff-Love thin shell on the limit surface (catmull-clark or loop)");
     cmd->add_option("input", options->input, "Control mesh, or points of the surface with --interpolate/--surface")
         ->required();
     cmd->add_option("--scheme", options->scheme, "catmull-clark (default) or loop")
@@ -215,6 +219,7 @@ void add_shell_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::Range(1, 60));
     cmd->add_option("--tiles", options->tiles, "Quadrature tile levels towards irregular vertices (0..30, default 4)")
         ->check(CLI::Range(0, 30));
+    add_threads_option(cmd, options->threads);
     cmd->add_option("-o,--output", options->output,
                     "Write the finest mesh at its limit points with the displacement (.ply, .vtk, .vtu)");
     cmd->add_flag("--json", options->json, "Print JSON");

@@ -1,6 +1,6 @@
 // limsurf vector-field MESH --scheme S [--method M] [--level L] [--source V:s[:w]]... [--sink V:s[:w]]...
 //   [--vorticity F:c[:w]]... [--stroke V0,V1,...:s[:w]]... [--weight W] [--sample-level S]
-//   [--reference-level K] [--save-one-form FILE] [-o FIELD.vtk] [--png OUT.png] [--json]:
+//   [--reference-level K] [--threads N] [--save-one-form FILE] [-o FIELD.vtk] [--png OUT.png] [--json]:
 // designs the smoothest tangent field (Fisher et al. 2007; SEC §4.3) under soft constraints with the inner
 // products of --method, and writes it as vectors on the limit surface (apps/vector_field.h).
 #include "limsurf/apps/vector_field.h"
@@ -16,6 +16,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/limit/limit_basis.h"
@@ -38,6 +39,7 @@ struct VectorFieldCommandOptions {
     std::string save_one_form;
     std::string output;
     std::string png;
+    int threads = 0;
     bool json = false;
 };
 
@@ -116,11 +118,13 @@ VectorFieldConstraints constraints_of(const VectorFieldCommandOptions& o) {
 
 /// The limit surface coloured by the vectors' magnitude at the level-S vertices (carried by the limit basis
 /// of the level-S mesh, whose limit surface is the same).
-void write_picture(const std::string& path, const OneFormVectors& v, SchemeKind scheme, const SchemeOptions& rules) {
+void write_picture(const std::string& path, const OneFormVectors& v, SchemeKind scheme, const SchemeOptions& rules,
+                   int threads) {
     const LimitBasis basis(v.level_topology, scheme, rules);
     TessellationOptions tess;
     tess.resolution = std::max(2, automatic_resolution(basis, 120000));
     tess.curvature = false;
+    tess.num_threads = threads;
     const LimitTessellation surface = tessellate_limit_surface(basis, v.level_control_points, tess);
     const Eigen::VectorXd magnitude = v.level_vectors.rowwise().norm();
     RenderOptions render;
@@ -137,6 +141,7 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
     VectorFieldOptions options;
     options.inner_products.method = parse_inner_product_method(o.method);
     options.inner_products.level = o.level;
+    options.inner_products.num_threads = o.threads;
     options.scheme_options = scheme_rules(mesh, o.scheme);
     if (o.reference_level >= 0) {
         options.reference_level = o.reference_level;
@@ -198,7 +203,7 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
         write_one_form_vtk(o.output, {{"field", &vectors}});
     }
     if (!o.png.empty()) {
-        write_picture(o.png, vectors, scheme, options.scheme_options);
+        write_picture(o.png, vectors, scheme, options.scheme_options, o.threads);
     }
     print_warnings(r.warnings);
     if (o.json) {
@@ -252,6 +257,7 @@ void add_vector_field_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--reference-level", o->reference_level,
                     "Also design with DEC on the K-times subdivided mesh and report the difference (1..6)")
         ->check(CLI::Range(1, 6));
+    add_threads_option(cmd, o->threads);
     cmd->add_option("--save-one-form", o->save_one_form, "Write the 1-form: one value per edge, one per line");
     cmd->add_option("-o,--output", o->output, "Write the vectors on the limit surface (.vtk: glyphs, streamlines)");
     cmd->add_option("--png", o->png, "Picture of the limit surface coloured by the field's magnitude (.png)");

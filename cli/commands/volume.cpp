@@ -1,4 +1,4 @@
-// limsurf volume MESH --scheme S [--moments] [--levels L] [--json]: the exact volume enclosed
+// limsurf volume MESH --scheme S [--moments] [--levels L] [--threads N] [--json]: the exact volume enclosed
 // by the limit surface (trilinear forms), the polyhedral volumes of the first subdivision
 // levels for comparison, and with --moments the centroid and inertia tensor of the solid by
 // quadrature of the limit surface, with error estimates.
@@ -16,6 +16,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/core/memory.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/mesh/local_size.h"
@@ -34,6 +35,7 @@ struct VolumeCommandOptions {
     bool moments = false;
     int degree = 12;
     int tiles = 10;
+    int threads = 0;
     bool json = false;
 };
 
@@ -173,14 +175,17 @@ int run_volume(const VolumeCommandOptions& options) {
         std::cerr << " on demand (the shipped tables cover 3..12)\n";
     }
     return naming_file(built.source, {}, [&] {
-        const EnclosedVolume forms(mesh.topology(), scheme, scheme_rules(mesh, options.scheme));
+        VolumeOptions volume_options;
+        volume_options.num_threads = options.threads;
+        const EnclosedVolume forms(mesh.topology(), scheme, scheme_rules(mesh, options.scheme), volume_options);
         const double volume = forms.volume(mesh.positions());
         const bool zero = is_zero_volume(volume, mesh.positions());
         const auto levels = polyhedral_levels(mesh, scheme, options.levels);
         std::optional<MeasureReport> moments;
         if (options.moments) {
             const LimitBasis basis = make_limit_basis(mesh, options.scheme);
-            moments = measure_with_error(basis, mesh.positions(), SamplerOptions{options.degree, options.tiles, 0});
+            moments = measure_with_error(basis, mesh.positions(),
+                                         SamplerOptions{options.degree, options.tiles, options.threads});
         }
         const VolumeStatistics& stats = forms.statistics();
         nlohmann::json out{{"scheme", options.scheme.scheme},
@@ -232,6 +237,7 @@ void add_volume_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::Range(1, 60));
     cmd->add_option("--tiles", options->tiles, "Tile levels towards extraordinary vertices for --moments (0..20)")
         ->check(CLI::Range(0, 20));
+    add_threads_option(cmd, options->threads);
     cmd->add_flag("--json", options->json, "Print JSON");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_volume(*options); }); });
 }

@@ -31,6 +31,9 @@ struct SurfacePoissonOptions {
     bool lumped = false;  ///< dec, sec: lump M0 (and M2) (SEC §3.5); refused for iga
     int degree = 8;       ///< iga: quadrature degree per tile
     int tiles = 6;        ///< iga: tile levels towards extraordinary vertices
+    /// Threads for the sec and secsnap inner products and the iga quadrature; 0: hardware concurrency
+    /// (the result does not depend on it).
+    int num_threads = 0;
     SchemeOptions scheme_options;
     /// Also solve with DEC on the K-times subdivided mesh and compare (K >= 0); empty: no reference.
     std::optional<int> reference_level;

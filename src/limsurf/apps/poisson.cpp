@@ -25,7 +25,7 @@ Eigen::VectorXd boundary_values(const SurfacePoissonData& data, const Points& X)
 PoissonSolution solve_iga(const ControlMesh& mesh, SchemeKind scheme, const SurfacePoissonOptions& options,
                           const SurfacePoissonData& data, PoissonProblem& problem) {
     const LimitBasis basis(mesh.topology(), scheme, options.scheme_options);
-    const LimitSampler sampler(basis, SamplerOptions{options.degree, options.tiles, 0});
+    const LimitSampler sampler(basis, SamplerOptions{options.degree, options.tiles, options.num_threads});
     const GalerkinMatrices matrices = assemble_laplace_beltrami(sampler, mesh.positions());
     Eigen::VectorXd load;
     if (data.f_values) {
@@ -46,6 +46,7 @@ PoissonSolution solve_with_inner_products(const ControlMesh& mesh, SchemeKind sc
     ip.method = parse_inner_product_method(to_string(options.method));
     ip.level = options.level;
     ip.lumped = options.lumped;
+    ip.num_threads = options.num_threads;
     const Topology& t = mesh.topology();
     const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
     if (data.f_values) {
