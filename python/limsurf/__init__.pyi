@@ -150,7 +150,8 @@ def poisson(mesh: Mesh, scheme: LimitScheme, rhs: SurfaceFunction | ArrayLike, *
             method: Method | Literal["iga"] = "sec", level: int = 3, lumped: bool = False, degree: int = 8,
             tiles: int = 6, boundary_values: SurfaceFunction | ArrayLike | float | None = None,
             reference_level: int | None = None, max_memory: int | None = None, boundary: Boundary | None = None,
-            creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
+            creasing: Creasing | None = None, triangles: Triangles | None = None,
+            threads: int = 0) -> dict[str, object]: ...
 
 def parameterize(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec", level: int = 3,
                  boundary: Literal["free", "circle"] = "free", reference_level: int | None = None,

@@ -139,8 +139,10 @@ divergence d0ᵀ M1 (#V × #E). The strong Laplacian is M0⁻¹ L.)");
         [](const Mesh& mesh, const std::string& scheme, const py::handle& rhs, const std::string& method, int level,
            bool lumped, int degree, int tiles, const py::handle& boundary_values, std::optional<int> reference_level,
            std::optional<std::int64_t> max_memory, std::optional<std::string> boundary,
-           std::optional<std::string> creasing, std::optional<std::string> triangles) {
+           std::optional<std::string> creasing, std::optional<std::string> triangles, int threads) {
+            LIMSURF_CHECK(threads >= 0, InputError, "threads must be >= 0 (0: all cores), not ", threads);
             SurfacePoissonOptions options;
+            options.num_threads = threads;
             options.method = parse_poisson_method(method);
             options.level = level;
             options.lumped = lumped;
@@ -154,6 +156,7 @@ divergence d0ᵀ M1 (#V × #E). The strong Laplacian is M0⁻¹ L.)");
         "mesh"_a, "scheme"_a, "rhs"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "lumped"_a = false,
         "degree"_a = 8, "tiles"_a = 6, "boundary_values"_a = py::none(), "reference_level"_a = py::none(),
         "max_memory"_a = py::none(), "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "threads"_a = 0,
         R"(Solves −Δu = f on the limit surface with every unknown on the control mesh: `limsurf poisson`.
 
 rhs: a function f(P) of an (n, 3) position array returning n values (integrated where the method
@@ -162,7 +165,8 @@ method: 'dec', 'decsnap', 'sec', 'secsnap' (SEC §3 inner products; level L, lum
 (Galerkin with the limit basis; quadrature degree and tiles). Closed meshes: the mean of f is removed
 and u has mean 0. Open meshes: boundary_values (None = 0, a number, a function of position, or #V
 values) at the boundary vertices. reference_level K: also solve with DEC on the K-times subdivided
-mesh and report the relative L2/Linf differences (needs rhs as a function).
+mesh and report the relative L2/Linf differences (needs rhs as a function). threads: for the sec
+inner products and the iga quadrature, 0 = all cores (the result does not depend on it).
 Returns the numbers of `limsurf poisson --json` under the same keys, with the arrays 'u' and 'f' (#V).)");
 }
 

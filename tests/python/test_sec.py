@@ -59,3 +59,12 @@ def test_poisson_with_vertex_values_and_errors(mesh_path):
         limsurf.poisson(mesh, "catmull-clark", lambda P: 1 / 0)
     with pytest.raises(limsurf.InputError, match="unknown Poisson method"):
         limsurf.poisson(mesh, "catmull-clark", f, method="fem")
+
+
+def test_poisson_threads_do_not_change_the_solution(mesh_path):
+    mesh = limsurf.subdivide(limsurf.read_mesh(mesh_path("genus2")), "catmull-clark", 2)
+    one = limsurf.poisson(mesh, "catmull-clark", lambda P: P[:, 0], method="sec", threads=1)
+    two = limsurf.poisson(mesh, "catmull-clark", lambda P: P[:, 0], method="sec", threads=2)
+    assert np.array_equal(one["u"], two["u"])
+    with pytest.raises(limsurf.InputError, match="threads must be >= 0"):
+        limsurf.poisson(mesh, "catmull-clark", lambda P: P[:, 0], threads=-1)
