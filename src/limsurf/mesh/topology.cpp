@@ -194,32 +194,45 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
         }
     }
 
-    vertex_face_offsets_.reserve(at(num_vertices_) + 1);
-    vertex_edge_offsets_.reserve(at(num_vertices_) + 1);
-    vertex_face_offsets_.assign(1, 0);
-    vertex_edge_offsets_.assign(1, 0);
-    vertex_faces_.reserve(face_vertices_.size());
-    vertex_face_corners_.reserve(face_vertices_.size());
-    vertex_edges_.reserve(face_vertices_.size() + at(num_vertices_));  // + one per boundary vertex at most
+    // Each vertex's slots are known before the walks (its corners; its edges, one more on the
+    // boundary), so the vertices are walked in order of their first corner in the face list: the
+    // faces and edges a walk visits were numbered near each other, and memory is read nearly in order.
+    vertex_face_offsets_ = offsets;
+    vertex_edge_offsets_.assign(at(num_vertices_) + 1, 0);
+    for (Index v = 0; v < num_vertices_; ++v) {
+        vertex_edge_offsets_[at(v) + 1] =
+            vertex_edge_offsets_[at(v)] + offsets[at(v) + 1] - offsets[at(v)] + vertex_is_boundary_[at(v)];
+    }
+    vertex_faces_.resize(face_vertices_.size());
+    vertex_face_corners_.resize(face_vertices_.size());
+    vertex_edges_.resize(at(vertex_edge_offsets_.back()));
+    std::vector<std::uint8_t> walked(at(num_vertices_), 0);
 
     // The walk, for a way of finding a corner's face: arithmetic when all faces have one degree
     // (every refined level of Catmull–Clark and Loop), a table otherwise.
     const auto walk = [&](const auto& face_of) {
-        for (Index v = 0; v < num_vertices_; ++v) {
+        for (size_t c = 0; c < face_vertices_.size(); ++c) {
+            const Index v = face_vertices_[c];
+            if (walked[at(v)] != 0) {
+                continue;
+            }
+            walked[at(v)] = 1;
             const Index count = offsets[at(v) + 1] - offsets[at(v)];
+            Index face_slot = offsets[at(v)];
+            Index edge_slot = vertex_edge_offsets_[at(v)];
             Index corner = start[at(v)];
             for (Index step = 0; step < count; ++step) {
                 const Index f = face_of(corner);
                 const Index first = face_offsets_[at(f)];
-                vertex_faces_.push_back(f);
-                vertex_face_corners_.push_back(corner - first);
-                vertex_edges_.push_back(face_edges_[at(corner)]);
+                vertex_faces_[at(face_slot)] = f;
+                vertex_face_corners_[at(face_slot++)] = corner - first;
+                vertex_edges_[at(edge_slot++)] = face_edges_[at(corner)];
                 // Counter-clockwise, the next face shares this face's incoming edge (from the previous corner).
                 const Index previous = corner == first ? face_offsets_[at(f) + 1] - 1 : corner - 1;
                 const Index in = face_edges_[at(previous)];
                 const Index across = edge_face_offsets_[at(in)];
                 if (edge_face_offsets_[at(in) + 1] - across == 1) {
-                    vertex_edges_.push_back(in);  // closing boundary edge
+                    vertex_edges_[at(edge_slot++)] = in;  // closing boundary edge
                     break;
                 }
                 // The other face runs that edge from v: its half-edge there starts at its corner at v
@@ -227,10 +240,8 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
                 const Index other = edge_faces_[at(across)] == f ? 1 : 0;
                 corner = edge_face_corners[at(across + other)];
             }
-            LIMSURF_ASSERT(static_cast<Index>(vertex_faces_.size()) - vertex_face_offsets_.back() == count,
+            LIMSURF_ASSERT(face_slot == offsets[at(v) + 1] && edge_slot == vertex_edge_offsets_[at(v) + 1],
                            "one-ring walk of vertex ", v, " missed faces");
-            vertex_face_offsets_.push_back(static_cast<Index>(vertex_faces_.size()));
-            vertex_edge_offsets_.push_back(static_cast<Index>(vertex_edges_.size()));
         }
     };
     if (all_faces_have_degree(4)) {
