@@ -55,6 +55,7 @@ void write_picture(const ControlMesh& mesh, const std::string& scheme, const Eig
     const LimitTessellation surface = tessellate_limit_surface(basis, mesh.positions(), tess);
     RenderOptions render;
     render.colormap = Colormap::Viridis;
+    render.num_threads = options.threads;
     render.isolines = options.isolines;
     const RenderResult picture = render_tessellation(surface, evaluate_vertex_field(surface, distance), render);
     write_png(options.png, picture.image);

@@ -164,6 +164,7 @@ int parameterize_and_report(const BuildResult& built, const ParameterizeCommandO
     p.distortion.degree = options.degree;
     p.distortion.tiles = options.tiles;
     p.distortion.num_threads = options.threads;
+    p.num_threads = options.threads;
     if (options.reference_level >= 0) {
         p.reference_level = options.reference_level;
     }
@@ -173,6 +174,7 @@ int parameterize_and_report(const BuildResult& built, const ParameterizeCommandO
         checker.render.view = parse_view(options.view);
         parse_size(options.size, checker.render.width, checker.render.height);
         checker.squares = options.squares;
+        checker.render.num_threads = options.threads;
     }
     const SchemeKind scheme = limit_schemes().at(options.scheme);
     const ParameterizationResult r = parameterize(mesh, scheme, p);

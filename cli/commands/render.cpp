@@ -148,6 +148,7 @@ int run_render(const RenderCommandOptions& options) {
     parse_size(options.size, render.width, render.height);
     render.range = options.range.empty() ? std::nullopt : parse_range(options.range);
     render.colormap = colormap_from_name(options.colormap);
+    render.num_threads = options.threads;
     render.isolines = options.isolines;
     render.supersampling = options.supersampling;
     render.color_bar = !options.no_color_bar;

@@ -130,6 +130,7 @@ void write_picture(const std::string& path, const OneFormVectors& v, SchemeKind 
     RenderOptions render;
     render.width = 900;
     render.height = 700;
+    render.num_threads = threads;
     const RenderResult picture = render_tessellation(surface, evaluate_vertex_field(surface, magnitude), render);
     write_png(path, picture.image);
 }

@@ -25,6 +25,7 @@ py::dict parameterize_mesh(const Mesh& mesh, const std::string& scheme, const st
         o.boundary = parse_parameterization_boundary(boundary);
         o.scheme_options = rules_for(mesh.mesh, rules);
         o.distortion = DistortionOptions{degree, tiles, threads};
+        o.num_threads = threads;
         o.reference_level = reference_level;
         o.max_memory = max_memory;
         ParameterizationResult r;

@@ -145,6 +145,21 @@ TEST(CliThreads, PoissonIsTheSameForAnyThreadCount) {
         {"poisson", refined("disk_ev5_quads", 1), "--scheme", "catmull-clark", "--rhs", "x", "--method", "iga"});
 }
 
+TEST(CliThreads, RenderedPicturesAreTheSameForAnyThreadCount) {
+    // Tessellation and pixel shading: each row and point alone, so the PNG files are byte-identical.
+    std::string pictures[2];
+    for (const int threads : {1, 4}) {
+        const fs::path png = temp_dir() / ("threads" + std::to_string(threads) + ".png");
+        const CliRun run =
+            limsurf({"render", refined("genus2", 1), "--scheme", "catmull-clark", "--field", "mean-curvature", "--size",
+                     "320x240", "--threads", std::to_string(threads), "-o", png.string()});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        pictures[threads == 1 ? 0 : 1] = test::slurp(png);
+    }
+    ASSERT_FALSE(pictures[0].empty());
+    EXPECT_TRUE(pictures[0] == pictures[1]);
+}
+
 TEST(CliThreads, HodgeIsTheSameForAnyThreadCount) {
     expect_same_for_any_thread_count({"hodge", refined("genus2", 2), "--scheme", "catmull-clark", "--random", "1"});
 }

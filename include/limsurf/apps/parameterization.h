@@ -86,6 +86,8 @@ struct ParameterizationOptions {
     ParameterizationBoundary boundary = ParameterizationBoundary::Free;
     SchemeOptions scheme_options;
     DistortionOptions distortion;
+    /// Threads for the SEC inner products (sec, secsnap); 0: hardware concurrency (the same result).
+    int num_threads = 0;
     /// circle only: also solve with DEC on the K-times subdivided mesh and compare (SEC §4.1, Fig. 5).
     std::optional<int> reference_level;
     /// Memory budget of the reference (ReferenceProblem::max_memory); empty: the default.

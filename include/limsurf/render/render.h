@@ -53,6 +53,7 @@ struct RenderOptions {
     Rgb background{255, 255, 255};
     Rgb surface{178, 190, 210};  ///< colour of the surface without a field
     Rgb lines{25, 25, 25};       ///< isolines and control polygon
+    int num_threads = 0;         ///< threads for shading the pixels; 0: hardware concurrency (same image)
 };
 
 /// The control polygon to draw over the surface: points and the edges between them.
@@ -99,8 +100,8 @@ struct RenderResult {
                                                 const std::optional<std::array<double, 2>>& range = std::nullopt);
 
 /// @brief @p surface as a glTF triangle surface (io/gltf.h): positions, normals, and, when @p field is
-///   not empty, the colour map's colours (sRGB, alpha 1; write_glb makes them linear, as glTF's COLOR_0 is) and the field
-///   itself as the scalar attribute called @p name.
+///   not empty, the colour map's colours (sRGB, alpha 1; write_glb makes them linear, as glTF's COLOR_0 is) and the
+///   field itself as the scalar attribute called @p name.
 /// @throws InputError as field_range()
 [[nodiscard]] TriangleSurface triangle_surface(const LimitTessellation& surface, const Eigen::VectorXd& field = {},
                                                const std::string& name = "field", Colormap colormap = Colormap::Viridis,

@@ -436,6 +436,7 @@ ConformalSystem conformal_system(const ControlMesh& mesh, SchemeKind scheme, con
     InnerProductOptions ip;
     ip.method = options.method;
     ip.level = options.level;
+    ip.num_threads = options.num_threads;
     const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
     ConformalSystem out;
     out.surface_area = ops.inner_products().M0.sum();
@@ -607,6 +608,7 @@ ParameterizationResult parameterize(const ControlMesh& mesh, SchemeKind scheme,
         InnerProductOptions ip;
         ip.method = options.method;
         ip.level = options.level;
+        ip.num_threads = options.num_threads;
         const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
         const SparseMatrix L = ops.laplacian();
         auto [uv, length] = circle_boundary_values(mesh, scheme, options.scheme_options);
@@ -642,6 +644,7 @@ RenderResult render_uv_checkerboard(const ControlMesh& mesh, SchemeKind scheme, 
     TessellationOptions tess;
     tess.resolution = options.resolution > 0 ? options.resolution : automatic_resolution(basis);
     tess.curvature = false;
+    tess.num_threads = options.render.num_threads;
     const LimitTessellation surface = tessellate_limit_surface(basis, mesh.positions(), tess);
     const Eigen::VectorXd u = evaluate_vertex_field(surface, uv.col(0));
     const Eigen::VectorXd v = evaluate_vertex_field(surface, uv.col(1));

@@ -202,9 +202,9 @@ Eigen::Vector3d shade_sample(const Shading& c, const detail::SampleBuffer& buffe
 }
 
 /// Each pixel the mean of its samples.
-void resolve(const Shading& c, const detail::SampleBuffer& buffer, Image& image) {
+void resolve(const Shading& c, const detail::SampleBuffer& buffer, int num_threads, Image& image) {
     const int ss = c.supersampling;
-    parallel_ranges(image.height, 0, [&](Index begin, Index end) {
+    parallel_ranges(image.height, num_threads, [&](Index begin, Index end) {
         for (int y = begin; y < end; ++y) {
             for (int x = 0; x < image.width; ++x) {
                 Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -346,7 +346,7 @@ RenderResult render_tessellation(const LimitTessellation& surface, const Eigen::
                           to_unit(options.lines),
                           to_unit(options.background)};
     result.image = Image(options.width, options.height, options.background);
-    resolve(shading, buffer, result.image);
+    resolve(shading, buffer, options.num_threads, result.image);
     const auto covered =
         std::count_if(buffer.triangle.begin(), buffer.triangle.end(), [](Index t) { return t != invalid_index; });
     result.coverage = static_cast<double>(covered) / static_cast<double>(buffer.triangle.size());
