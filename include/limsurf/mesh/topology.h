@@ -35,6 +35,13 @@ struct HalfEdge;
 /// faces that a refinement step made; validated anyway in Debug builds.
 Topology refined_topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
                           const SharpnessTags& sharpness);
+/// Refinement output only: the child of the quad split (Catmull–Clark, bilinear; vertex and face
+/// order of refine/level.h) built directly from @p parent's tables, without sorting half-edges or
+/// walking one-rings. Every table equals that of Topology(child faces, @p child_sharpness)
+/// (tests/refine/face_split/child_topology_test.cpp). @p child_sharpness names child vertices and edges.
+Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_sharpness);
+/// As quad_split_topology, for the triangle split (Loop, linear, C2g0). @pre all faces are triangles
+Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_sharpness);
 }  // namespace detail
 
 class Topology {
@@ -150,6 +157,8 @@ class Topology {
   private:
     friend Topology detail::refined_topology(Index, std::span<const Index>, std::span<const Index>,
                                              const SharpnessTags&);
+    friend Topology detail::quad_split_topology(const Topology&, const SharpnessTags&);
+    friend Topology detail::tri_split_topology(const Topology&, const SharpnessTags&);
     struct Trusted {};
     /// Builds the tables without validating: the faces come from a refinement step.
     Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
@@ -165,10 +174,21 @@ class Topology {
     }
     /// Returns, parallel to edge_faces_, the corner at which each of those faces enters the edge.
     std::vector<Index> build_edges(const std::vector<detail::HalfEdge>& half_edges);
+    /// From face_edges_, face_edge_signs_ and the face count of each edge in edge_face_offsets_[e + 1]:
+    /// the offsets and edge_faces_; the corner at which each face enters the edge into
+    /// @p edge_face_corners when it is not null.
+    void fill_edge_faces(std::vector<Index>* edge_face_corners);
+    /// vertex_is_boundary_ and the one-ring offsets from each vertex's number of faces (in
+    /// vertex_face_offsets_[v + 1]); sizes the one-ring tables.
+    void allocate_one_rings();
     void build_one_rings(const std::vector<Index>& edge_face_corners);
     void build_boundary_loops();
     void build_components();
     void apply_sharpness(const SharpnessTags& sharpness);
+    /// The corner after corner @p c (a global corner index) of face @p f.
+    [[nodiscard]] Index next_corner(Index f, Index c) const {
+        return c + 1 == face_offsets_[at(f) + 1] ? face_offsets_[at(f)] : c + 1;
+    }
 
     Index num_vertices_ = 0;
     std::vector<Index> face_offsets_{0};

@@ -30,56 +30,6 @@ EffectiveSharpness effective_sharpness(const Topology& parent, BoundaryInterpola
     return result;
 }
 
-ChildFaces quad_split_faces(const Topology& parent) {
-    const Index V = parent.num_vertices();
-    const Index F = parent.num_faces();
-    ChildFaces child;
-    const auto num_children = at(parent.num_corners());
-    child.offsets.resize(num_children + 1);
-    for (std::size_t i = 0; i <= num_children; ++i) {
-        child.offsets[i] = static_cast<Index>(4 * i);
-    }
-    child.vertices.resize(4 * num_children);
-    Index* out = child.vertices.data();
-    for (Index f = 0; f < F; ++f) {
-        const auto verts = parent.face_vertices(f);
-        const auto edges = parent.face_edges(f);
-        const std::size_t n = verts.size();
-        for (std::size_t k = 0; k < n; ++k) {
-            *out++ = verts[k];
-            *out++ = V + F + edges[k];
-            *out++ = V + f;
-            *out++ = V + F + edges[(k + n - 1) % n];
-        }
-    }
-    return child;
-}
-
-ChildFaces tri_split_faces(const Topology& parent) {
-    const Index V = parent.num_vertices();
-    const Index F = parent.num_faces();
-    ChildFaces child;
-    child.offsets.resize(4 * at(F) + 1);
-    for (std::size_t i = 0; i < child.offsets.size(); ++i) {
-        child.offsets[i] = static_cast<Index>(3 * i);
-    }
-    child.vertices.resize(12 * at(F));
-    Index* out = child.vertices.data();
-    for (Index f = 0; f < F; ++f) {
-        const auto verts = parent.face_vertices(f);
-        const auto edges = parent.face_edges(f);
-        for (std::size_t k = 0; k < 3; ++k) {
-            *out++ = verts[k];
-            *out++ = V + edges[k];
-            *out++ = V + edges[(k + 2) % 3];
-        }
-        *out++ = V + edges[0];
-        *out++ = V + edges[1];
-        *out++ = V + edges[2];
-    }
-    return child;
-}
-
 Provenance quad_split_provenance(const Topology& parent) {
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
@@ -298,11 +248,8 @@ bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effe
     return true;
 }
 
-Level make_level(Index num_child_vertices, ChildFaces faces, SharpnessTags tags, SparseMatrix S0,
-                 Provenance provenance) {
-    Level level{detail::refined_topology(num_child_vertices, faces.offsets, faces.vertices, tags), std::move(S0),
-                std::move(provenance)};
-    return level;
+Level make_level(Topology child, SparseMatrix S0, Provenance provenance) {
+    return Level{std::move(child), std::move(S0), std::move(provenance)};
 }
 
 }  // namespace limsurf::detail

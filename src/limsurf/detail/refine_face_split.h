@@ -1,6 +1,6 @@
 // Private machinery shared by the face-split schemes (Catmull–Clark, Loop,
-// bilinear, linear): the child topology of the quad and triangle splits, the
-// provenance, sharpness propagation, the sequential sparse-row builder and the
+// bilinear, linear; the child topology of the quad and triangle splits is
+// mesh/split_topology.cpp's): the provenance, sharpness propagation, the sequential sparse-row builder and the
 // crease-aware vertex mask (docs/schemes.md).
 #pragma once
 
@@ -28,20 +28,6 @@ struct EffectiveSharpness {
 
 /// @brief Effective sharpness of @p parent under @p boundary.
 [[nodiscard]] EffectiveSharpness effective_sharpness(const Topology& parent, BoundaryInterpolation boundary);
-
-/// Child faces as CSR arrays (offsets #F'+1, corners).
-struct ChildFaces {
-    std::vector<Index> offsets;
-    std::vector<Index> vertices;
-};
-
-/// @brief Quad split (Catmull–Clark, bilinear): child vertex of face f is V + f,
-///   of edge e is V + F + e; child k of face f is [v_k, e_k, f, e_(k−1)].
-[[nodiscard]] ChildFaces quad_split_faces(const Topology& parent);
-
-/// @brief Triangle split (Loop, linear): child vertex of edge e is V + e; children
-///   [v_k, e_k, e_(k−1)] for k = 0, 1, 2, then [e_0, e_1, e_2]. @pre all faces are triangles
-[[nodiscard]] ChildFaces tri_split_faces(const Topology& parent);
 
 /// @brief Provenance of the quad split (vertices, faces, edges; n quads per face).
 [[nodiscard]] Provenance quad_split_provenance(const Topology& parent);
@@ -204,8 +190,8 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 [[nodiscard]] bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effective,
                                         CreasingMethod method, Index e, std::vector<double>& scratch);
 
-/// @brief Assembles the Level (validates the child topology).
-[[nodiscard]] Level make_level(Index num_child_vertices, ChildFaces faces, SharpnessTags tags, SparseMatrix S0,
-                               Provenance provenance);
+/// @brief Assembles the Level from the child topology (detail::quad_split_topology or
+///   detail::tri_split_topology, mesh/topology.h), S0 and the provenance.
+[[nodiscard]] Level make_level(Topology child, SparseMatrix S0, Provenance provenance);
 
 }  // namespace limsurf::detail

@@ -115,8 +115,7 @@ std::vector<Index> Topology::build_edges(const std::vector<detail::HalfEdge>& ha
     const auto num_groups = static_cast<Index>(group_size.size());
 
     // Edges numbered in order of first appearance in the face list (locality, like Vtr), in one pass
-    // over the corners; then each edge lists the face traversing it lower -> higher first, then the
-    // other (at most two: validated), in a second pass.
+    // over the corners; then their faces (at most two: validated) in a second pass.
     std::vector<Index> edge_of_group(at(num_groups), invalid_index);
     face_edges_.resize(face_vertices_.size());
     face_edge_signs_.resize(face_vertices_.size());
@@ -141,19 +140,41 @@ std::vector<Index> Topology::build_edges(const std::vector<detail::HalfEdge>& ha
             face_edge_signs_[at(c)] = a < b ? 1 : -1;
         }
     }
+    std::vector<Index> edge_face_corners;
+    fill_edge_faces(&edge_face_corners);
+    return edge_face_corners;
+}
+
+void Topology::fill_edge_faces(std::vector<Index>* edge_face_corners) {
     std::partial_sum(edge_face_offsets_.begin(), edge_face_offsets_.end(), edge_face_offsets_.begin());
     edge_faces_.resize(face_vertices_.size());
-    std::vector<Index> edge_face_corners(face_vertices_.size());  // parallel to edge_faces_: where each enters
+    if (edge_face_corners != nullptr) {
+        edge_face_corners->resize(face_vertices_.size());  // parallel to edge_faces_: where each enters
+    }
+    // Each edge lists the face traversing it lower -> higher first, then the other (at most two).
     for (Index f = 0; f < num_faces(); ++f) {
         for (Index c = face_offsets_[at(f)]; c < face_offsets_[at(f) + 1]; ++c) {
             const Index e = face_edges_[at(c)];
             const Index slot =
                 face_edge_signs_[at(c)] > 0 ? edge_face_offsets_[at(e)] : edge_face_offsets_[at(e) + 1] - 1;
             edge_faces_[at(slot)] = f;
-            edge_face_corners[at(slot)] = c;
+            if (edge_face_corners != nullptr) {
+                (*edge_face_corners)[at(slot)] = c;
+            }
         }
     }
-    return edge_face_corners;
+}
+
+void Topology::allocate_one_rings() {
+    std::partial_sum(vertex_face_offsets_.begin(), vertex_face_offsets_.end(), vertex_face_offsets_.begin());
+    vertex_edge_offsets_.assign(at(num_vertices_) + 1, 0);
+    for (Index v = 0; v < num_vertices_; ++v) {
+        vertex_edge_offsets_[at(v) + 1] = vertex_edge_offsets_[at(v)] + vertex_face_offsets_[at(v) + 1] -
+                                          vertex_face_offsets_[at(v)] + vertex_is_boundary_[at(v)];
+    }
+    vertex_faces_.resize(at(vertex_face_offsets_.back()));
+    vertex_face_corners_.resize(at(vertex_face_offsets_.back()));
+    vertex_edges_.resize(at(vertex_edge_offsets_.back()));
 }
 
 std::span<const Index> Topology::edge_faces(Index e) const {
@@ -177,14 +198,13 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // Per vertex: its number of corners, and the corner its walk starts at — the first corner in
     // face order, or for a boundary vertex the corner whose outgoing edge is its (single, the
     // vertex is manifold) outgoing boundary edge. No per-vertex corner lists are needed.
-    std::vector<Index> offsets(at(num_vertices_) + 1, 0);
+    vertex_face_offsets_.assign(at(num_vertices_) + 1, 0);
     std::vector<Index> start(at(num_vertices_), invalid_index);
     for (size_t c = 0; c < face_vertices_.size(); ++c) {
         const auto v = at(face_vertices_[c]);
-        ++offsets[v + 1];
+        ++vertex_face_offsets_[v + 1];
         start[v] = start[v] == invalid_index ? static_cast<Index>(c) : start[v];
     }
-    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
     vertex_is_boundary_.assign(at(num_vertices_), 0);
     for (Index e = 0; e < num_edges(); ++e) {
         if (edge_face_offsets_[at(e) + 1] - edge_face_offsets_[at(e)] == 1) {
@@ -197,15 +217,8 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // Each vertex's slots are known before the walks (its corners; its edges, one more on the
     // boundary), so the vertices are walked in order of their first corner in the face list: the
     // faces and edges a walk visits were numbered near each other, and memory is read nearly in order.
-    vertex_face_offsets_ = offsets;
-    vertex_edge_offsets_.assign(at(num_vertices_) + 1, 0);
-    for (Index v = 0; v < num_vertices_; ++v) {
-        vertex_edge_offsets_[at(v) + 1] =
-            vertex_edge_offsets_[at(v)] + offsets[at(v) + 1] - offsets[at(v)] + vertex_is_boundary_[at(v)];
-    }
-    vertex_faces_.resize(face_vertices_.size());
-    vertex_face_corners_.resize(face_vertices_.size());
-    vertex_edges_.resize(at(vertex_edge_offsets_.back()));
+    allocate_one_rings();
+    const std::vector<Index>& offsets = vertex_face_offsets_;
     std::vector<std::uint8_t> walked(at(num_vertices_), 0);
 
     // The walk, for a way of finding a corner's face: arithmetic when all faces have one degree

@@ -21,9 +21,10 @@ Level refine_bilinear(const Topology& parent) {
     detail::add_midpoint_rows(parent, rows);
     // Sharpness is carried with uniform decay so that a later smooth scheme sees it.
     const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
-    return detail::make_level(V + F + E, detail::quad_split_faces(parent),
-                              detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false),
-                              rows.finish(), detail::quad_split_provenance(parent));
+    return detail::make_level(
+        detail::quad_split_topology(parent,
+                                    detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false)),
+        rows.finish(), detail::quad_split_provenance(parent));
 }
 
 }  // namespace limsurf

@@ -32,7 +32,7 @@ Level refine_c2g0(const Topology& parent) {
         emit();
     }
 
-    return detail::make_level(V + E, detail::tri_split_faces(parent), SharpnessTags{}, rows.finish(),
+    return detail::make_level(detail::tri_split_topology(parent, SharpnessTags{}), rows.finish(),
                               detail::tri_split_provenance(parent));
 }
 

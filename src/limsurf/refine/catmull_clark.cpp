@@ -206,9 +206,9 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
         rows.end_row();
     }
 
-    return detail::make_level(V + F + E, detail::quad_split_faces(parent),
-                              detail::child_sharpness(parent, effective, options.creasing, V + F, false), rows.finish(),
-                              detail::quad_split_provenance(parent));
+    return detail::make_level(
+        detail::quad_split_topology(parent, detail::child_sharpness(parent, effective, options.creasing, V + F, false)),
+        rows.finish(), detail::quad_split_provenance(parent));
 }
 
 }  // namespace limsurf

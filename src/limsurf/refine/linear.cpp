@@ -12,8 +12,8 @@ Level refine_linear(const Topology& parent) {
     detail::add_identity_rows(V, rows);
     detail::add_midpoint_rows(parent, rows);
     const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
-    return detail::make_level(V + E, detail::tri_split_faces(parent),
-                              detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true),
+    return detail::make_level(detail::tri_split_topology(
+                                  parent, detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true)),
                               rows.finish(), detail::tri_split_provenance(parent));
 }
 

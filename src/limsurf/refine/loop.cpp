@@ -65,9 +65,9 @@ Level refine_loop(const Topology& parent, const SchemeOptions& options) {
         rows.end_row();
     }
 
-    return detail::make_level(V + E, detail::tri_split_faces(parent),
-                              detail::child_sharpness(parent, effective, options.creasing, V, true), rows.finish(),
-                              detail::tri_split_provenance(parent));
+    return detail::make_level(
+        detail::tri_split_topology(parent, detail::child_sharpness(parent, effective, options.creasing, V, true)),
+        rows.finish(), detail::tri_split_provenance(parent));
 }
 
 }  // namespace limsurf
