@@ -185,10 +185,16 @@ void SparseRowBuilder::end_row() {
             row_[j] = entry;
         }
     }
-    matrix_.startVec(current_);
-    for (const auto& entry : row_) {
-        matrix_.insertBack(current_, entry.col) = entry.weight;
+    // Appended straight into the compressed arrays (Eigen's insertBack checks and grows per entry);
+    // the storage doubles when the hint was short.
+    auto& data = matrix_.data();
+    const Index begin = data.size();
+    data.resize(begin + static_cast<Index>(row_.size()), 1.0);
+    for (std::size_t i = 0; i < row_.size(); ++i) {
+        data.index(begin + static_cast<Index>(i)) = row_[i].col;
+        data.value(begin + static_cast<Index>(i)) = row_[i].weight;
     }
+    matrix_.outerIndexPtr()[current_ + 1] = data.size();
     row_.clear();
     ++current_;
 }
@@ -223,7 +229,6 @@ void add_vertex_and_neighbours(const Topology& parent, Index v, const VertexMask
 
 SparseMatrix SparseRowBuilder::finish() {
     LIMSURF_ASSERT(current_ == matrix_.rows(), "rows ended: ", current_, " of ", matrix_.rows());
-    matrix_.finalize();
     SparseMatrix out;  // swap, not move: Eigen 3.4's SparseMatrix has no move constructor
     out.swap(matrix_);
     return out;
