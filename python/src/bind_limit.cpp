@@ -13,6 +13,7 @@
 
 #include "arrays.h"
 #include "common.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/limit/surface_frame.h"
 #include "limsurf/quadrature/sampler.h"

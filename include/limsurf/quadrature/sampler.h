@@ -28,7 +28,6 @@
 // only the innermost cell (area 4^-k of the face) is integrated inexactly.
 #pragma once
 
-#include <functional>
 #include <span>
 #include <vector>
 
@@ -89,9 +88,5 @@ class LimitSampler {
     std::vector<Index> vertices_;
     std::vector<double> limit_;  // 6 per entry, column-major per sample
 };
-
-/// @brief Runs body(begin, end) on contiguous ranges of [0, n) on up to @p num_threads
-///   std::threads (0: hardware concurrency); serial when n is small. Exceptions propagate.
-void parallel_ranges(Index n, int num_threads, const std::function<void(Index, Index)>& body);
 
 }  // namespace limsurf

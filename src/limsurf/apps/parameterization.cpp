@@ -13,6 +13,7 @@
 #include <Spectra/SymGEigsShiftSolver.h>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/rules.h"

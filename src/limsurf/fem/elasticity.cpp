@@ -11,6 +11,7 @@
 #include "boundary_samples.h"
 #include "element_assembly.h"
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/mesh/sharpness.h"
 

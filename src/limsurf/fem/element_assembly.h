@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "limsurf/core/parallel.h"
 #include "limsurf/core/types.h"
 #include "limsurf/quadrature/sampler.h"
 

@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/volume/enclosed_volume.h"
 

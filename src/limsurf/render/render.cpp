@@ -7,6 +7,7 @@
 
 #include "annotate.h"
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/quadrature/sampler.h"
 #include "raster.h"
 

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/limit/surface_frame.h"
 #include "limsurf/quadrature/sampler.h"
 

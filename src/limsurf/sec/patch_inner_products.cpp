@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/refine/hierarchy.h"
