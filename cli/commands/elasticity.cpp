@@ -351,11 +351,12 @@ nlohmann::json write_outputs(const ElasticityCommandOptions& options, const Elas
     ElasticBody body = study_body;
     body.face_material = finest.face_material;
     const int resolution = options.resolution > 0 ? options.resolution : automatic_field_resolution(finest.topology);
-    const ElasticityFields fields = elasticity_fields(finest, body, resolution);
+    const ElasticityFields fields = elasticity_fields(finest, body, resolution, options.threads);
     std::optional<RenderResult> picture;
     if (!options.png.empty()) {
         RenderOptions render;
         render.view = parse_view("top");
+        render.num_threads = options.threads;
         parse_size(options.size, render.width, render.height);
         render.colormap = options.png_field == "von-mises" ? Colormap::Viridis : Colormap::CoolWarm;
         const Eigen::VectorXd field = picture_field(fields, options.png_field);

@@ -223,8 +223,8 @@ def render(mesh: Mesh, scheme: LimitScheme,
            control_mesh: bool = False, isolines: int = 0, view: str | tuple[float, float] = "iso",
            size: tuple[int, int] = (1200, 900), resolution: int = 0, range: tuple[float, float] | None = None,
            colormap: Literal["viridis", "coolwarm"] = "viridis", supersampling: int = 2, color_bar: bool = True,
-           output: PathLike | None = None, boundary: Boundary | None = None, creasing: Creasing | None = None,
-           triangles: Triangles | None = None) -> dict[str, object]: ...
+           output: PathLike | None = None, threads: int = 0, boundary: Boundary | None = None,
+           creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
 def write_glb(path: PathLike, positions: ArrayLike, triangles: ArrayLike, *, normals: ArrayLike | None = None,
               colors: ArrayLike | None = None, scalar: ArrayLike | None = None, scalar_name: str = "field") -> None: ...
 
@@ -420,7 +420,8 @@ def elasticity(mesh: Mesh, *, E: float = 1.0, nu: float = 0.3, plane_stress: boo
                effective_stiffness: bool = True, crease_interfaces: bool = False,
                clamp: tuple[RectangleSide, ...] | list[RectangleSide] = (),
                tractions: list[tuple[RectangleSide, tuple[float, float]]] | tuple[()] = (),
-               body_force: tuple[float, float] = (0.0, 0.0), resolution: int = 0) -> dict[str, object]:
+               body_force: tuple[float, float] = (0.0, 0.0), resolution: int = 0,
+               threads: int = 0) -> dict[str, object]:
     """`limsurf elasticity --json`'s numbers with the displacement's control values (and fields when resolution > 0)."""
 @overload
 def elasticity(V: ArrayLike, F: ArrayLike | list[ArrayLike], *, E: float = 1.0, nu: float = 0.3,
@@ -430,7 +431,8 @@ def elasticity(V: ArrayLike, F: ArrayLike | list[ArrayLike], *, E: float = 1.0, 
                effective_stiffness: bool = True, crease_interfaces: bool = False,
                clamp: tuple[RectangleSide, ...] | list[RectangleSide] = (),
                tractions: list[tuple[RectangleSide, tuple[float, float]]] | tuple[()] = (),
-               body_force: tuple[float, float] = (0.0, 0.0), resolution: int = 0) -> dict[str, object]: ...
+               body_force: tuple[float, float] = (0.0, 0.0), resolution: int = 0,
+               threads: int = 0) -> dict[str, object]: ...
 
 # Reverse Catmull–Clark (docs/guide/reverse.md).
 class ReverseLevel(TypedDict):

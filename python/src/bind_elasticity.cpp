@@ -41,6 +41,7 @@ struct ElasticityArgs {
     py::object tractions;
     py::object body_force;
     int resolution = 0;
+    int threads = 0;
 };
 
 ElasticBoundary boundary_from(const std::string& name) {
@@ -149,7 +150,9 @@ ElasticityStudyOptions study_from(const ElasticityArgs& args, Index num_faces, s
                   "clamp and tractions need boundary='loaded'");
     study.body_force = pair_from(args.body_force, "body_force");
     study.levels = args.levels;
-    study.quadrature = SamplerOptions{args.quadrature, 6, 0};
+    LIMSURF_CHECK(args.threads >= 0, InputError, "threads: expected 0 (all cores) or a positive count, got ",
+                  args.threads);
+    study.quadrature = SamplerOptions{args.quadrature, 6, args.threads};
     study.effective_stiffness = args.effective_stiffness && !loaded;
     study.crease_interfaces = args.crease_interfaces;
     return study;
@@ -231,7 +234,7 @@ py::dict elasticity(const Mesh& mesh, const ElasticityArgs& args) {
             if (args.resolution > 0) {
                 ElasticBody body = study.body;
                 body.face_material = r.levels.back().face_material;
-                fields = elasticity_fields(r.levels.back(), body, args.resolution);
+                fields = elasticity_fields(r.levels.back(), body, args.resolution, args.threads);
             }
         }
         py::list materials;
@@ -309,7 +312,8 @@ strain j; None when not computed), 'seconds', 'u' (#V, 2) control values of the 
 'shear_hashin_shtrikman' (lower, upper) or None), 'warnings', and the finest level's 'u',
 'effective_stiffness', 'mesh', with resolution > 0 also 'fields' ('positions' (#P, 3), 'triangles'
 (#T, 3), 'displacement' (#P, 2), 'strain' and 'stress' (#P, 3), 'von_mises', 'material' (#P)). The solve
-runs without the GIL. Raises InputError for E ≤ 0, ν outside (−1, 0.5), a non-planar or closed mesh,
+runs without the GIL; threads: for the quadrature, the assembly and the fields, 0 = all cores (the numbers
+do not depend on it). Raises InputError for E ≤ 0, ν outside (−1, 0.5), a non-planar or closed mesh,
 periodic sides that do not match (naming the vertex), a face_material of the wrong size or out of
 range, a loaded body without a clamped side; NumericalError for a folded or degenerate map.)";
 
@@ -320,30 +324,31 @@ void bind_elasticity(py::module_& m) {
                         const py::object& macro_deformation, const py::object& face_material,
                         const py::object& materials, int levels, int quadrature, bool effective_stiffness,
                         bool crease_interfaces, const py::object& clamp, const py::object& tractions,
-                        const py::object& body_force, int resolution) {
+                        const py::object& body_force, int resolution, int threads) {
         return elasticity(mesh, ElasticityArgs{E, nu, plane_stress, boundary, macro_deformation, face_material,
                                                materials, levels, quadrature, effective_stiffness, crease_interfaces,
-                                               clamp, tractions, body_force, resolution});
+                                               clamp, tractions, body_force, resolution, threads});
     };
     m.def("elasticity", run, "mesh"_a, py::kw_only(), "E"_a = 1.0, "nu"_a = 0.3, "plane_stress"_a = false,
           "boundary"_a = "periodic", "macro_deformation"_a = py::none(), "face_material"_a = py::none(),
           "materials"_a = py::none(), "levels"_a = 0, "quadrature"_a = 6, "effective_stiffness"_a = true,
           "crease_interfaces"_a = false, "clamp"_a = py::tuple(), "tractions"_a = py::tuple(),
-          "body_force"_a = py::make_tuple(0.0, 0.0), "resolution"_a = 0, elasticity_doc);
+          "body_force"_a = py::make_tuple(0.0, 0.0), "resolution"_a = 0, "threads"_a = 0, elasticity_doc);
     m.def(
         "elasticity",
         [run](const py::object& V, const py::object& F, double E, double nu, bool plane_stress,
               const std::string& boundary, const py::object& macro_deformation, const py::object& face_material,
               const py::object& materials, int levels, int quadrature, bool effective_stiffness, bool crease_interfaces,
-              const py::object& clamp, const py::object& tractions, const py::object& body_force, int resolution) {
+              const py::object& clamp, const py::object& tractions, const py::object& body_force, int resolution,
+              int threads) {
             return run(mesh_from(V, F), E, nu, plane_stress, boundary, macro_deformation, face_material, materials,
                        levels, quadrature, effective_stiffness, crease_interfaces, clamp, tractions, body_force,
-                       resolution);
+                       resolution, threads);
         },
         "V"_a, "F"_a, py::kw_only(), "E"_a = 1.0, "nu"_a = 0.3, "plane_stress"_a = false, "boundary"_a = "periodic",
         "macro_deformation"_a = py::none(), "face_material"_a = py::none(), "materials"_a = py::none(), "levels"_a = 0,
         "quadrature"_a = 6, "effective_stiffness"_a = true, "crease_interfaces"_a = false, "clamp"_a = py::tuple(),
-        "tractions"_a = py::tuple(), "body_force"_a = py::make_tuple(0.0, 0.0), "resolution"_a = 0);
+        "tractions"_a = py::tuple(), "body_force"_a = py::make_tuple(0.0, 0.0), "resolution"_a = 0, "threads"_a = 0);
 }
 
 }  // namespace limsurf::python

@@ -95,8 +95,11 @@ View view_from(const py::handle& view) {
 py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& field, bool control_mesh, int isolines,
                 const py::handle& view, const py::handle& size, int resolution,
                 const std::optional<std::array<double, 2>>& range, const std::string& colormap, int supersampling,
-                bool color_bar, const std::optional<std::filesystem::path>& output, const RuleNames& rules) {
+                bool color_bar, const std::optional<std::filesystem::path>& output, int threads,
+                const RuleNames& rules) {
+    LIMSURF_CHECK(threads >= 0, InputError, "threads: expected 0 (all cores) or a positive count, got ", threads);
     RenderOptions options;
+    options.num_threads = threads;
     options.view = view_from(view);
     const std::array<int, 2> wh = size_from(size);
     options.width = wh[0];
@@ -109,7 +112,7 @@ py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& f
     const bool curvature = py::isinstance<py::str>(field);
     return naming_source(mesh, [&] {
         const LimitTessellation t =
-            tessellation_of(mesh, scheme, resolution, curvature, mesh.mesh.positions(), 0, rules);
+            tessellation_of(mesh, scheme, resolution, curvature, mesh.mesh.positions(), threads, rules);
         std::string name;
         const Eigen::VectorXd values = field_values(field, t, mesh.mesh.num_vertices(), name);
         const bool glb = output && output->extension() == ".glb";
@@ -201,15 +204,15 @@ field u has the limit values W @ u) and 'resolution'.)");
         [](const Mesh& mesh, const std::string& scheme, const py::handle& field, bool control_mesh, int isolines,
            const py::handle& view, const py::handle& size, int resolution, std::optional<std::array<double, 2>> range,
            const std::string& colormap, int supersampling, bool color_bar, std::optional<std::filesystem::path> output,
-           std::optional<std::string> boundary, std::optional<std::string> creasing,
+           int threads, std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
             return render(mesh, scheme, field, control_mesh, isolines, view, size, resolution, range, colormap,
-                          supersampling, color_bar, output, RuleNames{boundary, creasing, triangles});
+                          supersampling, color_bar, output, threads, RuleNames{boundary, creasing, triangles});
         },
         "mesh"_a, "scheme"_a, "field"_a = py::none(), py::kw_only(), "control_mesh"_a = false, "isolines"_a = 0,
         "view"_a = "iso", "size"_a = py::make_tuple(1200, 900), "resolution"_a = 0, "range"_a = py::none(),
         "colormap"_a = "viridis", "supersampling"_a = 2, "color_bar"_a = true, "output"_a = py::none(),
-        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "threads"_a = 0, "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(A picture of the limit surface: the pixels `limsurf render` writes, with the same options.
 
 field: None, 'mean-curvature', 'gaussian-curvature', or #V values at the control vertices (carried to
@@ -217,6 +220,7 @@ the surface through the limit basis, u_h = Σ u_i φ_i). view: 'iso', 'front', '
 elevation) in degrees. size: (width, height). range: the field values at the colour map's ends
 (default min..max; ±max|f| for 'coolwarm'). output: also write it, .png (the picture) or .glb (the
 tessellation for Blender and web viewers: normals, colours, the field as attribute "_NAME").
+threads: for the tessellation and the shading, 0 = all cores (the picture does not depend on it).
 Returns 'image' (height × width × 3 uint8, RGB, top row first; not for .glb), 'coverage', 'range',
 'field', 'field_min', 'field_max', 'resolution', 'points', 'triangles'.)");
     m.def("write_glb", &write_glb_arrays, "path"_a, "positions"_a, "triangles"_a, py::kw_only(),

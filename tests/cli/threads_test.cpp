@@ -160,6 +160,20 @@ TEST(CliThreads, RenderedPicturesAreTheSameForAnyThreadCount) {
     EXPECT_TRUE(pictures[0] == pictures[1]);
 }
 
+TEST(CliThreads, ElasticityFieldsAreTheSameForAnyThreadCount) {
+    // The stresses written by -o are evaluated point by point: the VTK files are byte-identical.
+    std::string fields[2];
+    for (const int threads : {1, 4}) {
+        const fs::path vtk = temp_dir() / ("elasticity_threads" + std::to_string(threads) + ".vtk");
+        const CliRun run = limsurf({"elasticity", refined("rve_block", 1), "--no-stiffness", "--threads",
+                                    std::to_string(threads), "-o", vtk.string()});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        fields[threads == 1 ? 0 : 1] = test::slurp(vtk);
+    }
+    ASSERT_FALSE(fields[0].empty());
+    EXPECT_TRUE(fields[0] == fields[1]);
+}
+
 TEST(CliThreads, HodgeIsTheSameForAnyThreadCount) {
     expect_same_for_any_thread_count({"hodge", refined("genus2", 2), "--scheme", "catmull-clark", "--random", "1"});
 }

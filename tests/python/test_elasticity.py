@@ -85,6 +85,20 @@ def test_fields(mesh_path):
     np.testing.assert_allclose(fields["displacement"], fields["positions"][:, :2] @ (F - np.eye(2)).T, atol=1e-10)
 
 
+def test_threads_do_not_change_the_numbers_or_the_fields(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("rve_block"))
+    face_material = np.where(np.arange(mesh.num_faces) % 2 == 0, -1, 0).astype(np.int32)  # -1: E, nu
+    runs = [limsurf.elasticity(mesh, face_material=face_material, materials=[(10.0, 0.3)], levels=1, resolution=4,
+                               threads=threads) for threads in (1, 2)]
+    assert np.array_equal(runs[0]["levels"][-1]["homogenised_stress"], runs[1]["levels"][-1]["homogenised_stress"])
+    for key in ("effective_stiffness", "u"):
+        assert np.array_equal(runs[0][key], runs[1][key]), key
+    for key in ("displacement", "strain", "stress", "von_mises"):
+        assert np.array_equal(runs[0]["fields"][key], runs[1]["fields"][key]), key
+    with pytest.raises(limsurf.InputError, match="threads"):
+        limsurf.elasticity(mesh, threads=-1)
+
+
 def test_loaded_strip_balances_its_traction(mesh_path):
     # v = (x + 1, 0) vanishes on the clamped left side of [-1, 1]²: mean σ_xx = t_x exactly.
     mesh = limsurf.read_mesh(mesh_path("quad_grid"))

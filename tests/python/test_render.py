@@ -48,6 +48,15 @@ def test_a_control_field_colours_the_picture_and_the_background_stays(mesh_path)
     assert column[rows[len(rows) // 4]] > column[rows[3 * len(rows) // 4]]
 
 
+def test_threads_do_not_change_the_picture(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    one, two = (limsurf.render(mesh, "catmull-clark", "mean-curvature", size=(160, 120), resolution=4,
+                               threads=threads)["image"] for threads in (1, 2))
+    assert np.array_equal(one, two)
+    with pytest.raises(limsurf.InputError, match="threads"):
+        limsurf.render(mesh, "catmull-clark", threads=-1)
+
+
 def test_tessellation_lies_on_the_limit_surface(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("cube_creases"))
     t = limsurf.tessellate(mesh, "catmull-clark", resolution=4)

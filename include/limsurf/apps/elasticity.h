@@ -132,7 +132,9 @@ struct ElasticityFields {
 };
 
 /// @brief The displacement, strain and stress of @p level at the points of a tessellation with
-///   @p resolution segments per ptex face side.
-[[nodiscard]] ElasticityFields elasticity_fields(const ElasticityLevel& level, const ElasticBody& body, int resolution);
+///   @p resolution segments per ptex face side, evaluated on @p num_threads threads (0: hardware
+///   concurrency; the fields do not depend on it).
+[[nodiscard]] ElasticityFields elasticity_fields(const ElasticityLevel& level, const ElasticBody& body, int resolution,
+                                                 int num_threads = 0);
 
 }  // namespace limsurf

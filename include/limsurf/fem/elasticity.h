@@ -164,11 +164,13 @@ struct PlaneStressState {
 };
 
 /// @brief The state of @p u at the surface points @p points (each inside a ptex face of @p basis):
-///   strains through the map's first derivatives, stresses by the face's material.
+///   strains through the map's first derivatives, stresses by the face's material; evaluated on
+///   @p num_threads threads (0: hardware concurrency; each point's state does not depend on it).
 /// @throws InputError for sizes that do not match; NumericalError at a degenerate point
 [[nodiscard]] std::vector<PlaneStressState> elasticity_state(const LimitBasis& basis, const Points& X,
                                                              const ElasticBody& body, const Eigen::VectorXd& u,
-                                                             const std::vector<SurfacePoint>& points);
+                                                             const std::vector<SurfacePoint>& points,
+                                                             int num_threads = 0);
 
 /// Averages over the body by the quadrature of a sampler.
 struct ElasticAverages {

@@ -368,17 +368,19 @@ StiffnessBounds stiffness_bounds(const ElasticBody& body, const std::vector<doub
     return out;
 }
 
-ElasticityFields elasticity_fields(const ElasticityLevel& level, const ElasticBody& body, int resolution) {
+ElasticityFields elasticity_fields(const ElasticityLevel& level, const ElasticBody& body, int resolution,
+                                   int num_threads) {
     ElasticBody local = body;
     local.face_material = level.face_material;
     const LimitBasis basis(level.topology, SchemeKind::CatmullClark);
     TessellationOptions options;
     options.resolution = resolution;
     options.curvature = false;
+    options.num_threads = num_threads;
     ElasticityFields out;
     out.tessellation = tessellate_limit_surface(basis, level.X, options);
     const std::vector<PlaneStressState> states =
-        elasticity_state(basis, level.X, local, level.solution.u, out.tessellation.points);
+        elasticity_state(basis, level.X, local, level.solution.u, out.tessellation.points, num_threads);
     const auto n = static_cast<Index>(states.size());
     out.displacement.resize(n, 2);
     out.strain.resize(n, 3);

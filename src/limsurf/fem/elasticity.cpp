@@ -491,7 +491,8 @@ ElasticitySolution solve_elasticity(const SparseMatrix& K, const Eigen::VectorXd
 }
 
 std::vector<PlaneStressState> elasticity_state(const LimitBasis& basis, const Points& X, const ElasticBody& body,
-                                               const Eigen::VectorXd& u, const std::vector<SurfacePoint>& points) {
+                                               const Eigen::VectorXd& u, const std::vector<SurfacePoint>& points,
+                                               int num_threads) {
     const Topology& topology = basis.topology();
     check_elastic_body(body, topology.num_faces());
     check_planar_points(X, topology.num_vertices());
@@ -504,7 +505,7 @@ std::vector<PlaneStressState> elasticity_state(const LimitBasis& basis, const Po
     const std::vector<Index> material = ptex_materials(basis, body);
     const double sign = orientation(topology, X);
     std::vector<PlaneStressState> out(points.size());
-    parallel_ranges(static_cast<Index>(points.size()), 0, [&](Index begin, Index end) {
+    parallel_ranges(static_cast<Index>(points.size()), num_threads, [&](Index begin, Index end) {
         LimitWeights W;
         for (Index i = begin; i < end; ++i) {
             const SurfacePoint& point = points[at(i)];
