@@ -1,6 +1,6 @@
 // Uniform refinement, 2 levels, topology + positions, on ~100k-face meshes:
-// limsurf (Hierarchy: child topologies with full validation, S0, provenance,
-// then S0 products) against OpenSubdiv Far (TopologyRefiner::RefineUniform +
+// limsurf (Hierarchy: every level's child topology, S0, provenance, then S0
+// products; and refine_finest: the same, keeping only the finest level) against OpenSubdiv Far (TopologyRefiner::RefineUniform +
 // PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's
 // uniform subdividers, each in the same binary and run. CGAL and OpenMesh
 // refine in place, so each iteration starts from a copy made outside the timer.
@@ -95,11 +95,32 @@ void limsurf_refine(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKi
     report(state, mesh, faces);
 }
 
+/// refine_finest: the same topology and positions, only the finest level kept (as `limsurf subdivide`).
+void limsurf_refine_finest(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
+    limsurf::RefineOptions options;
+    options.scheme = scheme;
+    options.levels = levels;
+    double faces = 0;
+    for (auto _ : state) {
+        const limsurf::FinestLevel finest = limsurf::refine_finest(base, mesh.positions, options);
+        benchmark::DoNotOptimize(finest.positions.data());
+        faces = finest.topology.num_faces();
+    }
+    report(state, mesh, faces);
+}
+
 void BM_limsurf_CatmullClark(benchmark::State& state) {
     limsurf_refine(state, quads(), limsurf::SchemeKind::CatmullClark);
 }
 void BM_limsurf_Loop(benchmark::State& state) {
     limsurf_refine(state, triangles(), limsurf::SchemeKind::Loop);
+}
+void BM_limsurf_finest_CatmullClark(benchmark::State& state) {
+    limsurf_refine_finest(state, quads(), limsurf::SchemeKind::CatmullClark);
+}
+void BM_limsurf_finest_Loop(benchmark::State& state) {
+    limsurf_refine_finest(state, triangles(), limsurf::SchemeKind::Loop);
 }
 void BM_limsurf_DooSabin(benchmark::State& state) {
     limsurf_refine(state, quads(), limsurf::SchemeKind::DooSabin);
@@ -262,10 +283,12 @@ void BM_OpenMesh_Loop(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_limsurf_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_finest_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_finest_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();

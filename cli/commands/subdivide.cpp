@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -87,26 +88,25 @@ int run_subdivide(const SubdivideOptions& options) {
     print_warnings(built.report);
     RefineOptions refine = refine_options(options, built.mesh.hints());
     return naming_file(built.source, {options.output, options.weights}, [&] {
-        // The finest level is copied once more for writing: keep room for it in the budget.
+        // Only the finest level is kept (each step's S0 and parent are dropped once used); the
+        // budget is checked against the peak of keeping every level, an upper bound of it.
         const std::vector<LevelSize> sizes = predict_sizes(built.mesh.topology(), refine.scheme, refine.levels);
-        refine.reserved_bytes = estimated_bytes(sizes.back());
         const auto start = std::chrono::steady_clock::now();
-        const Hierarchy hierarchy(built.mesh.topology(), refine);
-        const Points positions = hierarchy.positions(hierarchy.num_steps(), built.mesh.positions());
+        FinestLevel refined = refine_finest(built.mesh.topology(), built.mesh.positions(), refine);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
         SchemeHints hints;  // record the rules used, so that the output refines the same way
         hints.boundary = refine.scheme_options.boundary;
         hints.creasing = refine.scheme_options.creasing;
         hints.triangles = refine.scheme_options.triangles;
-        const ControlMesh finest(hierarchy.topology(hierarchy.num_steps()), positions, hints);
+        const ControlMesh finest(std::move(refined.topology), std::move(refined.positions), hints);
         print_warnings(write_mesh(options.output, finest,
                                   {.ply_encoding = ply_encoding_from(options.ply_encoding), .format = format}));
 
         if (options.json) {
             nlohmann::json levels = nlohmann::json::array();
-            for (int l = 0; l <= hierarchy.num_steps(); ++l) {
-                levels.push_back(size_json(hierarchy.topology(l)));
+            for (const auto& [v, e, f] : refined.counts) {
+                levels.push_back({{"num_vertices", v}, {"num_edges", e}, {"num_faces", f}});
             }
             print_json({{"scheme", options.scheme},
                         {"levels", options.levels},
@@ -118,7 +118,7 @@ int run_subdivide(const SubdivideOptions& options) {
                         {"output", size_json(finest.topology())},
                         {"per_level", levels},
                         {"output_file", options.output},
-                        {"estimated_peak_bytes", estimated_peak_bytes(sizes, refine.scheme) + refine.reserved_bytes},
+                        {"estimated_peak_bytes", estimated_peak_bytes(sizes, refine.scheme)},
                         {"seconds", seconds}});
         }
         return exit_ok;

@@ -131,4 +131,21 @@ class Hierarchy {
     mutable std::unique_ptr<std::mutex> accumulated_mutex_ = std::make_unique<std::mutex>();
 };
 
+/// The finest level of a refinement, without the levels before it.
+struct FinestLevel {
+    Topology topology;  ///< level L
+    Points positions;   ///< #V_L × 3
+    /// {#V, #E, #F} of every level 0..L (as Hierarchy::topology(l) would report them).
+    std::vector<std::array<Index, 3>> counts;
+};
+
+/// @brief Refines @p base options.levels times and keeps only the finest level: each step's S0
+///   carries the positions and is dropped with the parent level, so the peak holds two
+///   topologies and one S0 instead of every level (for users who only want the refined mesh:
+///   `limsurf subdivide`). Topology and positions are those of Hierarchy(base,
+///   options).topology(L) and .positions(L, control_points), bit for bit. options.forms is ignored.
+/// @throws as Hierarchy's constructor and Hierarchy::positions (the same checks, before any work)
+[[nodiscard]] FinestLevel refine_finest(const Topology& base, const Points& control_points,
+                                        const RefineOptions& options);
+
 }  // namespace limsurf

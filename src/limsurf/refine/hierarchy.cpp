@@ -139,6 +139,35 @@ void check_memory(const Topology& base, const std::vector<LevelSize>& sizes, std
                        ": use fewer levels, or a larger budget (limsurf --max-memory) if the machine has the memory"));
 }
 
+/// Everything Hierarchy and refine_finest refuse before any work: levels, sizes, memory, weights.
+void check_refinement(const Topology& base, const RefineOptions& options) {
+    LIMSURF_CHECK(options.levels >= 0 && options.levels <= max_levels, InputError, "levels must be in [0, ", max_levels,
+                  "], got ", options.levels);
+    LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
+    const std::vector<LevelSize> sizes = predict_sizes(base, options.scheme, options.levels);
+    const LevelSize& finest = sizes.back();
+    const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme) + options.reserved_bytes;
+    LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
+                  " levels would make ", finest.faces, " faces at level ", options.levels, " (about ",
+                  format_bytes(peak), "); the limit is ", options.max_faces, " faces (max_faces): use fewer levels");
+    check_memory(base, sizes, peak, options);
+    const auto index_max = static_cast<std::int64_t>(std::numeric_limits<Index>::max());
+    LIMSURF_CHECK(finest.corners < index_max && finest.vertices < index_max && finest.edges < index_max, InputError,
+                  to_string(options.scheme), " with ", options.levels, " levels would exceed 32-bit indices at level ",
+                  options.levels);
+
+    LIMSURF_CHECK(options.weights.largest_vertex() < base.num_vertices(), InputError, "tuned weights name vertex ",
+                  options.weights.largest_vertex(), " but the control mesh has ", base.num_vertices(), " vertices");
+}
+
+/// Masks with negative weights (tuned, semi-sharp blends) can leave the range of a double for
+/// control points near it.
+void check_finite(const Points& control_points, const Points& out, int level) {
+    LIMSURF_CHECK(!control_points.allFinite() || out.allFinite(), NumericalError, "the level-", level,
+                  " positions overflow a double (the control points reach ", control_points.cwiseAbs().maxCoeff(),
+                  "): rescale the mesh");
+}
+
 }  // namespace
 
 std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, int levels) {
@@ -194,24 +223,7 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKin
 }
 
 Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(options), base_(std::move(base)) {
-    LIMSURF_CHECK(options.levels >= 0 && options.levels <= max_levels, InputError, "levels must be in [0, ", max_levels,
-                  "], got ", options.levels);
-    LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
-    const std::vector<LevelSize> sizes = predict_sizes(base_, options.scheme, options.levels);
-    const LevelSize& finest = sizes.back();
-    const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme) + options.reserved_bytes;
-    LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
-                  " levels would make ", finest.faces, " faces at level ", options.levels, " (about ",
-                  format_bytes(peak), "); the limit is ", options.max_faces, " faces (max_faces): use fewer levels");
-    check_memory(base_, sizes, peak, options);
-    const auto index_max = static_cast<std::int64_t>(std::numeric_limits<Index>::max());
-    LIMSURF_CHECK(finest.corners < index_max && finest.vertices < index_max && finest.edges < index_max, InputError,
-                  to_string(options.scheme), " with ", options.levels, " levels would exceed 32-bit indices at level ",
-                  options.levels);
-
-    LIMSURF_CHECK(options.weights.largest_vertex() < base_.num_vertices(), InputError, "tuned weights name vertex ",
-                  options.weights.largest_vertex(), " but the control mesh has ", base_.num_vertices(), " vertices");
-
+    check_refinement(base_, options);
     steps_.reserve(static_cast<std::size_t>(options.levels));
     for (int l = 0; l < options.levels; ++l) {
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;
@@ -283,11 +295,30 @@ Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {
 
 Points Hierarchy::positions(int level, const Points& control_points) const {
     Points out = apply(level, control_points);
-    // Masks with negative weights (tuned, semi-sharp blends) can leave the range of a double
-    // for control points near it.
-    LIMSURF_CHECK(!control_points.allFinite() || out.allFinite(), NumericalError, "the level-", level,
-                  " positions overflow a double (the control points reach ", control_points.cwiseAbs().maxCoeff(),
-                  "): rescale the mesh");
+    check_finite(control_points, out, level);
+    return out;
+}
+
+FinestLevel refine_finest(const Topology& base, const Points& control_points, const RefineOptions& options) {
+    check_refinement(base, options);
+    LIMSURF_CHECK(control_points.rows() == base.num_vertices(), InputError, "data has ", control_points.rows(),
+                  " rows but level 0 has ", base.num_vertices(), " vertices");
+    const auto counts = [](const Topology& t) {
+        return std::array<Index, 3>{t.num_vertices(), t.num_edges(), t.num_faces()};
+    };
+    FinestLevel out;
+    out.counts.push_back(counts(base));
+    Points values = control_points;
+    Topology level;  // the current finest, once refined
+    for (int l = 0; l < options.levels; ++l) {
+        Level step = refine(l == 0 ? base : level, options.scheme, options.scheme_options, options.weights);
+        values = step.S0 * values;         // as Hierarchy::apply, step by step: the same sums
+        level = std::move(step.topology);  // the parent, its S0 and provenance go here
+        out.counts.push_back(counts(level));
+    }
+    check_finite(control_points, values, options.levels);
+    out.topology = options.levels == 0 ? base : std::move(level);
+    out.positions = std::move(values);
     return out;
 }
 

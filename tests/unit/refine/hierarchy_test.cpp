@@ -1,5 +1,8 @@
 // Hierarchy: size prediction against the real counts, accumulated operators
 // against successive products, refusal before allocating.
+#include <algorithm>
+#include <array>
+
 #include <gtest/gtest.h>
 
 #include "limsurf/core/memory.h"
@@ -248,6 +251,66 @@ TEST(Hierarchy, DenseMasksOverAHugeFaceAreRefusedNamingTheFace) {
     // Bilinear's face point is the only dense row: linear, and within the budget.
     options.scheme = SchemeKind::Bilinear;
     EXPECT_NO_THROW(Hierarchy(pillow, options));
+}
+
+}  // namespace
+}  // namespace limsurf
+
+namespace limsurf {
+namespace {
+
+/// refine_finest keeps only the finest level: the same topology and positions, bit for bit, as the
+/// Hierarchy's level L, and the same counts per level.
+void expect_finest_equals_hierarchy(const test::BundledMesh& mesh, const RefineOptions& options) {
+    SCOPED_TRACE(mesh.name + " " + to_string(options.scheme));
+    const BuildResult built = read_mesh(mesh.path);
+    const Hierarchy hierarchy(built.mesh.topology(), options);
+    const FinestLevel finest = refine_finest(built.mesh.topology(), built.mesh.positions(), options);
+    const Topology& expected = hierarchy.topology(options.levels);
+    ASSERT_EQ(finest.topology.num_faces(), expected.num_faces());
+    EXPECT_TRUE(std::equal(expected.face_offsets().begin(), expected.face_offsets().end(),
+                           finest.topology.face_offsets().begin()));
+    EXPECT_TRUE(std::equal(expected.all_face_vertices().begin(), expected.all_face_vertices().end(),
+                           finest.topology.all_face_vertices().begin()));
+    EXPECT_EQ(finest.topology.sharpness_tags().creases.size(), expected.sharpness_tags().creases.size());
+    const Points positions = hierarchy.positions(options.levels, built.mesh.positions());
+    ASSERT_EQ(finest.positions.rows(), positions.rows());
+    EXPECT_TRUE((finest.positions.array() == positions.array()).all()) << "positions differ";
+    ASSERT_EQ(finest.counts.size(), static_cast<std::size_t>(options.levels) + 1);
+    for (int l = 0; l <= options.levels; ++l) {
+        const Topology& t = hierarchy.topology(l);
+        const std::array<Index, 3> counts{t.num_vertices(), t.num_edges(), t.num_faces()};
+        EXPECT_EQ(finest.counts[static_cast<std::size_t>(l)], counts) << "level " << l;
+    }
+}
+
+TEST(RefineFinest, EqualsTheHierarchysFinestLevelBitForBit) {
+    for (const auto& mesh : test::bundled_meshes()) {
+        for (const SchemeKind scheme : {SchemeKind::CatmullClark, SchemeKind::Bilinear}) {
+            expect_finest_equals_hierarchy(mesh, options_for(scheme, 2));
+        }
+        if (!read_mesh(mesh.path).mesh.topology().has_sharpness()) {  // Doo–Sabin has no crease rules
+            expect_finest_equals_hierarchy(mesh, options_for(SchemeKind::DooSabin, 2));
+        }
+        if (mesh.triangles_only) {
+            expect_finest_equals_hierarchy(mesh, options_for(SchemeKind::Loop, 2));
+        }
+    }
+    RefineOptions tuned = options_for(SchemeKind::CatmullClark, 2);
+    tuned.weights = TunedWeights::preset("cup");
+    expect_finest_equals_hierarchy(test::find_bundled("quad_valence_5"), tuned);
+    expect_finest_equals_hierarchy(test::find_bundled("cube"), options_for(SchemeKind::CatmullClark, 0));
+}
+
+TEST(RefineFinest, RefusesWhatTheHierarchyRefuses) {
+    const BuildResult built = read_mesh(test::find_bundled("quad_torus").path);
+    EXPECT_THROW(
+        (void)refine_finest(built.mesh.topology(), built.mesh.positions(), options_for(SchemeKind::CatmullClark, 12)),
+        InputError);  // 805 306 368 faces
+    EXPECT_THROW((void)refine_finest(built.mesh.topology(), Points::Zero(3, 3), options_for(SchemeKind::Bilinear, 1)),
+                 InputError);  // rows do not match the vertices
+    EXPECT_THROW((void)refine_finest(built.mesh.topology(), built.mesh.positions(), options_for(SchemeKind::Loop, 1)),
+                 UnsupportedError);  // quads under Loop
 }
 
 }  // namespace
