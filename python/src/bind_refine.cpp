@@ -1,4 +1,6 @@
 // limsurf.subdivide: uniform refinement, with the sparse subdivision operators on request.
+#include <utility>
+
 #include <pybind11/stl.h>
 
 #include "arrays.h"
@@ -18,6 +20,16 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
     options.scheme_options = rules_for(mesh.mesh, rules);
     options.forms = forms;
     return naming_source(mesh, [&]() -> py::object {
+        if (!operators && !forms) {  // only the finest level is wanted: keep no other (refine_finest)
+            FinestLevel refined;
+            {
+                const py::gil_scoped_release release;
+                refined = refine_finest(mesh.mesh.topology(), mesh.mesh.positions(), options);
+            }
+            return py::cast(Mesh{ControlMesh(std::move(refined.topology), std::move(refined.positions),
+                                             mesh.mesh.hints()),
+                                 SourceMap{}, ValidationReport{}});
+        }
         std::optional<Hierarchy> hierarchy;
         Points positions;
         {
@@ -28,9 +40,6 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
         py::object finest = py::cast(Mesh{ControlMesh(hierarchy->topology(levels), std::move(positions),
                                                       mesh.mesh.hints()),
                                           SourceMap{}, ValidationReport{}});
-        if (!operators && !forms) {
-            return finest;
-        }
         py::dict ops;
         ops["S0"] = to_scipy(hierarchy->accumulated(levels));
         if (forms) {
