@@ -9,7 +9,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <numeric>
 
 #include "limsurf/core/error.h"
 #include "limsurf/detail/connectivity.h"
@@ -90,6 +89,47 @@ void write_interior_ring(const std::array<Index, N>& faces, const std::array<Ind
     }
 }
 
+/// The first V child vertices are the parent vertices' children: their one-ring sizes and boundary
+/// flags are the parent's. @pre @p face_counts has #V_child + 1 entries, @p boundary #V_child
+void copy_parent_vertex_ring_sizes(const Topology& parent, std::vector<Index>& face_counts,
+                                   std::vector<std::uint8_t>& boundary) {
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        face_counts[at(v) + 1] = static_cast<Index>(parent.vertex_faces(v).size());
+        boundary[at(v)] = parent.is_boundary_vertex(v) ? 1 : 0;
+    }
+}
+
+/// A parent vertex's child: the children at its corners, in the parent's order (the first corner
+/// and the boundary start are the parent's); it is corner 0 of each; its edges are the halves at
+/// it of its parent edges. Its slots are the parent vertex's (the first V child vertices, of the
+/// same sizes). @p child_face(f, k) is the child of parent face f at its corner k.
+template <class ChildFace>
+void fill_parent_vertex_rings(const Topology& parent, const EdgeNumbering& number, const ChildFace& child_face,
+                              std::vector<Index>& faces, std::vector<Index>& corners, std::vector<Index>& edges) {
+    Index face_slot = 0;
+    Index edge_slot = 0;
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        const auto ring_faces = parent.vertex_faces(v);
+        const auto ring_corners = parent.vertex_face_corners(v);
+        for (std::size_t i = 0; i < ring_faces.size(); ++i, ++face_slot) {
+            faces[at(face_slot)] = child_face(ring_faces[i], ring_corners[i]);
+            corners[at(face_slot)] = 0;
+        }
+        for (const Index e : parent.vertex_edges(v)) {
+            edges[at(edge_slot++)] = number.of(half_key(e, parent.edge_vertices(e)[1] == v));
+        }
+    }
+}
+
+/// Child faces [first_child(f), first_child(f + 1)) lie in the component of parent face f.
+template <class FirstChild>
+void inherit_components(const Topology& parent, const FirstChild& first_child, std::vector<Index>& component) {
+    component.resize(at(first_child(parent.num_faces())));
+    for (Index f = 0; f < parent.num_faces(); ++f) {
+        std::fill(component.begin() + first_child(f), component.begin() + first_child(f + 1), parent.face_component(f));
+    }
+}
+
 }  // namespace
 
 namespace {
@@ -162,11 +202,7 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
     // face; an edge point two per face of its edge, and it is on the boundary when the edge is.
     child.vertex_face_offsets_.assign(at(child.num_vertices_) + 1, 0);
     child.vertex_is_boundary_.assign(at(child.num_vertices_), 0);
-    for (Index v = 0; v < V; ++v) {
-        child.vertex_face_offsets_[at(v) + 1] =
-            parent.vertex_face_offsets_[at(v) + 1] - parent.vertex_face_offsets_[at(v)];
-        child.vertex_is_boundary_[at(v)] = parent.vertex_is_boundary_[at(v)];
-    }
+    copy_parent_vertex_ring_sizes(parent, child.vertex_face_offsets_, child.vertex_is_boundary_);
     for (Index f = 0; f < F; ++f) {
         child.vertex_face_offsets_[at(face_point + f) + 1] = parent.face_degree(f);
     }
@@ -177,20 +213,10 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
     }
     child.allocate_one_rings();
 
-    // A parent vertex's child: the children at its corners, in the parent's order (the first corner
-    // and the boundary start are the parent's); it is corner 0 of each; its edges are the halves at
-    // it of its parent edges. Its slots are the parent vertex's (the first V child vertices).
-    for (Index v = 0; v < V; ++v) {
-        for (Index s = parent.vertex_face_offsets_[at(v)]; s < parent.vertex_face_offsets_[at(v) + 1]; ++s) {
-            const Index f = parent.vertex_faces_[at(s)];
-            child.vertex_faces_[at(s)] = parent.face_offsets_[at(f)] + parent.vertex_face_corners_[at(s)];
-            child.vertex_face_corners_[at(s)] = 0;
-        }
-        for (Index s = parent.vertex_edge_offsets_[at(v)]; s < parent.vertex_edge_offsets_[at(v) + 1]; ++s) {
-            const Index e = parent.vertex_edges_[at(s)];
-            child.vertex_edges_[at(s)] = number.of(half_key(e, parent.edge_vertices_[2 * at(e) + 1] == v));
-        }
-    }
+    // A parent vertex's child: child c of each parent corner c at it.
+    fill_parent_vertex_rings(
+        parent, number, [&](Index f, Index k) { return parent.face_offsets_[at(f)] + k; }, child.vertex_faces_,
+        child.vertex_face_corners_, child.vertex_edges_);
     // A face point: the children of its face in order, at their corner 2; child k leaves it by the
     // spoke of edge k−1.
     for (Index f = 0; f < F; ++f) {
@@ -240,11 +266,8 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
 
     // Components and genus are the parent's; child faces come in parent face order, so the
     // components keep their numbers (by first face).
-    child.face_component_.resize(at(C));
-    for (Index f = 0; f < F; ++f) {
-        std::fill(child.face_component_.begin() + parent.face_offsets_[at(f)],
-                  child.face_component_.begin() + parent.face_offsets_[at(f) + 1], parent.face_component_[at(f)]);
-    }
+    inherit_components(
+        parent, [&](Index f) { return parent.face_offsets_[at(f)]; }, child.face_component_);
     child.num_components_ = parent.num_components_;
     child.genus_ = parent.genus_;
     child.build_boundary_loops();
@@ -314,28 +337,17 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
     // edge, and it is on the boundary when the edge is.
     child.vertex_face_offsets_.assign(at(child.num_vertices_) + 1, 0);
     child.vertex_is_boundary_.assign(at(child.num_vertices_), 0);
-    for (Index v = 0; v < V; ++v) {
-        child.vertex_face_offsets_[at(v) + 1] =
-            parent.vertex_face_offsets_[at(v) + 1] - parent.vertex_face_offsets_[at(v)];
-        child.vertex_is_boundary_[at(v)] = parent.vertex_is_boundary_[at(v)];
-    }
+    copy_parent_vertex_ring_sizes(parent, child.vertex_face_offsets_, child.vertex_is_boundary_);
     for (Index e = 0; e < E; ++e) {
         child.vertex_face_offsets_[at(edge_point + e) + 1] = 3 * faces_of(e);
         child.vertex_is_boundary_[at(edge_point + e)] = faces_of(e) == 1 ? 1 : 0;
     }
     child.allocate_one_rings();
 
-    // A parent vertex's child: as in the quad split, the corner children 4f + k in the parent's order.
-    for (Index v = 0; v < V; ++v) {
-        for (Index s = parent.vertex_face_offsets_[at(v)]; s < parent.vertex_face_offsets_[at(v) + 1]; ++s) {
-            child.vertex_faces_[at(s)] = 4 * parent.vertex_faces_[at(s)] + parent.vertex_face_corners_[at(s)];
-            child.vertex_face_corners_[at(s)] = 0;
-        }
-        for (Index s = parent.vertex_edge_offsets_[at(v)]; s < parent.vertex_edge_offsets_[at(v) + 1]; ++s) {
-            const Index e = parent.vertex_edges_[at(s)];
-            child.vertex_edges_[at(s)] = number.of(half_key(e, parent.edge_vertices_[2 * at(e) + 1] == v));
-        }
-    }
+    // A parent vertex's child: the corner children 4f + k.
+    fill_parent_vertex_rings(
+        parent, number, [](Index f, Index k) { return 4 * f + k; }, child.vertex_faces_, child.vertex_face_corners_,
+        child.vertex_edges_);
     // An edge point of edge e (from v_k to v_k+1 at corner k of face g; from v_k+1 to v_k at corner m
     // of face g'): counter-clockwise, g's child k (at its corner 1), g''s child m+1 (corner 2), g''s
     // middle (corner m), g''s child m (corner 1), g's child k+1 (corner 2), g's middle (corner k),
@@ -371,10 +383,8 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
                                faces, corners, edges);
     }
 
-    child.face_component_.resize(faces_count);
-    for (Index f = 0; f < F; ++f) {
-        std::fill_n(child.face_component_.begin() + 4 * f, 4, parent.face_component_[at(f)]);
-    }
+    inherit_components(
+        parent, [](Index f) { return 4 * f; }, child.face_component_);
     child.num_components_ = parent.num_components_;
     child.genus_ = parent.genus_;
     child.build_boundary_loops();
