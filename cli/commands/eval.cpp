@@ -1,21 +1,26 @@
-// limsurf eval MESH --scheme S (--points FILE | --grid N) [--json] [-o OUT]:
+// limsurf eval MESH --scheme S (--points FILE | --grid N) [--threads N] [--json] [-o OUT]:
 // position, derivatives, normal and curvatures of the limit surface at ptex points.
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/core/input_file.h"
+#include "limsurf/core/parallel.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/surface_frame.h"
@@ -31,6 +36,7 @@ struct EvalOptions {
     int grid = 0;
     std::string output;
     bool json = false;
+    int threads = 0;
 };
 
 /// Reads "face u v" lines ('#' starts a comment) and checks each point against @p basis.
@@ -147,24 +153,51 @@ void write_table(std::ostream& out, const std::vector<Evaluated>& results) {
     }
 }
 
-/// Position, derivatives and frame at each point; the frame is empty where the tangent plane is
+/// Position, derivatives and frame at @p point; the frame is empty where the tangent plane is
 /// degenerate. @throws NumericalError when the derivatives overflow a double
-std::vector<Evaluated> evaluate_points(const LimitBasis& basis, const Points& X,
-                                       const std::vector<SurfacePoint>& points) {
-    std::vector<Evaluated> results;
-    results.reserve(points.size());
-    for (const SurfacePoint& point : points) {
-        const LimitWeights weights = basis.evaluate(point);
-        Evaluated r{point, weights.apply(X), std::nullopt, weights.at_extraordinary_vertex};
-        LIMSURF_CHECK(r.d.allFinite(), NumericalError, "the limit surface's derivatives at ptex face ", point.face,
-                      " (", point.u, ", ", point.v, ") overflow a double (the control points reach ",
-                      X.cwiseAbs().maxCoeff(), "): rescale the mesh");
-        if (has_tangent_plane(r.d)) {      // else (e.g. at some extraordinary vertices) reported as null
-            r.frame = surface_frame(r.d);  // throws when a curvature overflows (a mesh ~1e-160 across)
-        }
-        results.push_back(r);
+Evaluated evaluate_point(const LimitBasis& basis, const Points& X, const SurfacePoint& point) {
+    const LimitWeights weights = basis.evaluate(point);
+    Evaluated r{point, weights.apply(X), std::nullopt, weights.at_extraordinary_vertex};
+    LIMSURF_CHECK(r.d.allFinite(), NumericalError, "the limit surface's derivatives at ptex face ", point.face, " (",
+                  point.u, ", ", point.v, ") overflow a double (the control points reach ", X.cwiseAbs().maxCoeff(),
+                  "): rescale the mesh");
+    if (has_tangent_plane(r.d)) {      // else (e.g. at some extraordinary vertices) reported as null
+        r.frame = surface_frame(r.d);  // throws when a curvature overflows (a mesh ~1e-160 across)
     }
-    return results;
+    return r;
+}
+
+/// Every point, on @p threads threads (each point alone: the results do not depend on them); a
+/// failure is reported for the first failing point in input order, whichever thread met it.
+std::vector<Evaluated> evaluate_points(const LimitBasis& basis, const Points& X,
+                                       const std::vector<SurfacePoint>& points, int threads) {
+    std::vector<std::optional<Evaluated>> results(points.size());
+    std::mutex failure_mutex;
+    std::size_t first_failed = points.size();
+    std::exception_ptr failure;
+    parallel_ranges(static_cast<Index>(points.size()), threads, [&](Index begin, Index end) {
+        for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+            try {
+                results[i] = evaluate_point(basis, X, points[i]);
+            } catch (...) {  // this range stops; the earliest failure over all ranges is rethrown
+                const std::lock_guard<std::mutex> lock(failure_mutex);
+                if (i < first_failed) {
+                    first_failed = i;
+                    failure = std::current_exception();
+                }
+                return;
+            }
+        }
+    });
+    if (failure) {
+        std::rethrow_exception(failure);
+    }
+    std::vector<Evaluated> out;
+    out.reserve(points.size());
+    for (auto& r : results) {
+        out.push_back(std::move(*r));
+    }
+    return out;
 }
 
 int run_eval(const EvalOptions& options) {
@@ -177,7 +210,7 @@ int run_eval(const EvalOptions& options) {
         const LimitBasis basis = make_limit_basis(built.mesh, options.scheme);
         const std::vector<SurfacePoint> points =
             options.points.empty() ? grid_points(options.grid, basis) : read_points(options.points, basis);
-        return evaluate_points(basis, built.mesh.positions(), points);
+        return evaluate_points(basis, built.mesh.positions(), points, options.threads);
     });
     const nlohmann::json json = points_json(results);
     require_finite(json);
@@ -213,6 +246,7 @@ void add_eval_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("-o,--output", options->output,
                     "Write the table (or JSON when OUT ends in .json) to OUT, atomically, instead of stdout");
     cmd->add_flag("--json", options->json, "Print JSON: {\"points\": [...]}");
+    add_threads_option(cmd, options->threads);
     cmd->callback([options, &status, points, grid] {
         if (points->count() == 0 && grid->count() == 0) {
             std::cerr << "error: eval needs --points FILE or --grid N (see 'limsurf eval --help')\n";

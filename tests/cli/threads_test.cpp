@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,7 @@ const std::vector<std::vector<std::string>>& threaded_commands() {
         {"shell", mesh("shell_hemisphere")},
         {"elasticity", mesh("rve_block")},
         {"membrane", mesh("cube"), "--scheme", "catmull-clark", "--evaluate-only"},
+        {"eval", mesh("cube"), "--scheme", "catmull-clark", "--grid", "2"},
     };
     return commands;
 }
@@ -172,6 +174,30 @@ TEST(CliThreads, ElasticityFieldsAreTheSameForAnyThreadCount) {
     }
     ASSERT_FALSE(fields[0].empty());
     EXPECT_TRUE(fields[0] == fields[1]);
+}
+
+TEST(CliThreads, EvalIsTheSameForAnyThreadCount) {
+    expect_same_for_any_thread_count({"eval", refined("genus2", 1), "--scheme", "catmull-clark", "--grid", "12"});
+}
+
+TEST(CliThreads, EvalNamesTheFirstFailingPointWhicheverThreadMetIt) {
+    // A cube 2e308 across: the derivatives overflow at every point; the error names the first one
+    // in input order (ptex face 0) for any thread count, not the first one a thread happened to meet.
+    const fs::path huge = temp_dir() / "huge_cube.obj";
+    {
+        std::ofstream out(huge);
+        for (int i = 0; i < 8; ++i) {
+            out << "v " << ((i & 1) != 0 ? "1e308" : "-1e308") << ' ' << ((i & 2) != 0 ? "1e308" : "-1e308") << ' '
+                << ((i & 4) != 0 ? "1e308" : "-1e308") << '\n';
+        }
+        out << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 2 4 8 6\nf 4 3 7 8\nf 3 1 5 7\n";
+    }
+    for (const char* threads : {"1", "4"}) {
+        const CliRun run =
+            limsurf({"eval", huge.string(), "--scheme", "catmull-clark", "--grid", "40", "--threads", threads});
+        EXPECT_EQ(run.exit_code, 1) << run.err;
+        EXPECT_NE(run.err.find("derivatives at ptex face 0 (0.0125"), std::string::npos) << threads << ": " << run.err;
+    }
 }
 
 TEST(CliThreads, HodgeIsTheSameForAnyThreadCount) {
