@@ -3,12 +3,13 @@
 // inside a parent face, a child one-ring follows the parent's, and components and genus do not
 // change. Nothing is sorted and no one-ring is walked. The tables are those the general constructor
 // builds from the child's face list — the same edge numbering (first appearance in the face list),
-// the same one-ring starts and orders — which tests/mesh/split_topology_test.cpp checks table by
+// the same one-ring starts and orders — which tests/refine/face_split/child_topology_test.cpp checks table by
 // table; the derivation of each one-ring is in the comments below.
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "limsurf/core/error.h"
 #include "limsurf/detail/connectivity.h"
