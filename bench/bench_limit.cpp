@@ -2,10 +2,12 @@
 // ~100k-face control meshes, position + first derivatives and position + all
 // second derivatives, applied to the control positions.
 //
-//   limsurf:    LimitBasis::evaluate(point, weights, order) + LimitWeights::apply.
-//               "first" = a fresh LimitBasis (its local patches are built lazily
-//               on first use: setup + evaluate); "warm" = a second pass over the
-//               same points with the patches cached.
+//   limsurf:    LimitBasis::evaluate(X, point, out, order) (the positions path: a local
+//               patch's points formed before its basis; X interleaved). "first" = a fresh LimitBasis
+//               (its local patches are built lazily on first use: setup + evaluate);
+//               "warm" = a second pass over the same points with the patches cached;
+//               "weights" = the warm pass through LimitBasis::evaluate(point, weights,
+//               order) + LimitWeights::apply (what a user who needs the weights pays).
 //   OpenSubdiv: Far::TopologyRefiner + RefineAdaptive + PatchTableFactory
 //               (Gregory-basis end caps, double precision) + PatchMap; refined
 //               vertices by PrimvarRefiner, local (end-cap) points by the patch
@@ -80,6 +82,7 @@ std::size_t num_points() {
 struct Mesh {
     limsurf::Topology topology;
     limsurf::Points positions;
+    limsurf::InterleavedPoints interleaved;  // the same, x y z side by side (the positions path)
     SchemeKind scheme = SchemeKind::CatmullClark;
     std::vector<limsurf::SurfacePoint> points;  // random; ptex face = control face on these meshes
     /// The basis the warm benchmarks share (built, and its patches cached, outside their timers).
@@ -94,6 +97,7 @@ Mesh refined(const limsurf::Topology& base, const limsurf::Points& X, SchemeKind
     Mesh mesh;
     mesh.topology = hierarchy.topology(levels);
     mesh.positions = hierarchy.positions(levels, X);
+    mesh.interleaved = mesh.positions;
     mesh.scheme = scheme;
     return mesh;
 }
@@ -177,6 +181,17 @@ void report(benchmark::State& state, const Mesh& mesh, double checksum) {
 // --- limsurf -----------------------------------------------------------------------
 
 double limsurf_pass(const limsurf::LimitBasis& basis, const Mesh& mesh, DerivativeOrder order) {
+    limsurf::LimitPoint point;
+    double sum = 0.0;
+    const int rows = rows_of(order);
+    for (const auto& p : mesh.points) {
+        basis.evaluate(mesh.interleaved, p, point, order);
+        sum += point.d.topRows(rows).sum();
+    }
+    return sum;
+}
+
+double limsurf_weights_pass(const limsurf::LimitBasis& basis, const Mesh& mesh, DerivativeOrder order) {
     limsurf::LimitWeights weights;
     double sum = 0.0;
     const int rows = rows_of(order);
@@ -202,15 +217,19 @@ void limsurf_first(benchmark::State& state, const Mesh& mesh, DerivativeOrder or
     report(state, mesh, sum);
 }
 
-/// The same points again on a basis whose patches are already built.
-void limsurf_warm(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
+using Pass = double (*)(const limsurf::LimitBasis&, const Mesh&, DerivativeOrder);
+
+/// The same points again on a basis whose patches are already built: one untimed pass of @p pass
+/// first (the weights path builds per-face nodes on first use, which the positions path never
+/// needs).
+void limsurf_warm(benchmark::State& state, const Mesh& mesh, DerivativeOrder order, Pass pass = limsurf_pass) {
     if (!mesh.warm) {
         mesh.warm = std::make_unique<limsurf::LimitBasis>(mesh.topology, mesh.scheme);
-        (void)limsurf_pass(*mesh.warm, mesh, order);
     }
+    (void)pass(*mesh.warm, mesh, order);
     double sum = 0.0;
     for (auto _ : state) {
-        sum = limsurf_pass(*mesh.warm, mesh, order);
+        sum = pass(*mesh.warm, mesh, order);
         benchmark::DoNotOptimize(sum);
     }
     report(state, mesh, sum);
@@ -221,9 +240,11 @@ void limsurf_warm(benchmark::State& state, const Mesh& mesh, DerivativeOrder ord
 void limsurf_batch(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
     if (!mesh.warm) {
         mesh.warm = std::make_unique<limsurf::LimitBasis>(mesh.topology, mesh.scheme);
-        (void)limsurf_pass(*mesh.warm, mesh, order);
     }
     const int threads = static_cast<int>(state.range(0));
+    // One untimed batch first: it warms the basis, and the 72 MB result's first-touch page faults
+    // (expensive on the project's VM) would otherwise land on whichever thread count runs first.
+    (void)limsurf::evaluate_points(*mesh.warm, mesh.positions, mesh.points, order, threads);
     double sum = 0.0;
     for (auto _ : state) {
         const limsurf::PointValues values =
@@ -407,6 +428,12 @@ void BM_limsurf_warm_CCdense_d1(benchmark::State& s) {
 void BM_limsurf_warm_CCdense_d2(benchmark::State& s) {
     limsurf_warm(s, cc_dense(), DerivativeOrder::Second);
 }
+void BM_limsurf_weights_CCdense_d1(benchmark::State& s) {
+    limsurf_warm(s, cc_dense(), DerivativeOrder::First, limsurf_weights_pass);
+}
+void BM_limsurf_weights_CCdense_d2(benchmark::State& s) {
+    limsurf_warm(s, cc_dense(), DerivativeOrder::Second, limsurf_weights_pass);
+}
 void BM_OpenSubdiv_setup_CCdense(benchmark::State& s) {
     osd_setup(s, cc_dense());
 }
@@ -429,6 +456,12 @@ void BM_limsurf_warm_CCsparse_d1(benchmark::State& s) {
 void BM_limsurf_warm_CCsparse_d2(benchmark::State& s) {
     limsurf_warm(s, cc_sparse(), DerivativeOrder::Second);
 }
+void BM_limsurf_weights_CCsparse_d1(benchmark::State& s) {
+    limsurf_warm(s, cc_sparse(), DerivativeOrder::First, limsurf_weights_pass);
+}
+void BM_limsurf_weights_CCsparse_d2(benchmark::State& s) {
+    limsurf_warm(s, cc_sparse(), DerivativeOrder::Second, limsurf_weights_pass);
+}
 void BM_OpenSubdiv_setup_CCsparse(benchmark::State& s) {
     osd_setup(s, cc_sparse());
 }
@@ -450,6 +483,12 @@ void BM_limsurf_warm_Loop_d1(benchmark::State& s) {
 }
 void BM_limsurf_warm_Loop_d2(benchmark::State& s) {
     limsurf_warm(s, loop(), DerivativeOrder::Second);
+}
+void BM_limsurf_weights_Loop_d1(benchmark::State& s) {
+    limsurf_warm(s, loop(), DerivativeOrder::First, limsurf_weights_pass);
+}
+void BM_limsurf_weights_Loop_d2(benchmark::State& s) {
+    limsurf_warm(s, loop(), DerivativeOrder::Second, limsurf_weights_pass);
 }
 void BM_OpenSubdiv_setup_Loop(benchmark::State& s) {
     osd_setup(s, loop());
@@ -475,6 +514,8 @@ void BM_OpenSubdiv_eval_Loop_d2(benchmark::State& s) {
     LIMSURF_ONCE(BM_limsurf_first_##mesh##_d2);                                                                        \
     LIMSURF_ONCE(BM_limsurf_warm_##mesh##_d1);                                                                         \
     LIMSURF_ONCE(BM_limsurf_warm_##mesh##_d2);                                                                         \
+    LIMSURF_ONCE(BM_limsurf_weights_##mesh##_d1);                                                                      \
+    LIMSURF_ONCE(BM_limsurf_weights_##mesh##_d2);                                                                      \
     LIMSURF_OSD(mesh, 4);                                                                                              \
     LIMSURF_OSD(mesh, 6)
 

@@ -156,8 +156,9 @@ void write_table(std::ostream& out, const std::vector<Evaluated>& results) {
 /// Position, derivatives and frame at @p point; the frame is empty where the tangent plane is
 /// degenerate. @throws NumericalError when the derivatives overflow a double
 Evaluated evaluate_point(const LimitBasis& basis, const Points& X, const SurfacePoint& point) {
-    const LimitWeights weights = basis.evaluate(point);
-    Evaluated r{point, weights.apply(X), std::nullopt, weights.at_extraordinary_vertex};
+    LimitPoint values;
+    basis.evaluate(X, point, values);
+    Evaluated r{point, values.d, std::nullopt, values.at_extraordinary_vertex};
     LIMSURF_CHECK(r.d.allFinite(), NumericalError, "the limit surface's derivatives at ptex face ", point.face, " (",
                   point.u, ", ", point.v, ") overflow a double (the control points reach ", X.cwiseAbs().maxCoeff(),
                   "): rescale the mesh");

@@ -100,14 +100,15 @@ class PointArrays {
 /// which LimitBasis::evaluate refuses.
 class FirstFailure {
   public:
-    /// Evaluates point i into w; false (and the failure noted) when it is refused.
-    bool evaluate(const LimitBasis& basis, const PointArrays& points, Index i, LimitWeights& w,
-                  DerivativeOrder order) {
+    /// Evaluates point i by @p evaluate (called with its SurfacePoint); false (and the failure
+    /// noted) when it is refused.
+    template <class Evaluate>
+    bool evaluate(const PointArrays& points, Index i, const Evaluate& evaluate) {
         std::string error;
         const SurfacePoint p = points.at(i, error);
         if (error.empty()) {
             try {
-                basis.evaluate(p, w, order);
+                evaluate(p);
                 return true;
             } catch (const InputError& e) {
                 error = "point " + std::to_string(i) + ": " + e.what();
@@ -207,16 +208,27 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
     }
     const auto derivative_order = static_cast<DerivativeOrder>(order);
     const double nan = std::numeric_limits<double>::quiet_NaN();
+    // As evaluate_points (limit/batch_evaluation.cpp): interleaved control points once there are
+    // as many points as control points (one cache line per control point instead of three).
+    const bool interleave = static_cast<Index>(n) >= static_cast<Index>(P.rows());
     {
         const py::gil_scoped_release release;
+        const InterleavedPoints interleaved = interleave ? InterleavedPoints(P) : InterleavedPoints();
         FirstFailure failure;
         parallel_ranges(static_cast<Index>(n), threads, [&](Index begin, Index end) {
-            LimitWeights w;
+            LimitPoint values;
             for (Index i = begin; i < end; ++i) {
-                if (!failure.evaluate(b.basis, points, i, w, derivative_order)) {
+                const bool ok = failure.evaluate(points, i, [&](const SurfacePoint& p) {
+                    if (interleave) {
+                        b.basis.evaluate(interleaved, p, values, derivative_order);
+                    } else {
+                        b.basis.evaluate(P, p, values, derivative_order);
+                    }
+                });
+                if (!ok) {
                     return;
                 }
-                const Eigen::Matrix<double, 6, 3> d = w.apply(P);
+                const Eigen::Matrix<double, 6, 3>& d = values.d;
                 for (int r = 0; r < rows; ++r) {
                     for (int c = 0; c < 3; ++c) {
                         out[static_cast<std::size_t>(r)][3 * i + c] = d(r, c);
@@ -232,13 +244,13 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
                     frame_out[0][3 * i + c] = nrm(c);
                 }
                 if (curvatures) {
-                    const bool ok = frame && !w.at_extraordinary_vertex;
-                    const SurfaceFrame f = ok ? surface_frame(d) : SurfaceFrame{};
-                    const double values[4] = {f.mean_curvature, f.gaussian_curvature, f.k1, f.k2};
+                    const bool defined = frame && !values.at_extraordinary_vertex;
+                    const SurfaceFrame f = defined ? surface_frame(d) : SurfaceFrame{};
+                    const double curvature[4] = {f.mean_curvature, f.gaussian_curvature, f.k1, f.k2};
                     for (int k = 0; k < 4; ++k) {
-                        frame_out[k + 1][i] = ok ? values[k] : nan;
+                        frame_out[k + 1][i] = defined ? curvature[k] : nan;
                     }
-                    defined_out[i] = ok;
+                    defined_out[i] = defined;
                 }
             }
         });
@@ -259,8 +271,11 @@ py::dict weights(const Basis& b, const py::handle& faces, const py::handle& u, c
         std::vector<std::vector<Eigen::Triplet<double>>> triplets(static_cast<std::size_t>(rows));
         LimitWeights w;
         FirstFailure failure;
+        const auto weights_at = [&](const SurfacePoint& p) {
+            b.basis.evaluate(p, w, static_cast<DerivativeOrder>(order));
+        };
         for (Index i = 0; i < points.size(); ++i) {
-            if (!failure.evaluate(b.basis, points, i, w, static_cast<DerivativeOrder>(order))) {
+            if (!failure.evaluate(points, i, weights_at)) {
                 break;
             }
             for (int r = 0; r < rows; ++r) {
@@ -348,7 +363,8 @@ faces as int64 and u, v as float64 C-contiguous arrays are read without a copy.
 The GIL is released while C++ works. Raises InputError naming the first bad point.)")
         .def("weights", &weights, "faces"_a, "u"_a, "v"_a, "order"_a = 0,
              "The limit weights at the points as scipy CSR matrices (#points × #V) under the keys 'position' (and\n"
-             "'du', 'dv' for order 1, also 'duu', 'duv', 'dvv' for order 2): evaluate(...)['du'] == W['du'] @ V.")
+             "'du', 'dv' for order 1, also 'duu', 'duv', 'dvv' for order 2): evaluate(...)['du'] equals W['du'] @ V\n"
+             "to rounding (evaluate applies V before the basis, the faster path; docs/limit_evaluation.md).")
         .def(
             "vertex_limit_matrix",
             [](const Basis& b) {

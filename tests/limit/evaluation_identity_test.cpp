@@ -3,9 +3,12 @@
 // continuity across patch edges and at control vertices, agreement of the limit
 // at a vertex from all incident faces, and the approach to an extraordinary
 // vertex (points down to 2^-40 away).
+#include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -260,6 +263,82 @@ TEST_P(LimitIdentity, LowerOrdersAreTheLeadingRows) {
     }
 }
 
+/// The positions path (evaluate(X, point, LimitPoint&), X contracted first, down the templates)
+/// against the weights applied to X (LimitWeights::apply, down the nodes), for both layouts of X,
+/// at every order: the same at-vertex flag, zero rows past the order, results independent of the
+/// layout bit for bit, and equal to rounding. "Rounding" is 1e-13 of the mesh's extent times the
+/// size of the weights of the row's derivative order (Σ|w| of the row, plus the largest such sum
+/// among the rows of that order, plus 1): the two paths sum in different orders, and where the
+/// weights of a row cancel to exactly 0 (∂ss of a boundary patch with phantom points, say) the
+/// positions path meets the same cancellation among points of size `extent` instead (measured:
+/// up to 4e-15 × extent). Near a corner both paths descend k levels and the chain rule multiplies
+/// the rounding of the patch points by 2^(k·d) for derivatives of order d: derivatives are
+/// compared with that factor (δ^-d for a point δ from the nearest domain corner) and not at the
+/// corners themselves, where a deep descent (an extraordinary or creased vertex: derivatives taken
+/// 2^-61 away, limit_basis.h) leaves rounding noise in both. A wrong patch, table or template step
+/// is off by O(extent).
+void expect_positions_equal_weights(const LimitBasis& basis, const Points& X, const SurfacePoint& point,
+                                    const std::string& where) {
+    const InterleavedPoints interleaved = X;
+    const double extent = X.cwiseAbs().maxCoeff();
+    for (const auto& [order, rows] : {std::pair{DerivativeOrder::Value, 1}, std::pair{DerivativeOrder::First, 3},
+                                      std::pair{DerivativeOrder::Second, 6}}) {
+        const LimitWeights w = basis.evaluate(point, order);
+        const Eigen::Matrix<double, 6, 3> expected = w.apply(X);
+        LimitPoint a;
+        LimitPoint b;
+        basis.evaluate(X, point, a, order);
+        basis.evaluate(interleaved, point, b, order);
+        ASSERT_EQ(a.d, b.d) << where << ": the layout of X changed the result";
+        ASSERT_EQ(a.at_extraordinary_vertex, w.at_extraordinary_vertex) << where;
+        ASSERT_EQ(b.at_extraordinary_vertex, w.at_extraordinary_vertex) << where;
+        const Eigen::Matrix<double, 6, 1> sizes = w.w.cwiseAbs().rowwise().sum();
+        const double block[3] = {sizes(0), sizes.segment<2>(1).maxCoeff(), sizes.tail<3>().maxCoeff()};
+        double corner_distance = std::numeric_limits<double>::infinity();
+        for (Index k = 0; k < (basis.domain() == ParameterDomain::Quad ? 4 : 3); ++k) {
+            const Eigen::Vector2d c = corner_uv(basis.domain() == ParameterDomain::Quad, k);
+            corner_distance = std::min(corner_distance, (Eigen::Vector2d(point.u, point.v) - c).norm());
+        }
+        for (int r = 0; r < 6; ++r) {
+            for (int c = 0; c < 3; ++c) {
+                if (r >= rows) {
+                    ASSERT_EQ(a.d(r, c), 0.0) << where << " row " << r << " past the order";
+                    continue;
+                }
+                const int d = r == 0 ? 0 : r < 3 ? 1 : 2;  // derivative order of the row
+                if (d > 0 && (w.at_extraordinary_vertex || corner_distance == 0.0)) {
+                    continue;
+                }
+                const double amplification = std::pow(std::max(1.0, 1.0 / corner_distance), d);
+                const double tolerance = 1e-13 * extent * (sizes(r) + block[d] + 1.0) * amplification;
+                ASSERT_LE(std::abs(a.d(r, c) - expected(r, c)), tolerance)
+                    << where << " row " << r << " col " << c << ": " << a.d(r, c) << " vs " << expected(r, c);
+            }
+        }
+    }
+}
+
+TEST_P(LimitIdentity, PositionsPathEqualsTheWeightsApplied) {
+    const Loaded m = load(GetParam().mesh);
+    const LimitBasis basis(m.topology, GetParam().scheme, m.options);
+    const bool quad = basis.domain() == ParameterDomain::Quad;
+    std::mt19937 rng(29);
+    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+        if (!basis.has_limit_surface(p)) {
+            continue;
+        }
+        std::vector<Eigen::Vector2d> uvs = sample_domain(quad, rng, 8);
+        for (const int k : {3, 17, 45}) {  // towards corner 0 (an extraordinary vertex on many faces)
+            uvs.emplace_back(std::ldexp(1.0, -k), std::ldexp(0.7, -k));
+        }
+        for (const auto& uv : uvs) {
+            expect_positions_equal_weights(basis, m.X, {p, uv.x(), uv.y()},
+                                           "ptex " + std::to_string(p) + " at (" + std::to_string(uv.x()) + ", " +
+                                               std::to_string(uv.y()) + ")");
+        }
+    }
+}
+
 // The stationary tables against plain local subdivision (LimitEvaluation::Subdivision,
 // which never uses them) at points 2^-k from every corner of every ptex face, k up
 // to 30: the two paths share only the one-ring extraction and the refinement engine.
@@ -388,6 +467,66 @@ TEST(LimitTunedWeights, OwnEdgeAndFaceWeightsAreRefinementInvariant) {
         }
     }
     EXPECT_LT(largest, 1e-11 * m.scale);
+}
+
+// The positions path where it leaves work to the weights or takes other branches: per-vertex tuned
+// weights (templates keyed by the weights of their vertices), plain local subdivision (no tables:
+// the template chain goes as deep as the point needs), a valence-40 vertex (more local points
+// than the path keeps on its stack: the weights take over) and n-gons (a root node with W).
+TEST(LimitPositionsPath, EqualsTheWeightsAppliedOffTheCommonPath) {
+    const Loaded m = load("quad_valence_5");
+    TunedWeights tuned;
+    for (Index v = 0; v < m.topology.num_vertices(); ++v) {
+        if (!m.topology.is_boundary_vertex(v) && m.topology.valence(v) == 5) {
+            tuned.set_vertex(v, {13.9851, 0.6, 0.8});
+            break;  // one tuned vertex: the others keep Catmull–Clark's weights
+        }
+    }
+    const LimitBasis per_vertex(m.topology, SchemeKind::CatmullClark, m.options, tuned);
+    const LimitBasis subdivision(m.topology, SchemeKind::CatmullClark, m.options, {}, LimitEvaluation::Subdivision);
+    // A closed fan: a valence-40 apex, a ring of 40 vertices and a valence-40 bottom vertex (quads).
+    constexpr Index n = 40;
+    Points fan_X(2 * n + 2, 3);
+    std::vector<Index> offsets{0};
+    std::vector<Index> corners;
+    for (Index i = 0; i < n; ++i) {
+        const double a = 2 * M_PI * i / n;
+        fan_X.row(i) << std::cos(a), std::sin(a), 0.3;
+        fan_X.row(n + i) << 1.2 * std::cos(a + M_PI / n), 1.2 * std::sin(a + M_PI / n), -0.3;
+        for (const std::array<Index, 4>& q : {std::array<Index, 4>{2 * n, i, n + i, (i + 1) % n},
+                                              std::array<Index, 4>{2 * n + 1, (i + 1) % n + n, (i + 1) % n, n + i}}) {
+            corners.insert(corners.end(), q.begin(), q.end());
+            offsets.push_back(static_cast<Index>(corners.size()));
+        }
+    }
+    fan_X.row(2 * n) << 0, 0, 1;
+    fan_X.row(2 * n + 1) << 0, 0, -1;
+    const Topology fan_topology(2 * n + 2, offsets, corners);
+    const LimitBasis fan(fan_topology, SchemeKind::CatmullClark);
+    const Loaded ngons = load("cube_ngons");
+    const LimitBasis ngon(ngons.topology, SchemeKind::CatmullClark, ngons.options);
+    std::mt19937 rng(31);
+    using Subject = std::tuple<const char*, const LimitBasis*, const Points*>;
+    for (const auto& [name, basis, X] :
+         {Subject{"per-vertex weights", &per_vertex, &m.X}, Subject{"local subdivision", &subdivision, &m.X},
+          Subject{"valence 40", &fan, &fan_X}, Subject{"n-gons", &ngon, &ngons.X}}) {
+        for (Index p = 0; p < basis->num_ptex_faces(); ++p) {
+            if (!basis->has_limit_surface(p)) {
+                continue;
+            }
+            // Not at the domain's corners: plain local subdivision refuses points at an
+            // extraordinary vertex (the bundled cases above take the corners).
+            std::uniform_real_distribution<double> inside(0.01, 0.99);
+            std::vector<Eigen::Vector2d> uvs = {{std::ldexp(1.0, -9), std::ldexp(1.0, -10)}, {0.5, 0.0}};
+            for (int i = 0; i < 5; ++i) {
+                uvs.emplace_back(inside(rng), inside(rng));
+            }
+            for (const auto& uv : uvs) {
+                expect_positions_equal_weights(*basis, *X, {p, uv.x(), uv.y()},
+                                               std::string(name) + ", ptex " + std::to_string(p));
+            }
+        }
+    }
 }
 
 TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {

@@ -19,7 +19,7 @@ using PointValues = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 /// @brief The limit surface of control points @p X at @p points (ptex face, u, v).
 /// @param X           #V × 3 control points of basis.topology()
 /// @param num_threads 0: hardware concurrency; the result does not depend on it (every point is
-///   evaluated alone, bit for bit as LimitBasis::evaluate)
+///   evaluated alone, bit for bit as LimitBasis::evaluate(X, point, out, order))
 /// @throws InputError when X has the wrong shape, or naming the first point (its index) that is
 ///   out of range, outside its domain or on a face without a limit surface — checked before any
 ///   evaluation, so nothing is half done

@@ -100,6 +100,50 @@ void patch_rows(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, 
     }
 }
 
+/// Limit rows over x, y, z (LimitPoint::d).
+using Values = Eigen::Matrix<double, 6, 3>;
+/// Points of a local copy, on the stack: the positions path (LimitPoint) takes supports of at
+/// most 64 control points (valences up to 28 around a Catmull–Clark vertex) and leaves larger
+/// ones to the weights.
+constexpr Index max_local_points = 64;
+using LocalPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::ColMajor, max_local_points, 3>;
+/// A regular patch's 16 (bicubic) or 12 (quartic box spline) control points.
+using PatchPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::ColMajor, 16, 3>;
+
+/// out = A · P for a dense A (n × m, column-major) and points P (m × 3), as m column updates of
+/// out: A is read once, contiguously, and every update is vectorised over n (Eigen's lazy
+/// product would walk A's rows, strided, once per column of P).
+template <class Out, class In>
+void times_points(const Dense& A, const In& P, Out& out) {
+    out.setZero(A.rows(), 3);
+    for (Eigen::Index k = 0; k < A.cols(); ++k) {
+        const auto column = A.col(k);
+        out.col(0) += column * P(k, 0);
+        out.col(1) += column * P(k, 1);
+        out.col(2) += column * P(k, 2);
+    }
+}
+
+/// out = the first @p k rows (value, derivatives) of the regular patch with points @p P (16 or 12
+/// rows) at (s, t), in ptex derivatives; the other rows 0. The basis is applied to P in patch
+/// coordinates and the 6 × 3 result mapped to ptex (to_ptex is linear in the columns): the
+/// chain rule on 3 columns instead of 16.
+void patch_values(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, const PatchPoints& P, int k,
+                  Values& out) {
+    Values patch;
+    if (quad) {
+        Eigen::Matrix<double, 6, 16> b;
+        cubic_bspline_patch_weights(st.x(), st.y(), b);
+        patch.noalias() = b * P.topRows<16>();
+    } else {
+        Eigen::Matrix<double, 6, 12> b;
+        quartic_box_spline_patch_weights(st.x(), st.y(), b);
+        patch.noalias() = b * P.topRows<12>();
+    }
+    to_ptex<3>(patch, J, out);
+    out.bottomRows(6 - k).setZero();
+}
+
 /// Dense patch_size × num_local matrix of a regular patch's points.
 Dense patch_matrix(const detail::RegularPatch& patch, Index num_local) {
     Dense G = Dense::Zero(patch.size, num_local);
@@ -247,6 +291,8 @@ struct LimitBasis::Impl {
     std::shared_ptr<const StationaryClass> make_class(const Level& refined, const Dense& A,
                                                       const std::vector<Index>& control) const;
     const TemplateChild& template_child(const Template& shape, int q) const;
+    /// template_child, taking the mutex when the child is not built yet.
+    const TemplateChild& template_step(const Template& shape, int q) const;
     Node* child(Node& node, int q) const;
     /// @param rows_needed 1, 3 or 6 (value; first; second derivatives)
     void evaluate(const SurfacePoint& point, int rows_needed, LimitWeights& out) const;
@@ -254,6 +300,16 @@ struct LimitBasis::Impl {
     void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
     void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
                          bool& at_vertex, Rows& rows) const;
+    /// The positions path (LimitBasis::evaluate(X, point, LimitPoint&)); X is Points or InterleavedPoints.
+    template <class Matrix>
+    void evaluate(const Matrix& X, const SurfacePoint& point, int rows_needed, LimitPoint& out) const;
+    /// descend() with the node's local points @p X (its columns' control points) contracted first;
+    /// false, with @p out undefined, where the weights path must be taken (a stationary class's
+    /// subtree, more than max_local_points local points).
+    bool descend_values(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex,
+                        const LocalPoints& X, Values& out) const;
+    bool stationary_values(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
+                           bool& at_vertex, const LocalPoints& X, Values& out) const;
 };
 
 namespace {
@@ -548,26 +604,50 @@ const Root& LimitBasis::Impl::root(Index p) const {
     return *existing;
 }
 
-void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
-                                       int rows_needed, bool& at_vertex, Rows& rows) const {
+namespace {
+
+/// Where a point of a stationary node lies: n levels towards its extraordinary corner, in the
+/// regular-or-subtree child q of that level.
+struct StationaryStep {
     int n = 0;
-    while (n < max_stationary_levels && in_corner_child(quad, p)) {
+    int q = 0;
+    bool here = false;  ///< at the extraordinary vertex itself (within 2^-60)
+    Eigen::Vector2d p;  ///< in the coordinates of the level-n node
+    Affine scaled;      ///< ptex = scaled(level-n node coordinates)
+};
+
+StationaryStep stationary_step(bool quad, Eigen::Vector2d p, const Affine& frame) {
+    StationaryStep step;
+    while (step.n < max_stationary_levels && in_corner_child(quad, p)) {
         p *= 2.0;
-        ++n;
+        ++step.n;
     }
-    const bool here = in_corner_child(quad, p);
-    at_vertex = at_vertex || here;
-    if (here) {
+    step.here = in_corner_child(quad, p);
+    if (step.here) {
         // At the extraordinary vertex itself: the exact limit position, and the
         // derivatives 2^-61 away in ptex units along the first edge (they vanish or
         // diverge at the vertex itself), whatever the depth of this node.
         const int node_depth = static_cast<int>(std::lround(-0.5 * std::log2(std::abs(frame.axes.determinant()))));
-        n = std::clamp(max_stationary_levels - node_depth, 0, max_stationary_levels);
+        step.n = std::clamp(max_stationary_levels - node_depth, 0, max_stationary_levels);
         p = {0.5, 0.0};
     }
-    const int q = child_containing(quad, p);
-    Affine scaled = frame;
-    scaled.axes *= std::ldexp(1.0, -n);
+    step.p = p;
+    step.q = child_containing(quad, p);
+    step.scaled = frame;
+    step.scaled.axes *= std::ldexp(1.0, -step.n);
+    return step;
+}
+
+}  // namespace
+
+void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
+                                       int rows_needed, bool& at_vertex, Rows& rows) const {
+    const StationaryStep step = stationary_step(quad, p, frame);
+    at_vertex = at_vertex || step.here;
+    int n = step.n;
+    p = step.p;
+    const int q = step.q;
+    const Affine& scaled = step.scaled;
     if (cls.subtrees[at(q)] == nullptr) {
         const Affine patch = scaled.then(cls.patch_frames[at(q)]);
         patch_rows_times(quad, cls.patch_frames[at(q)].to_child(p), patch.axes, cls.tables[at(q)][at(n)], rows_needed,
@@ -590,9 +670,28 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
             rows.row(0) += value_sum * cls.limit_row;
         }
     }
-    if (here) {
+    if (step.here) {
         rows.row(0) = cls.limit_row;
     }
+}
+
+bool LimitBasis::Impl::stationary_values(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
+                                         int rows_needed, bool& at_vertex, const LocalPoints& X, Values& out) const {
+    const StationaryStep step = stationary_step(quad, p, frame);
+    if (cls.subtrees[at(step.q)] != nullptr) {
+        return false;  // rare (a Loop middle triangle at a boundary corner): the weights path
+    }
+    at_vertex = at_vertex || step.here;
+    const Affine patch = step.scaled.then(cls.patch_frames[at(step.q)]);
+    PatchPoints P;
+    times_points(cls.tables[at(step.q)][at(step.n)], X, P);
+    patch_values(quad, cls.patch_frames[at(step.q)].to_child(step.p), patch.axes, P, rows_needed, out);
+    if (step.here) {
+        out.row(0).noalias() = cls.limit_row.lazyProduct(X);
+    } else if (step.n > 0) {
+        out.row(0).noalias() += cls.limit_row.lazyProduct(X);  // A^n = 1ℓᵀ + R^n
+    }
+    return true;
 }
 
 void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex,
@@ -615,6 +714,64 @@ void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, int 
     if (node->W.size() != 0) {
         multiply_rows(local, node->W, rows_needed, rows);
     }
+}
+
+bool LimitBasis::Impl::descend_values(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex,
+                                      const LocalPoints& X, Values& out) const {
+    if (node->shape == nullptr) {  // a root's template-free regular patch: GW over the support
+        PatchPoints P;
+        times_points(node->GW, X, P);
+        patch_values(quad, p, frame.axes, P, rows_needed, out);
+        return true;
+    }
+    // Down the templates, not the nodes: the local points are carried through each level's
+    // small shared matrix M_q (in cache: most faces share a few templates), where the nodes'
+    // own products G·W (16 × #support per node, a cold read for every point) would be read.
+    std::array<LocalPoints, 2> buffers;
+    const LocalPoints* local = &X;
+    if (node->W.size() != 0) {  // an n-gon's sub-face: its root node maps the support first
+        if (node->W.rows() > max_local_points) {
+            return false;
+        }
+        times_points(node->W, X, buffers[0]);
+        local = &buffers[0];
+    }
+    const Template* shape = node->shape;
+    int depth = node->depth;
+    const int max_levels = use_tables ? max_depth : max_stationary_levels;
+    while (shape->kind == Template::Kind::Refine) {
+        if (++depth > max_levels) {
+            return false;  // the weights path raises make_node's error
+        }
+        const int q = child_containing(quad, p);
+        const Affine map = child_map(quad, q);
+        p = map.to_child(p);
+        frame = frame.then(map);
+        const TemplateChild& step = template_step(*shape, q);
+        if (step.M.rows() > max_local_points) {
+            return false;
+        }
+        LocalPoints& next = local == &buffers[0] ? buffers[1] : buffers[0];
+        times_points(step.M, *local, next);
+        local = &next;
+        shape = step.child;
+    }
+    if (shape->kind == Template::Kind::Regular) {
+        const Affine patch = frame.then(shape->patch_frame);
+        PatchPoints P;
+        times_points(shape->G, *local, P);
+        patch_values(quad, shape->patch_frame.to_child(p), patch.axes, P, rows_needed, out);
+        return true;
+    }
+    return stationary_values(*shape->stationary, p, frame, rows_needed, at_vertex, *local, out);
+}
+
+const TemplateChild& LimitBasis::Impl::template_step(const Template& shape, int q) const {
+    if (const TemplateChild* known = shape.children[at(q)].load(std::memory_order_acquire)) {
+        return *known;
+    }
+    const std::lock_guard lock(mutex);
+    return template_child(shape, q);
 }
 
 void LimitBasis::Impl::find_fast_patches() {
@@ -667,6 +824,44 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, int rows_needed, Limi
     out.vertices = r.support;
     out.at_extraordinary_vertex = false;
     descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, rows_needed, out.at_extraordinary_vertex, out.w);
+}
+
+template <class Matrix>
+void LimitBasis::Impl::evaluate(const Matrix& X, const SurfacePoint& point, int rows_needed, LimitPoint& out) const {
+    out.at_extraordinary_vertex = false;
+    if (!fast_index.empty() && fast_index[at(point.face)] >= 0) {
+        const FastPatch& entry = fast[at(fast_index[at(point.face)])];
+        const int size = quad ? 16 : 12;
+        PatchPoints P(size, 3);
+        for (int i = 0; i < size; ++i) {
+            P.row(i) = X.row(entry.points[at(i)]);
+        }
+        const Affine frame = rotation(quad, entry.rotation);
+        patch_values(quad, frame.to_child({point.u, point.v}), frame.axes, P, rows_needed, out.d);
+        return;
+    }
+    if (!doo_sabin && !c2g0) {
+        const Root& r = root(point.face);
+        const auto support = static_cast<Index>(r.support.size());
+        if (r.has_limit && support <= max_local_points) {
+            LocalPoints local(support, 3);
+            for (Index i = 0; i < support; ++i) {
+                local.row(i) = X.row(r.support[at(i)]);
+            }
+            if (descend_values(r.node, r.frame.to_child({point.u, point.v}), r.frame, rows_needed,
+                               out.at_extraordinary_vertex, local, out.d)) {
+                return;
+            }
+        }
+    }
+    // Doo–Sabin, C2g0, large supports and the rare cases descend_values leaves: through the
+    // weights (this also raises the error of a face without a limit surface).
+    evaluate(point, rows_needed, out.scratch);
+    out.d.setZero();
+    for (Index i = 0; i < out.scratch.size(); ++i) {  // LimitWeights::apply, for either layout of X
+        out.d.topRows(rows_needed) += out.scratch.w.col(i).head(rows_needed) * X.row(out.scratch.vertices[at(i)]);
+    }
+    out.at_extraordinary_vertex = out.scratch.at_extraordinary_vertex;
 }
 
 // --- public API --------------------------------------------------------------
@@ -803,28 +998,47 @@ bool LimitBasis::has_limit_surface(Index p) const {
     return impl_->root(p).has_limit;
 }
 
-void LimitBasis::evaluate(const SurfacePoint& point, LimitWeights& out, DerivativeOrder order) const {
-    LIMSURF_CHECK(point.face >= 0 && point.face < num_ptex_faces(), InputError, "ptex face ", point.face,
-                  " out of range (", num_ptex_faces(), " ptex faces)");
+namespace {
+
+/// The point LimitBasis::evaluate works on: checked, and clamped into its domain (a tolerance
+/// of 1e-12). @throws InputError as LimitBasis::evaluate says
+SurfacePoint checked_point(const SurfacePoint& point, bool quad, Index num_ptex_faces) {
+    LIMSURF_CHECK(point.face >= 0 && point.face < num_ptex_faces, InputError, "ptex face ", point.face,
+                  " out of range (", num_ptex_faces, " ptex faces)");
     LIMSURF_CHECK(std::isfinite(point.u) && std::isfinite(point.v), InputError, "parameter (", point.u, ", ", point.v,
                   ") on ptex face ", point.face, " is not finite");
     constexpr double tolerance = 1e-12;
     SurfacePoint p = point;
-    const bool inside = impl_->quad
-                            ? (p.u >= -tolerance && p.v >= -tolerance && p.u <= 1 + tolerance && p.v <= 1 + tolerance)
-                            : (p.u >= -tolerance && p.v >= -tolerance && p.u + p.v <= 1 + tolerance);
+    const bool inside = quad ? (p.u >= -tolerance && p.v >= -tolerance && p.u <= 1 + tolerance && p.v <= 1 + tolerance)
+                             : (p.u >= -tolerance && p.v >= -tolerance && p.u + p.v <= 1 + tolerance);
     LIMSURF_CHECK(inside, InputError, "parameter (", p.u, ", ", p.v, ") is outside the ",
-                  impl_->quad ? "unit square" : "triangle u, v >= 0, u + v <= 1", " of ptex face ", p.face);
+                  quad ? "unit square" : "triangle u, v >= 0, u + v <= 1", " of ptex face ", p.face);
     p.u = std::clamp(p.u, 0.0, 1.0);
     p.v = std::clamp(p.v, 0.0, 1.0);
-    if (!impl_->quad && p.u + p.v > 1.0) {
+    if (!quad && p.u + p.v > 1.0) {
         const double excess = (p.u + p.v - 1.0) / 2.0;
         p.u -= excess;
         p.v -= excess;
     }
-    const int keep = order == DerivativeOrder::Value ? 1 : order == DerivativeOrder::First ? 3 : 6;
-    impl_->evaluate(p, keep, out);
+    return p;
+}
+
+int rows_of(DerivativeOrder order) {
+    return order == DerivativeOrder::Value ? 1 : order == DerivativeOrder::First ? 3 : 6;
+}
+
+}  // namespace
+
+void LimitBasis::evaluate(const SurfacePoint& point, LimitWeights& out, DerivativeOrder order) const {
+    const int keep = rows_of(order);
+    impl_->evaluate(checked_point(point, impl_->quad, num_ptex_faces()), keep, out);
     out.w.bottomRows(6 - keep).setZero();
+}
+
+void LimitBasis::evaluate(const Points& X, const SurfacePoint& point, LimitPoint& out, DerivativeOrder order) const {
+    LIMSURF_CHECK(X.rows() == impl_->topology.num_vertices(), InputError, "limit evaluation: ", X.rows(),
+                  " positions for ", impl_->topology.num_vertices(), " vertices");
+    impl_->evaluate(X, checked_point(point, impl_->quad, num_ptex_faces()), rows_of(order), out);
 }
 
 LimitWeights LimitBasis::evaluate(const SurfacePoint& point, DerivativeOrder order) const {
@@ -833,11 +1047,18 @@ LimitWeights LimitBasis::evaluate(const SurfacePoint& point, DerivativeOrder ord
     return out;
 }
 
-Eigen::Matrix<double, 6, 3> LimitBasis::evaluate(const Points& X, const SurfacePoint& point,
-                                                 DerivativeOrder order) const {
+void LimitBasis::evaluate(const InterleavedPoints& X, const SurfacePoint& point, LimitPoint& out,
+                          DerivativeOrder order) const {
     LIMSURF_CHECK(X.rows() == impl_->topology.num_vertices(), InputError, "limit evaluation: ", X.rows(),
                   " positions for ", impl_->topology.num_vertices(), " vertices");
-    return evaluate(point, order).apply(X);
+    impl_->evaluate(X, checked_point(point, impl_->quad, num_ptex_faces()), rows_of(order), out);
+}
+
+Eigen::Matrix<double, 6, 3> LimitBasis::evaluate(const Points& X, const SurfacePoint& point,
+                                                 DerivativeOrder order) const {
+    LimitPoint out;
+    evaluate(X, point, out, order);
+    return out.d;
 }
 
 namespace {
