@@ -317,11 +317,24 @@ std::span<const Index> Topology::boundary_loop(Index i) const {
 void Topology::build_components() {
     std::vector<Index> parent(at(num_faces()));
     std::iota(parent.begin(), parent.end(), Index{0});
+    // Union by size (the smaller tree goes under the larger): the trees stay logarithmically
+    // shallow whatever the edge order, where linking one way round builds long chains on a grid.
+    std::vector<Index> size(at(num_faces()), 1);
     for (Index e = 0; e < num_edges(); ++e) {
         const auto faces = edge_faces(e);
-        if (faces.size() == 2) {
-            parent[at(find_root(parent, faces[1]))] = find_root(parent, faces[0]);
+        if (faces.size() != 2) {
+            continue;
         }
+        Index a = find_root(parent, faces[0]);
+        Index b = find_root(parent, faces[1]);
+        if (a == b) {
+            continue;
+        }
+        if (size[at(a)] < size[at(b)]) {
+            std::swap(a, b);
+        }
+        parent[at(b)] = a;
+        size[at(a)] += size[at(b)];
     }
     // Number components in order of their first face.
     std::vector<Index> number(at(num_faces()), invalid_index);
