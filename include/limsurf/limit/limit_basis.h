@@ -154,11 +154,15 @@ class LimitBasis {
                                         DerivativeOrder order = DerivativeOrder::Second) const;
     /// @brief Position and derivatives of the limit surface of control points @p X (#V × 3).
     ///
-    /// Equal to evaluate(point, order).apply(X) up to rounding (relative 1e-15), but X is
-    /// contracted as early as possible: a local patch's points (16 × 3) are formed before its
-    /// basis, instead of the basis over the whole local support (6 × #support) before X. Near
-    /// extraordinary vertices this halves the work and allocates nothing (Catmull–Clark, Loop).
-    /// Same preconditions and exceptions as evaluate(point, out, order).
+    /// Equal to evaluate(point, order).apply(X) up to rounding (tested to 1e-13 of the mesh's
+    /// extent; derivatives of order d at a point δ from a domain corner to that over δ^d, the
+    /// conditioning both paths share), but X is contracted as early as possible: the local
+    /// support's points are carried down the shared one-ring templates and a regular patch's 16
+    /// (or 12) points are formed before its basis, instead of the basis over the whole support
+    /// (6 × #support) before X. Near extraordinary vertices this halves the work, allocates
+    /// nothing and builds no per-face nodes (Catmull–Clark, Loop; docs/limit_evaluation.md).
+    /// Same preconditions and exceptions as evaluate(point, out, order), and InputError when X
+    /// does not have one row per control vertex.
     void evaluate(const Points& X, const SurfacePoint& point, LimitPoint& out,
                   DerivativeOrder order = DerivativeOrder::Second) const;
     /// The same with interleaved control points (faster at random points of large meshes).
