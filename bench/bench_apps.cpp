@@ -52,12 +52,18 @@ limsurf::HeatGeodesicsOptions options_for(int method) {
     limsurf::HeatGeodesicsOptions options;
     options.method = method == 0 ? limsurf::InnerProductMethod::Dec : limsurf::InnerProductMethod::Sec;
     options.level = 3;
-    options.gradient_level = method == 2 ? 1 : -1;
+    if (method >= 2) {
+        options.gradient = limsurf::HeatGradient::Subdivided;
+        options.gradient_level = method == 2 ? 3 : 1;
+    }
     return options;
 }
 
 const char* method_name(int method) {
-    return method == 0 ? "dec" : method == 1 ? "sec" : "sec, gradient level 1";
+    return method == 0   ? "dec"
+           : method == 1 ? "sec, limit gradient"
+           : method == 2 ? "sec, gradient level 3"
+                         : "sec, gradient level 1";
 }
 
 void label(benchmark::State& state, const Mesh& m, const std::string& what) {
@@ -88,7 +94,7 @@ void BM_GeodesicSolve(benchmark::State& state) {
         benchmark::DoNotOptimize(heat.distance({source}).data());
         source = (source + 997) % m.topology.num_vertices();
     }
-    state.counters["gradient_faces"] = static_cast<double>(heat.gradient_faces());
+    state.counters["gradient_elements"] = static_cast<double>(heat.gradient_elements());
     label(state, m, method_name(static_cast<int>(state.range(0))));
 }
 
@@ -113,7 +119,7 @@ void BM_GeodesicSubdivided(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_GeodesicSetup)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeodesicSolve)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeodesicSolve)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GeodesicSubdivided)
     ->ArgsProduct({{1, 2, 3}, {0, 1}})
     ->Unit(benchmark::kMillisecond)

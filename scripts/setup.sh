@@ -8,8 +8,10 @@ set -euo pipefail
 packages=(
     # toolchain
     cmake g++ make pkg-config
-    # library (SuiteSparse: CHOLMOD for the sec layer's sparse Cholesky)
-    libeigen3-dev libsuitesparse-dev
+    # library (SuiteSparse: CHOLMOD for the sec layer's sparse Cholesky); OpenBLAS (serial: no
+    # threads of its own, the same bits on every run) in place of the reference BLAS that CHOLMOD's
+    # supernodal factorisations and solves would otherwise call (docs/BENCHMARKS.md: 2-3x on SEC)
+    libeigen3-dev libsuitesparse-dev libopenblas0-serial
     # command-line tool (muParser: formula right-hand sides of limsurf poisson)
     libcli11-dev nlohmann-json3-dev libmuparser-dev
     # volume-form generator and its tests: exact rationals (GMP through Boost.Multiprecision)

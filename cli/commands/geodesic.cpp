@@ -1,6 +1,7 @@
 // limsurf geodesic MESH --scheme S --source V [--source V ...] [--method dec|decsnap|sec|secsnap]
-//   [--level L] [--gradient-level G] [--time-factor c] [--reference-level K] [--max-memory SIZE]
-//   [--threads N] [-o OUT.ply|.vtk|.vtu] [--png OUT.png] [--json]:
+//   [--level L] [--gradient auto|limit|subdivided] [--gradient-level G] [--gradient-degree D]
+//   [--time-factor c] [--reference-level K] [--max-memory SIZE] [--threads N] [-o OUT.ply|.vtk|.vtu]
+//   [--png OUT.png] [--json]:
 // geodesic distance on the limit surface by the heat method (Crane et al. 2013) with the DEC or
 // SEC operators of --method (SEC §4.2; apps/geodesics.h). With --reference-level K it also runs
 // the heat method with DEC on the K-times subdivided mesh (the paper's reference, same t) and
@@ -33,7 +34,9 @@ struct GeodesicCommandOptions {
     std::vector<Index> sources;
     std::string method = "sec";
     int level = 3;
+    std::string gradient = "auto";
     int gradient_level = -1;
+    int gradient_degree = 2;
     double time_factor = 1.0;
     int reference_level = -1;
     std::string max_memory;
@@ -69,7 +72,9 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     GeodesicOptions geodesic;
     geodesic.heat.method = parse_inner_product_method(options.method);
     geodesic.heat.level = options.level;
+    geodesic.heat.gradient = parse_heat_gradient(options.gradient);
     geodesic.heat.gradient_level = options.gradient_level;
+    geodesic.heat.gradient_quadrature.degree = options.gradient_degree;
     geodesic.heat.time_factor = options.time_factor;
     geodesic.heat.scheme_options = scheme_rules(mesh, limit_options);
     geodesic.heat.num_threads = options.threads;
@@ -84,7 +89,8 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     nlohmann::json out{{"scheme", options.scheme},
                        {"method", options.method},
                        {"level", sec ? options.level : 0},
-                       {"gradient_level", result.gradient_level},
+                       {"gradient", result.gradient},
+                       {"gradient_level", result.gradient_level ? nlohmann::json(*result.gradient_level) : nullptr},
                        {"vertices", t.num_vertices()},
                        {"closed", t.is_closed()},
                        {"sources", options.sources},
@@ -128,9 +134,11 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     }
     std::cout << std::setprecision(6) << "geodesic    heat method, " << options.method
               << (sec ? " level " + std::to_string(options.level) : std::string()) << ", " << t.num_vertices()
-              << " unknowns, " << options.sources.size() << " source(s)\ntime step   t = " << result.time_step << " ("
-              << options.time_factor << " x mean edge length " << result.mean_edge_length << " squared; max edge "
-              << result.max_edge_length << ")\ndistance    min " << d.minCoeff() << "  max " << d.maxCoeff()
+              << " unknowns, " << options.sources.size() << " source(s)\ngradient    " << result.gradient
+              << (result.gradient_level ? " level " + std::to_string(*result.gradient_level) : std::string())
+              << "\ntime step   t = " << result.time_step << " (" << options.time_factor << " x mean edge length "
+              << result.mean_edge_length << " squared; max edge " << result.max_edge_length << ")\ndistance    min "
+              << d.minCoeff() << "  max " << d.maxCoeff()
               << " (on the limit surface: " << result.limit_distance.minCoeff() << " .. "
               << result.limit_distance.maxCoeff() << ")\nat sources  " << result.source_values.transpose()
               << "\nseconds     set-up " << result.setup_seconds << ", factorisation " << result.factorisation_seconds
@@ -172,9 +180,18 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--source", options->sources, "Source vertex (0-based control vertex index; repeatable)")
         ->required();
     add_inner_product_options(cmd, options->method, options->level);
+    cmd->add_option("--gradient", options->gradient,
+                    "sec, secsnap: normalise the heat gradient on the limit surface (limit) or on the control "
+                    "mesh subdivided --gradient-level times (subdivided); auto (default): subdivided when "
+                    "--gradient-level is given or --level is below 3, else limit")
+        ->check(CLI::IsMember({"auto", "limit", "subdivided"}));
     cmd->add_option("--gradient-level", options->gradient_level,
-                    "sec, secsnap: level of the normalised gradient (0..8, default: --level)")
+                    "sec, secsnap: level of the subdivided gradient (0..8, default: --level)")
         ->check(CLI::Range(0, 8));
+    cmd->add_option("--gradient-degree", options->gradient_degree,
+                    "sec, secsnap with the limit gradient: degree of the quadrature rule per face (1..8, default 2: "
+                    "2 x 2 Gauss points on quads, 3 points on triangles)")
+        ->check(CLI::Range(1, 8));
     cmd->add_option("--time-factor", options->time_factor,
                     "t = factor x (mean edge length of the control mesh)^2 (default 1, Crane et al.)");
     cmd->add_option(

@@ -177,14 +177,17 @@ def harmonic_basis(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, meth
                    seed: int = 1, boundary: Boundary | None = None, creasing: Creasing | None = None,
                    triangles: Triangles | None = None) -> dict[str, object]: ...
 def geodesic_distance(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], sources: int | list[int], *,
-                      method: Method = "sec", level: int = 3, gradient_level: int | None = None,
-                      time_factor: float = 1.0, reference_level: int | None = None, max_memory: int | None = None,
+                      method: Method = "sec", level: int = 3,
+                      gradient: Literal["auto", "limit", "subdivided"] = "auto", gradient_level: int | None = None,
+                      gradient_degree: int = 2, time_factor: float = 1.0, reference_level: int | None = None,
+                      max_memory: int | None = None,
                       boundary: Boundary | None = None, creasing: Creasing | None = None,
                       triangles: Triangles | None = None) -> dict[str, object]: ...
 
 class HeatGeodesics:
     def __init__(self, mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec",
-                 level: int = 3, gradient_level: int | None = None, time_factor: float = 1.0,
+                 level: int = 3, gradient: Literal["auto", "limit", "subdivided"] = "auto",
+                 gradient_level: int | None = None, gradient_degree: int = 2, time_factor: float = 1.0,
                  boundary: Boundary | None = None, creasing: Creasing | None = None,
                  triangles: Triangles | None = None) -> None: ...
     def distance(self, sources: int | list[int]) -> FloatArray: ...
@@ -196,7 +199,9 @@ class HeatGeodesics:
     @property
     def max_edge_length(self) -> float: ...
     @property
-    def gradient_level(self) -> int: ...
+    def gradient(self) -> Literal["control", "limit", "subdivided"]: ...
+    @property
+    def gradient_level(self) -> int | None: ...
     @property
     def setup_seconds(self) -> float: ...
     @property

@@ -29,12 +29,21 @@ std::vector<Index> sources_from(const py::handle& sources) {
     }
 }
 
+/// The keyword arguments gradient, gradient_level and gradient_degree.
+struct GradientChoice {
+    std::string gradient = "auto";
+    std::optional<int> level;
+    int degree = 2;
+};
+
 HeatGeodesicsOptions heat_options(const Mesh& mesh, const std::string& method, int level,
-                                  std::optional<int> gradient_level, double time_factor, const RuleNames& rules) {
+                                  const GradientChoice& gradient, double time_factor, const RuleNames& rules) {
     HeatGeodesicsOptions options;
     options.method = parse_inner_product_method(method);
     options.level = level;
-    options.gradient_level = gradient_level.value_or(-1);
+    options.gradient = parse_heat_gradient(gradient.gradient);
+    options.gradient_level = gradient.level.value_or(-1);
+    options.gradient_quadrature.degree = gradient.degree;
     options.time_factor = time_factor;
     options.scheme_options = rules_for(mesh.mesh, rules);
     return options;
@@ -44,7 +53,10 @@ py::dict report(const Mesh& mesh, const std::string& scheme, const std::string& 
                 const std::vector<Index>& sources, double time_factor, const GeodesicResult& r) {
     const bool sec = uses_subdivision(parse_inner_product_method(method));
     py::dict out("scheme"_a = scheme, "method"_a = method, "level"_a = sec ? level : 0,
-                 "gradient_level"_a = r.gradient_level, "vertices"_a = mesh.mesh.num_vertices(),
+                 "gradient"_a = r.gradient,
+                 "gradient_level"_a =
+                     r.gradient_level ? py::object(py::int_(*r.gradient_level)) : py::object(py::none()),
+                 "vertices"_a = mesh.mesh.num_vertices(),
                  "closed"_a = mesh.mesh.topology().is_closed(), "sources"_a = sources, "time_factor"_a = time_factor,
                  "t"_a = r.time_step, "mean_edge_length"_a = r.mean_edge_length,
                  "max_edge_length"_a = r.max_edge_length, "distance_min"_a = r.distance.minCoeff(),
@@ -66,13 +78,15 @@ void bind_geodesics(py::module_& m) {
     m.def(
         "geodesic_distance",
         [](const Mesh& mesh, const std::string& scheme, const py::handle& sources, const std::string& method, int level,
-           std::optional<int> gradient_level, double time_factor, std::optional<int> reference_level,
+           const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
+           double time_factor, std::optional<int> reference_level,
            std::optional<std::int64_t> max_memory, std::optional<std::string> boundary,
            std::optional<std::string> creasing, std::optional<std::string> triangles) {
             return naming_source(mesh, [&] {
                 GeodesicOptions options;
-                options.heat = heat_options(mesh, method, level, gradient_level, time_factor,
-                                            RuleNames{boundary, creasing, triangles});
+                options.heat =
+                    heat_options(mesh, method, level, GradientChoice{gradient, gradient_level, gradient_degree},
+                                 time_factor, RuleNames{boundary, creasing, triangles});
                 options.reference_level = reference_level;
                 options.max_memory = max_memory;
                 const std::vector<Index> list = sources_from(sources);
@@ -86,33 +100,42 @@ void bind_geodesics(py::module_& m) {
             });
         },
         "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3,
-        "gradient_level"_a = py::none(), "time_factor"_a = 1.0, "reference_level"_a = py::none(),
-        "max_memory"_a = py::none(), "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
+        "reference_level"_a = py::none(), "max_memory"_a = py::none(), "boundary"_a = py::none(),
+        "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Geodesic distance on the limit surface from `sources` (a control vertex or a list of them) by the
 heat method (Crane et al. 2013) with the operators of `method` ('dec', 'decsnap', 'sec', 'secsnap';
 SEC §4.2): the dict of `limsurf geodesic --json` plus 'distance' (#V: values at the control vertices
 for dec, control coefficients of the limit function for sec) and 'limit_distance' (#V: at the limit
-point of each control vertex). t = time_factor · (mean control edge length)²; reference_level=K also
-runs the heat method with DEC on the K-times subdivided mesh (same t) and reports 'reference'.
+point of each control vertex). sec, secsnap normalise the heat gradient on the limit surface
+(gradient='limit', quadrature of degree gradient_degree per face) or on the control mesh subdivided
+gradient_level times (gradient='subdivided'); 'auto' takes subdivided when gradient_level is given or
+level < 3, else limit (apps/geodesics.h says why). t = time_factor · (mean control edge length)²;
+reference_level=K also runs the heat method with DEC on the K-times subdivided mesh (same t) and
+reports 'reference'.
 Raises limsurf.InputError for a source out of range, no source, or a disconnected mesh.)");
 
     py::class_<HeatGeodesics>(m, "HeatGeodesics",
                               R"(The heat method set up and factorised once for repeated queries:
-HeatGeodesics(mesh, scheme, method='sec', level=3, gradient_level=None, time_factor=1.0).distance(sources)
+HeatGeodesics(mesh, scheme, method='sec', level=3, gradient='auto', gradient_level=None, gradient_degree=2,
+time_factor=1.0).distance(sources)
 costs two back-substitutions (three on open meshes) and one divergence per call.)")
         .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
-                         std::optional<int> gradient_level, double time_factor, std::optional<std::string> boundary,
+                         const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
+                         double time_factor, std::optional<std::string> boundary,
                          std::optional<std::string> creasing, std::optional<std::string> triangles) {
                  return naming_source(mesh, [&] {
-                     const HeatGeodesicsOptions options = heat_options(mesh, method, level, gradient_level, time_factor,
-                                                                       RuleNames{boundary, creasing, triangles});
+                     const HeatGeodesicsOptions options =
+                         heat_options(mesh, method, level, GradientChoice{gradient, gradient_level, gradient_degree},
+                                      time_factor, RuleNames{boundary, creasing, triangles});
                      const SchemeKind kind = scheme_from(scheme);
                      const py::gil_scoped_release release;
                      return HeatGeodesics(mesh.mesh, kind, options);
                  });
              }),
-             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "gradient_level"_a = py::none(),
-             "time_factor"_a = 1.0, "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
+             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "gradient"_a = "auto",
+             "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
+             "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
         .def(
             "distance",
             [](const HeatGeodesics& self, const py::handle& sources) {
@@ -139,8 +162,11 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
         .def_property_readonly("mean_edge_length", &HeatGeodesics::mean_edge_length,
                                "Mean edge length of the control mesh")
         .def_property_readonly("max_edge_length", &HeatGeodesics::max_edge_length, "Longest edge of the control mesh")
+        .def_property_readonly("gradient", &HeatGeodesics::gradient,
+                               "Where the gradient is normalised: 'control' (dec), 'limit' or 'subdivided' (sec)")
         .def_property_readonly("gradient_level", &HeatGeodesics::gradient_level,
-                               "Level of the mesh the gradient is normalised on (0 for dec)")
+                               "Level of the mesh the gradient is normalised on (0 for dec, None for the limit "
+                               "gradient)")
         .def_property_readonly("setup_seconds", &HeatGeodesics::setup_seconds,
                                "Seconds spent on the inner products, operators and gradient mesh")
         .def_property_readonly("factorisation_seconds", &HeatGeodesics::factorisation_seconds,

@@ -64,6 +64,31 @@ TEST(CliGeodesic, DecIsZeroAtTheSourcesAndTheTimeFactorScalesT) {
     EXPECT_GT(out.at("distance_max").get<double>(), 0.0);
 }
 
+TEST(CliGeodesic, GradientIsLimitFromLevel3OnUnlessAGradientLevelIsGiven) {
+    const std::vector<std::string> base{"geodesic", mesh("genus2"), "--scheme", "catmull-clark", "--source",
+                                        "0",        "--json"};
+    const auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_json(args);
+    };
+    const auto limit = with({});
+    EXPECT_EQ(limit.at("gradient"), "limit");
+    EXPECT_TRUE(limit.at("gradient_level").is_null());
+    const auto subdivided = with({"--gradient-level", "2"});
+    EXPECT_EQ(subdivided.at("gradient"), "subdivided");
+    EXPECT_EQ(subdivided.at("gradient_level"), 2);
+    EXPECT_EQ(with({"--gradient", "subdivided"}).at("gradient_level"), 3);  // = --level
+    EXPECT_EQ(with({"--level", "2"}).at("gradient"), "subdivided");
+    EXPECT_EQ(with({"--level", "2", "--gradient", "limit"}).at("gradient"), "limit");
+    EXPECT_EQ(with({"--method", "dec"}).at("gradient"), "control");
+    // A finer rule moves the distance, but little (the rule's error, tested in geodesics_test).
+    const double coarse = limit.at("distance_max").get<double>();
+    const double fine = with({"--gradient-degree", "6"}).at("distance_max").get<double>();
+    EXPECT_NE(coarse, fine);
+    EXPECT_NEAR(coarse, fine, 0.03 * fine);
+}
+
 TEST(CliGeodesic, WritesFieldsAndAPicture) {
     const fs::path vtk = temp_dir() / "distance.vtk";
     const fs::path png = temp_dir() / "distance.png";
@@ -93,6 +118,13 @@ TEST(CliGeodesic, BadInputExitsWithOneClearLine) {
         limsurf({"geodesic", mesh("genus2"), "--scheme", "catmull-clark", "--source", "0", "--time-factor", "-1"});
     EXPECT_EQ(factor.exit_code, 1);
     EXPECT_NE(factor.err.find("time factor"), std::string::npos) << factor.err;
+    const CliRun level = limsurf({"geodesic", mesh("genus2"), "--scheme", "catmull-clark", "--source", "0",
+                                  "--gradient", "limit", "--gradient-level", "1"});
+    EXPECT_EQ(level.exit_code, 1);
+    EXPECT_NE(level.err.find("applies to the subdivided gradient only"), std::string::npos) << level.err;
+    const CliRun name =
+        limsurf({"geodesic", mesh("genus2"), "--scheme", "catmull-clark", "--source", "0", "--gradient", "faces"});
+    EXPECT_NE(name.exit_code, 0);
 }
 
 }  // namespace

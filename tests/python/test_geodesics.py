@@ -5,8 +5,8 @@ import pytest
 
 import limsurf
 
-KEYS = ("scheme", "method", "level", "gradient_level", "vertices", "closed", "sources", "time_factor", "t",
-        "mean_edge_length", "max_edge_length", "distance_min", "distance_max", "limit_distance_min",
+KEYS = ("scheme", "method", "level", "gradient", "gradient_level", "vertices", "closed", "sources", "time_factor",
+        "t", "mean_edge_length", "max_edge_length", "distance_min", "distance_max", "limit_distance_min",
         "limit_distance_max", "source_values", "reference")
 
 
@@ -30,14 +30,25 @@ def test_prefactorised_queries_match_one_off_calls(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("genus2"))
     heat = limsurf.HeatGeodesics(mesh, "catmull-clark", method="sec", level=2)
     assert heat.time_step == pytest.approx(heat.mean_edge_length ** 2, rel=1e-15)
-    assert heat.gradient_level == 2 and heat.setup_seconds >= 0 and heat.factorisation_seconds >= 0
+    assert heat.gradient == "subdivided" and heat.gradient_level == 2  # auto below level 3
+    assert heat.setup_seconds >= 0 and heat.factorisation_seconds >= 0
     for sources in (5, [5, 30]):
         once = limsurf.geodesic_distance(mesh, "catmull-clark", sources, method="sec", level=2)["distance"]
         assert np.array_equal(heat.distance(sources), once)
     d = heat.distance(7)
     assert abs(heat.source_values(d, 7)[0]) < 0.3 * heat.mean_edge_length
     dec = limsurf.HeatGeodesics(mesh, "catmull-clark", method="dec")
-    assert dec.distance([7])[7] == 0.0 and dec.gradient_level == 0
+    assert dec.distance([7])[7] == 0.0 and dec.gradient_level == 0 and dec.gradient == "control"
+    subdivided = limsurf.HeatGeodesics(mesh, "catmull-clark", level=2, gradient_level=1)
+    assert subdivided.gradient == "subdivided" and subdivided.gradient_level == 1
+    explicit = limsurf.HeatGeodesics(mesh, "catmull-clark", level=2, gradient="subdivided", gradient_level=1)
+    assert np.array_equal(explicit.distance(7), subdivided.distance(7))
+    limit = limsurf.HeatGeodesics(mesh, "catmull-clark", gradient="limit")
+    assert limit.gradient == "limit" and limit.gradient_level is None
+    finer = limsurf.HeatGeodesics(mesh, "catmull-clark", gradient="limit", gradient_degree=6)
+    coarse = limit.distance(7)
+    assert not np.array_equal(finer.distance(7), coarse)
+    assert np.allclose(finer.distance(7), coarse, atol=0.03 * coarse.max())
 
 
 def test_errors(mesh_path):
@@ -50,5 +61,9 @@ def test_errors(mesh_path):
         limsurf.geodesic_distance(limsurf.read_mesh(mesh_path("tetra_and_cube")), "catmull-clark", 0)
     with pytest.raises(limsurf.InputError, match="time factor"):
         limsurf.HeatGeodesics(mesh, "catmull-clark", time_factor=-1.0)
+    with pytest.raises(limsurf.InputError, match="subdivided gradient only"):
+        limsurf.HeatGeodesics(mesh, "catmull-clark", gradient="limit", gradient_level=1)
+    with pytest.raises(limsurf.InputError, match="unknown heat gradient"):
+        limsurf.HeatGeodesics(mesh, "catmull-clark", gradient="faces")
     with pytest.raises(limsurf.InputError, match="sources must be"):
         limsurf.geodesic_distance(mesh, "catmull-clark", "zero")

@@ -5,18 +5,30 @@
 // The three steps, all unknowns on the control vertices (#V), M0, L = d0ᵀ M1 d0 of --method:
 //   1. heat:    (M0 + t L) u = δ, δ the unit point masses at the sources; on open meshes u is the
 //               average of the Neumann solution and the one with u = 0 on the boundary (Crane §3.2);
-//   2. field:   X = −∇u / |∇u| per face of a "gradient mesh", and its integrated divergence
-//               b_i = Σ_f |f| ∇φ_i|_f · X_f (the cotan divergence on triangles; on polygons the
-//               gradient exact for linear functions on planar polygons);
+//   2. field:   X = −∇u / |∇u| and its integrated divergence b_i = ∫ ∇φ_i · X (below);
 //   3. Poisson: L φ = b (one vertex pinned), then φ shifted (see "Shift" below).
-// The gradient mesh of dec is the control mesh, of decsnap the control mesh with its vertices at
-// their limit positions; of sec (secsnap) the control mesh subdivided gradient_level times (with
-// its vertices snapped), the field there being that of the subdivided heat solution A u and the
-// divergence pulled back by Aᵀ. That is the SEC divergence d0ᵀ M1 = (A_0^L)ᵀ d0ᵀ M1^L A_1^L of
-// Eq. 12 applied to the level-L normalised field — the same normalisation and Laplacian metric,
-// so |∇φ| ≈ 1 on the limit surface (normalising on the control mesh and integrating on the limit
-// would scale distances by the control/limit length ratio). gradient_level trades per-source
-// time (∝ the level-L faces) against accuracy: measured in docs/guide/geodesic.md.
+// Where X is formed:
+//   - dec, decsnap: per face of the control mesh (decsnap: its vertices at their limit positions),
+//     b_i = Σ_f |f| ∇φ_i|_f · X_f (the cotan divergence on triangles; on polygons the gradient
+//     exact for linear functions on planar polygons);
+//   - sec, secsnap with HeatGradient::Limit (the default from L = 3 on): at the quadrature samples of the limit
+//     surface (gradient_quadrature: the rule per ptex face), ∇u the surface gradient of the limit
+//     function Σ u_i Φ_i in the limit metric, b_i = Σ_s w_s X_s · ∇Φ_i(s) dA_s — the Galerkin
+//     divergence of the normalised field, so that |∇φ| ≈ 1 on the limit surface; per source it
+//     costs samples × support (4 samples of 16 weights per quad, 3 of 12 per triangle by default),
+//     independent of the level. secsnap and sec share it (both mean the limit surface);
+//   - sec, secsnap with HeatGradient::Subdivided: per face of the control mesh subdivided
+//     gradient_level times (with its vertices snapped), the field there being that of the
+//     subdivided heat solution A u and the divergence pulled back by Aᵀ: the SEC divergence
+//     d0ᵀ M1 = (A_0^L)ᵀ d0ᵀ M1^L A_1^L of Eq. 12 applied to the level-L normalised field, with
+//     per-source time ∝ the level-L faces (64× the control faces at L = 3).
+// The Laplacian measures in the level-L metric, which tends to the limit's as L grows. The
+// subdivided gradient at G = L normalises in that same metric, the limit gradient in the limit's:
+// at L = 3 their distances are equally close to the references (within 0–25 % against DEC on the
+// level-3 mesh, slightly closer to exact polyhedral geodesics for Limit), at L = 1 the mismatch
+// costs Limit 2–5× (docs/guide/geodesic.md), hence HeatGradient::Automatic. Normalising on the
+// control mesh (Subdivided with gradient_level 0) scales distances by the control/limit length
+// ratio.
 //
 // Time step t = time_factor · h², h the MEAN edge length of the control mesh (Crane's choice,
 // 2013 §3.2.4: t = m h², m = 1, h the mean spacing), not the paper's maximum: one long edge
@@ -42,6 +54,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -49,16 +62,38 @@
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/mesh/topology.h"
+#include "limsurf/quadrature/sampler.h"
 #include "limsurf/scheme/scheme.h"
 #include "limsurf/sec/inner_products.h"
 #include "limsurf/sec/reference_solution.h"
 
 namespace limsurf {
 
+/// Where sec and secsnap normalise the heat gradient (dec and decsnap: on the control faces).
+enum class HeatGradient {
+    /// Subdivided when a gradient_level is given or the level L is below 3, otherwise Limit: the
+    /// limit gradient is 3.5–4× cheaper per source at L = 3 and as accurate, but below L = 3 the
+    /// Laplacian's level-L metric differs from the limit's enough to matter (header comment).
+    Automatic,
+    Limit,       ///< at quadrature samples of the limit surface (gradient_quadrature)
+    Subdivided,  ///< per face of the control mesh subdivided gradient_level times
+};
+
+/// "auto", "limit", "subdivided".
+[[nodiscard]] const char* to_string(HeatGradient gradient) noexcept;
+/// @throws InputError naming @p name unless it is "auto", "limit" or "subdivided"
+[[nodiscard]] HeatGradient parse_heat_gradient(const std::string& name);
+
 struct HeatGeodesicsOptions {
     InnerProductMethod method = InnerProductMethod::Sec;
-    int level = 3;             ///< sec, secsnap: the level L of the inner products (0..8)
-    int gradient_level = -1;   ///< sec, secsnap: level of the normalised gradient (0..8); −1: = level
+    int level = 3;  ///< sec, secsnap: the level L of the inner products (0..8)
+    HeatGradient gradient = HeatGradient::Automatic;
+    /// HeatGradient::Limit: the rule per ptex face (degree 2: 2 × 2 Gauss points on quads, 3 points
+    /// on triangles; tile levels towards extraordinary corners). Its threads: num_threads below.
+    SamplerOptions gradient_quadrature{.degree = 2, .subdivide_near_extraordinary = 0, .num_threads = 0};
+    /// HeatGradient::Subdivided (and Automatic, which it then makes Subdivided): the level (0..8);
+    /// −1: = level. Must stay −1 with Limit.
+    int gradient_level = -1;
     double time_factor = 1.0;  ///< t = time_factor · h_mean² (> 0)
     /// t itself, overriding time_factor (> 0): the reference takes the t of the method it checks.
     std::optional<double> time_step;
@@ -74,8 +109,9 @@ class HeatGeodesics {
     /// @brief Prepares the heat method on the limit surface of (@p topology, @p X) (#V × 3).
     /// @throws InputError when the mesh has more than one connected component (naming a vertex of
     ///   the second), time_factor is not positive and finite, a level is out of range, X has the
-    ///   wrong size; NumericalError when a factorisation fails (degenerate faces); otherwise as
-    ///   control_inner_products
+    ///   wrong size, gradient_level is set with HeatGradient::Limit, the gradient quadrature is out
+    ///   of LimitSampler's range; NumericalError when a factorisation fails (degenerate faces) or
+    ///   the limit surface is singular at a gradient sample; otherwise as control_inner_products
     HeatGeodesics(const Topology& topology, const Points& X, SchemeKind scheme,
                   const HeatGeodesicsOptions& options = {});
     HeatGeodesics(const ControlMesh& mesh, SchemeKind scheme, const HeatGeodesicsOptions& options = {});
@@ -95,12 +131,16 @@ class HeatGeodesics {
     /// @throws InputError as distance()
     [[nodiscard]] Eigen::VectorXd source_values(const Eigen::VectorXd& phi, const std::vector<Index>& sources) const;
 
-    [[nodiscard]] Index num_vertices() const noexcept;            ///< #V of the control mesh
-    [[nodiscard]] double time_step() const noexcept;              ///< t
-    [[nodiscard]] double mean_edge_length() const noexcept;       ///< h_mean of the control mesh
-    [[nodiscard]] double max_edge_length() const noexcept;        ///< h_max of the control mesh
-    [[nodiscard]] int gradient_level() const noexcept;            ///< 0 for dec, decsnap
-    [[nodiscard]] Index gradient_faces() const noexcept;          ///< faces of the gradient mesh
+    [[nodiscard]] Index num_vertices() const noexcept;       ///< #V of the control mesh
+    [[nodiscard]] double time_step() const noexcept;         ///< t
+    [[nodiscard]] double mean_edge_length() const noexcept;  ///< h_mean of the control mesh
+    [[nodiscard]] double max_edge_length() const noexcept;   ///< h_max of the control mesh
+    /// "control" (dec, decsnap), "limit" or "subdivided" (sec, secsnap)
+    [[nodiscard]] const char* gradient() const noexcept;
+    /// 0 for dec, decsnap; the level of HeatGradient::Subdivided; empty for HeatGradient::Limit
+    [[nodiscard]] std::optional<int> gradient_level() const noexcept;
+    /// Where the field is normalised: faces of the gradient mesh, or the limit quadrature's samples
+    [[nodiscard]] Index gradient_elements() const noexcept;
     [[nodiscard]] double setup_seconds() const noexcept;          ///< inner products, operators, gradient mesh
     [[nodiscard]] double factorisation_seconds() const noexcept;  ///< the Cholesky factorisations
     [[nodiscard]] const HeatGeodesicsOptions& options() const noexcept;
@@ -130,8 +170,9 @@ struct GeodesicResult {
     double time_step = 0.0;
     double mean_edge_length = 0.0;
     double max_edge_length = 0.0;
-    int gradient_level = 0;
-    Eigen::VectorXd source_values;  ///< the distance at each source (HeatGeodesics::source_values)
+    std::string gradient;               ///< HeatGeodesics::gradient
+    std::optional<int> gradient_level;  ///< HeatGeodesics::gradient_level
+    Eigen::VectorXd source_values;      ///< the distance at each source (HeatGeodesics::source_values)
     double setup_seconds = 0.0;
     double factorisation_seconds = 0.0;
     double solve_seconds = 0.0;  ///< the one distance() call

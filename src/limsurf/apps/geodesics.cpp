@@ -11,6 +11,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/quadrature/sampler.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/operators.h"
 
@@ -117,6 +118,73 @@ struct GradientMesh {
     }
 };
 
+/// The normalised field in the limit metric: at each quadrature sample s of the limit surface
+/// (LimitSampler over the ptex faces), ∇u = ∂uᵀ G⁻¹ ∂x with ∂u = (∂_u u, ∂_v u) = D_s u and G the
+/// first fundamental form, |∇u|² = ∂uᵀ G⁻¹ ∂u, and X·∇Φ_i = −(G⁻¹ ∂u)·∂Φ_i / |∇u|, so that
+/// b_i = Σ_s w_s √det G X_s·∇Φ_i needs only D_s (2 × support) and, per sample, G⁻¹ and w_s √det G.
+/// The Galerkin divergence ∫ X·∇Φ_i dA of the limit function's normalised gradient: work per source
+/// ∝ samples × support, independent of any subdivision level.
+struct LimitGradient {
+    std::vector<std::size_t> offsets;  ///< per sample into vertices / 2× into D
+    std::vector<Index> vertices;
+    std::vector<double> D;                ///< ∂_u, ∂_v weights, interleaved per vertex
+    std::vector<Eigen::Vector4d> metric;  ///< G⁻¹ (11, 12, 22) and w √det G
+    Index num_vertices = 0;
+
+    LimitGradient(const LimitBasis& basis, const Points& X, const SamplerOptions& quadrature)
+        : num_vertices(basis.topology().num_vertices()) {
+        const LimitSampler sampler(basis, quadrature);
+        const std::vector<Eigen::Matrix<double, 6, 3>> d = sampler.evaluate(X);
+        const Index ns = sampler.num_samples();
+        offsets.reserve(static_cast<std::size_t>(ns) + 1);
+        offsets.push_back(0);
+        metric.reserve(static_cast<std::size_t>(ns));
+        for (Index s = 0; s < ns; ++s) {
+            const auto& ds = d[static_cast<std::size_t>(s)];
+            const Eigen::Vector3d xu = ds.row(1).transpose(), xv = ds.row(2).transpose();
+            const double g11 = xu.dot(xu), g12 = xu.dot(xv), g22 = xv.dot(xv);
+            const double det = g11 * g22 - g12 * g12;
+            LIMSURF_CHECK(det > 0.0 && std::isfinite(det), NumericalError,
+                          "the limit surface is singular at ptex face ", sampler.point(s).face, " (u, v) = (",
+                          sampler.point(s).u, ", ", sampler.point(s).v, "): no gradient there (degenerate geometry)");
+            metric.emplace_back(g22 / det, -g12 / det, g11 / det, sampler.weight(s) * std::sqrt(det));
+            const auto w = sampler.limit_weights(s);
+            const auto verts = sampler.vertices(s);
+            for (std::size_t k = 0; k < verts.size(); ++k) {
+                vertices.push_back(verts[k]);
+                D.push_back(w(1, static_cast<Index>(k)));
+                D.push_back(w(2, static_cast<Index>(k)));
+            }
+            offsets.push_back(vertices.size());
+        }
+    }
+
+    [[nodiscard]] Index num_samples() const noexcept { return static_cast<Index>(metric.size()); }
+
+    [[nodiscard]] Eigen::VectorXd divergence_of_normalised_gradient(const Eigen::VectorXd& u) const {
+        Eigen::VectorXd b = Eigen::VectorXd::Zero(num_vertices);
+        for (std::size_t s = 0; s + 1 < offsets.size(); ++s) {
+            double du = 0.0, dv = 0.0;
+            for (std::size_t k = offsets[s]; k < offsets[s + 1]; ++k) {
+                const double value = u[vertices[k]];
+                du += value * D[2 * k];
+                dv += value * D[2 * k + 1];
+            }
+            const Eigen::Vector4d& m = metric[s];
+            const double pu = m[0] * du + m[1] * dv, pv = m[1] * du + m[2] * dv;
+            const double norm = std::sqrt(du * pu + dv * pv);
+            if (!(norm > 0.0) || !std::isfinite(norm)) {
+                continue;  // u constant here (underflow far from the sources): no direction to follow
+            }
+            const double scale = -m[3] / norm;
+            for (std::size_t k = offsets[s]; k < offsets[s + 1]; ++k) {
+                b[vertices[k]] += scale * (pu * D[2 * k] + pv * D[2 * k + 1]);
+            }
+        }
+        return b;
+    }
+};
+
 GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind scheme,
                                 const HeatGeodesicsOptions& options, int gradient_level) {
     if (!uses_subdivision(options.method) || gradient_level == 0) {
@@ -156,6 +224,27 @@ std::pair<double, double> edge_lengths(const Topology& t, const Points& X) {
 
 }  // namespace
 
+const char* to_string(HeatGradient gradient) noexcept {
+    switch (gradient) {
+    case HeatGradient::Automatic:
+        return "auto";
+    case HeatGradient::Limit:
+        return "limit";
+    case HeatGradient::Subdivided:
+        return "subdivided";
+    }
+    return "?";
+}
+
+HeatGradient parse_heat_gradient(const std::string& name) {
+    for (const HeatGradient g : {HeatGradient::Automatic, HeatGradient::Limit, HeatGradient::Subdivided}) {
+        if (name == to_string(g)) {
+            return g;
+        }
+    }
+    throw InputError("unknown heat gradient '" + name + "' (expected auto, limit or subdivided)");
+}
+
 struct HeatGeodesics::Impl {
     HeatGeodesicsOptions options;
     Index num_vertices = 0;
@@ -163,6 +252,7 @@ struct HeatGeodesics::Impl {
     int gradient_level = 0;
     double setup_seconds = 0.0, factorisation_seconds = 0.0;
     std::optional<GradientMesh> gradient;
+    std::optional<LimitGradient> limit_gradient;
     std::optional<SparseMatrix> P;  ///< sec, secsnap: the limit values at the control vertices
     Points limit_points;
     std::vector<std::vector<Index>> neighbours;
@@ -282,6 +372,12 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
                          "compute each component on its own");
     }
     const bool sec = uses_subdivision(options.method);
+    LIMSURF_CHECK(options.gradient != HeatGradient::Limit || options.gradient_level < 0, InputError,
+                  "a gradient level (", options.gradient_level,
+                  ") applies to the subdivided gradient only; the limit gradient has no level");
+    const bool use_limit =
+        sec && (options.gradient == HeatGradient::Limit ||
+                (options.gradient == HeatGradient::Automatic && options.gradient_level < 0 && options.level >= 3));
     m.gradient_level = sec ? (options.gradient_level < 0 ? options.level : options.gradient_level) : 0;
     LIMSURF_CHECK(m.gradient_level >= 0 && m.gradient_level <= 8, InputError,
                   "the gradient level must be in [0, 8], got ", m.gradient_level);
@@ -299,9 +395,17 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
     // (M0 + t L)⁻¹ δ, for t ~ h², close to the L² projection of a point mass, whose coefficients
     // oscillate in sign, and the normalised gradient then points the wrong way far from the source.
     const SparseMatrix heat_matrix = SparseMatrix(lumped(ops.inner_products().M0) + m.t * L);
-    m.gradient.emplace(make_gradient_mesh(topology, X, scheme, options, m.gradient_level));
+    if (!use_limit) {
+        m.gradient.emplace(make_gradient_mesh(topology, X, scheme, options, m.gradient_level));
+    }
     if (sec) {
-        m.P = LimitBasis(topology, scheme, options.scheme_options).vertex_limit_matrix();
+        const LimitBasis basis(topology, scheme, options.scheme_options);
+        if (use_limit) {
+            SamplerOptions quadrature = options.gradient_quadrature;
+            quadrature.num_threads = options.num_threads;
+            m.limit_gradient.emplace(basis, X, quadrature);
+        }
+        m.P = basis.vertex_limit_matrix();
         m.limit_points = *m.P * X;
         m.neighbours.resize(n);
         for (Index e = 0; e < topology.num_edges(); ++e) {
@@ -346,7 +450,8 @@ Eigen::VectorXd HeatGeodesics::distance(const std::vector<Index>& sources) const
     const Impl& m = *impl_;
     check_sources(sources, m.num_vertices);
     const Eigen::VectorXd u = m.heat_solution(sources);
-    Eigen::VectorXd phi = m.integrate(m.gradient->divergence_of_normalised_gradient(u));
+    Eigen::VectorXd phi = m.integrate(m.limit_gradient ? m.limit_gradient->divergence_of_normalised_gradient(u)
+                                                       : m.gradient->divergence_of_normalised_gradient(u));
     phi.array() -= m.P ? m.ring_offset(phi, sources) : m.source_values(phi, sources).mean();
     LIMSURF_CHECK(phi.allFinite(), NumericalError,
                   "the heat method gave a non-finite distance (degenerate geometry or a time step that underflows)");
@@ -365,11 +470,15 @@ double HeatGeodesics::mean_edge_length() const noexcept {
 double HeatGeodesics::max_edge_length() const noexcept {
     return impl_->h_max;
 }
-int HeatGeodesics::gradient_level() const noexcept {
-    return impl_->gradient_level;
+const char* HeatGeodesics::gradient() const noexcept {
+    return impl_->limit_gradient ? "limit" : impl_->P ? "subdivided" : "control";
 }
-Index HeatGeodesics::gradient_faces() const noexcept {
-    return static_cast<Index>(impl_->gradient->offsets.size()) - 1;
+std::optional<int> HeatGeodesics::gradient_level() const noexcept {
+    return impl_->limit_gradient ? std::nullopt : std::optional<int>(impl_->gradient_level);
+}
+Index HeatGeodesics::gradient_elements() const noexcept {
+    return impl_->limit_gradient ? impl_->limit_gradient->num_samples()
+                                 : static_cast<Index>(impl_->gradient->offsets.size()) - 1;
 }
 double HeatGeodesics::setup_seconds() const noexcept {
     return impl_->setup_seconds;
@@ -441,6 +550,7 @@ GeodesicResult geodesic_distance(const ControlMesh& mesh, SchemeKind scheme, con
     result.time_step = heat.time_step();
     result.mean_edge_length = heat.mean_edge_length();
     result.max_edge_length = heat.max_edge_length();
+    result.gradient = heat.gradient();
     result.gradient_level = heat.gradient_level();
     result.setup_seconds = heat.setup_seconds();
     result.factorisation_seconds = heat.factorisation_seconds();
