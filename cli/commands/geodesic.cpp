@@ -135,7 +135,7 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     std::cout << std::setprecision(6) << "geodesic    heat method, " << options.method
               << (sec ? " level " + std::to_string(options.level) : std::string()) << ", " << t.num_vertices()
               << " unknowns, " << options.sources.size() << " source(s)\ngradient    " << result.gradient
-              << (result.gradient_level ? " level " + std::to_string(*result.gradient_level) : std::string())
+              << (result.gradient == "subdivided" ? " level " + std::to_string(*result.gradient_level) : std::string())
               << "\ntime step   t = " << result.time_step << " (" << options.time_factor << " x mean edge length "
               << result.mean_edge_length << " squared; max edge " << result.max_edge_length << ")\ndistance    min "
               << d.minCoeff() << "  max " << d.maxCoeff()
