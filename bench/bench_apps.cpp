@@ -1,5 +1,5 @@
 // The SEC applications (SEC §4.2): heat-method geodesics on a ~10k-face control mesh, SEC (L = 3)
-// against DEC on the same control mesh, and the heat method with DEC on the control mesh subdivided
+// and IGA against DEC on the same control mesh, and the heat method with DEC on the control mesh subdivided
 // 1, 2 and 3 times (the paper's reference is level 3). No peer library has SEC operators (and
 // geometry-central / libigl are not in Debian): the DEC computations are the yardsticks the issue
 // names.
@@ -12,7 +12,7 @@
 //                                  refinement, set-up, factorisation and one solve (level 3: the
 //                                  reference of `--reference-level 3`)
 //   method: 0 dec, 1 sec (L = 3, limit gradient: the default), 2 sec (L = 3, gradient on level 3),
-//           3 sec (L = 3, gradient on level 1)
+//           3 sec (L = 3, gradient on level 1), 4 iga (degree 8, 6 tile levels; limit gradient)
 //
 // Meshes: genus2 refined 4 times by Catmull–Clark (12 800 quads);
 //         tri_valence_7 refined 4 times by Loop (10 752 triangles).
@@ -51,9 +51,11 @@ const Mesh& mesh(int which) {
 
 limsurf::HeatGeodesicsOptions options_for(int method) {
     limsurf::HeatGeodesicsOptions options;
-    options.method = method == 0 ? limsurf::InnerProductMethod::Dec : limsurf::InnerProductMethod::Sec;
+    options.method = method == 0   ? limsurf::LaplacianMethod::Dec
+                     : method == 4 ? limsurf::LaplacianMethod::Iga
+                                   : limsurf::LaplacianMethod::Sec;
     options.level = 3;
-    if (method >= 2) {
+    if (method == 2 || method == 3) {
         options.gradient = limsurf::HeatGradient::Subdivided;
         options.gradient_level = method == 2 ? 3 : 1;
     }
@@ -64,7 +66,8 @@ const char* method_name(int method) {
     return method == 0   ? "dec"
            : method == 1 ? "sec, limit gradient"
            : method == 2 ? "sec, gradient level 3"
-                         : "sec, gradient level 1";
+           : method == 3 ? "sec, gradient level 1"
+                         : "iga";
 }
 
 void label(benchmark::State& state, const Mesh& m, const std::string& what) {
@@ -119,8 +122,8 @@ void BM_GeodesicSubdivided(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_GeodesicSetup)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GeodesicSolve)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeodesicSetup)->ArgsProduct({{0, 1, 2, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeodesicSolve)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GeodesicSubdivided)
     ->ArgsProduct({{1, 2, 3}, {0, 1}})
     ->Unit(benchmark::kMillisecond)

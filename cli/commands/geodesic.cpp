@@ -1,11 +1,12 @@
-// limsurf geodesic MESH --scheme S --source V [--source V ...] [--method dec|decsnap|sec|secsnap]
-//   [--level L] [--gradient auto|limit|subdivided] [--gradient-level G] [--gradient-degree D]
-//   [--time-factor c] [--reference-level K] [--max-memory SIZE] [--threads N] [-o OUT.ply|.vtk|.vtu]
-//   [--png OUT.png] [--json]:
+// limsurf geodesic MESH --scheme S --source V [--source V ...] [--method dec|decsnap|sec|secsnap|iga]
+//   [--level L] [--degree D --tiles T] [--gradient auto|limit|subdivided] [--gradient-level G]
+//   [--gradient-degree D] [--time-factor c] [--reference-level K] [--max-memory SIZE] [--threads N]
+//   [-o OUT.ply|.vtk|.vtu] [--png OUT.png] [--json]:
 // geodesic distance on the limit surface by the heat method (Crane et al. 2013) with the DEC or
-// SEC operators of --method (SEC §4.2; apps/geodesics.h). With --reference-level K it also runs
-// the heat method with DEC on the K-times subdivided mesh (the paper's reference, same t) and
-// reports the relative L² and L∞ differences of the subdivided distance from it.
+// SEC operators of --method, or Galerkin with the limit basis (iga) (SEC §4.2; apps/geodesics.h).
+// With --reference-level K it also runs the heat method with DEC on the K-times subdivided mesh
+// (the paper's reference, same t) and reports the relative L² and L∞ differences of the
+// subdivided distance from it.
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -37,6 +38,8 @@ struct GeodesicCommandOptions {
     std::string gradient = "auto";
     int gradient_level = -1;
     int gradient_degree = 2;
+    int degree = 8;  // iga: quadrature degree per tile
+    int tiles = 6;   // iga: tile levels towards extraordinary vertices
     double time_factor = 1.0;
     int reference_level = -1;
     std::string max_memory;
@@ -70,11 +73,13 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     LimitSchemeOptions limit_options;
     limit_options.scheme = options.scheme;
     GeodesicOptions geodesic;
-    geodesic.heat.method = parse_inner_product_method(options.method);
+    geodesic.heat.method = parse_laplacian_method(options.method);
     geodesic.heat.level = options.level;
     geodesic.heat.gradient = parse_heat_gradient(options.gradient);
     geodesic.heat.gradient_level = options.gradient_level;
     geodesic.heat.gradient_quadrature.degree = options.gradient_degree;
+    geodesic.heat.iga_quadrature.degree = options.degree;
+    geodesic.heat.iga_quadrature.subdivide_near_extraordinary = options.tiles;
     geodesic.heat.time_factor = options.time_factor;
     geodesic.heat.scheme_options = scheme_rules(mesh, limit_options);
     geodesic.heat.num_threads = options.threads;
@@ -84,11 +89,14 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
     geodesic.max_memory = memory_budget(options.max_memory);
     const GeodesicResult result =
         geodesic_distance(mesh, limit_schemes().at(options.scheme), options.sources, geodesic);
-    const bool sec = uses_subdivision(geodesic.heat.method);
+    const bool sec = has_level(geodesic.heat.method);
     const Eigen::VectorXd& d = result.distance;
     nlohmann::json out{{"scheme", options.scheme},
                        {"method", options.method},
                        {"level", sec ? options.level : 0},
+                       {"quadrature", geodesic.heat.method == LaplacianMethod::Iga
+                                          ? nlohmann::json{{"degree", options.degree}, {"tiles", options.tiles}}
+                                          : nlohmann::json(nullptr)},
                        {"gradient", result.gradient},
                        {"gradient_level", result.gradient_level ? nlohmann::json(*result.gradient_level) : nullptr},
                        {"vertices", t.num_vertices()},
@@ -179,7 +187,16 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::IsMember({"loop", "catmull-clark"}));
     cmd->add_option("--source", options->sources, "Source vertex (0-based control vertex index; repeatable)")
         ->required();
-    add_inner_product_options(cmd, options->method, options->level);
+    cmd->add_option("--method", options->method,
+                    "dec, decsnap, sec, secsnap (inner products, default sec) or iga (Galerkin with the limit basis)")
+        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap", "iga"}));
+    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
+        ->check(CLI::Range(0, 8));
+    cmd->add_option("--degree", options->degree,
+                    "iga: quadrature degree per tile of the mass and stiffness (1..60, default 8)")
+        ->check(CLI::Range(1, 60));
+    cmd->add_option("--tiles", options->tiles, "iga: tile levels towards extraordinary vertices (0..20, default 6)")
+        ->check(CLI::Range(0, 20));
     cmd->add_option("--gradient", options->gradient,
                     "sec, secsnap: normalise the heat gradient on the limit surface (limit) or on the control "
                     "mesh subdivided --gradient-level times (subdivided); auto (default): subdivided when "

@@ -53,8 +53,8 @@ int solve_and_report(const BuildResult& built, const PoissonCommandOptions& opti
     LimitSchemeOptions limit_options;
     limit_options.scheme = options.scheme;
     SurfacePoissonOptions poisson;
-    poisson.method = parse_poisson_method(options.method);
-    LIMSURF_CHECK(poisson.method != PoissonMethod::Iga || !options.lumped, InputError,
+    poisson.method = parse_laplacian_method(options.method);
+    LIMSURF_CHECK(poisson.method != LaplacianMethod::Iga || !options.lumped, InputError,
                   "--lumped applies to the inner products of dec and sec, not to iga");
     poisson.level = options.level;
     poisson.lumped = options.lumped;
@@ -78,9 +78,9 @@ int solve_and_report(const BuildResult& built, const PoissonCommandOptions& opti
     const SurfacePoissonResult result = solve_surface_poisson(mesh, limit_schemes().at(options.scheme), poisson, data);
     const PoissonSolution& solution = result.solution;
     const std::optional<ReferenceComparison>& reference = result.reference;
-    const bool iga = poisson.method == PoissonMethod::Iga;
+    const bool iga = poisson.method == LaplacianMethod::Iga;
     const Eigen::VectorXd& u = solution.u;
-    const bool sec = poisson.method == PoissonMethod::Sec || poisson.method == PoissonMethod::SecSnap;
+    const bool sec = poisson.method == LaplacianMethod::Sec || poisson.method == LaplacianMethod::SecSnap;
     nlohmann::json out{{"scheme", options.scheme},
                        {"method", options.method},
                        {"level", sec ? options.level : 0},

@@ -177,7 +177,7 @@ def harmonic_basis(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, meth
                    seed: int = 1, boundary: Boundary | None = None, creasing: Creasing | None = None,
                    triangles: Triangles | None = None) -> dict[str, object]: ...
 def geodesic_distance(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], sources: int | list[int], *,
-                      method: Method = "sec", level: int = 3,
+                      method: Method | Literal["iga"] = "sec", level: int = 3, degree: int = 8, tiles: int = 6,
                       gradient: Literal["auto", "limit", "subdivided"] = "auto", gradient_level: int | None = None,
                       gradient_degree: int = 2, time_factor: float = 1.0, reference_level: int | None = None,
                       max_memory: int | None = None,
@@ -185,8 +185,9 @@ def geodesic_distance(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], sour
                       triangles: Triangles | None = None) -> dict[str, object]: ...
 
 class HeatGeodesics:
-    def __init__(self, mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec",
-                 level: int = 3, gradient: Literal["auto", "limit", "subdivided"] = "auto",
+    def __init__(self, mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *,
+                 method: Method | Literal["iga"] = "sec", level: int = 3, degree: int = 8, tiles: int = 6,
+                 gradient: Literal["auto", "limit", "subdivided"] = "auto",
                  gradient_level: int | None = None, gradient_degree: int = 2, time_factor: float = 1.0,
                  boundary: Boundary | None = None, creasing: Creasing | None = None,
                  triangles: Triangles | None = None) -> None: ...

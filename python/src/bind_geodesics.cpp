@@ -29,6 +29,14 @@ std::vector<Index> sources_from(const py::handle& sources) {
     }
 }
 
+/// The keyword arguments method, level, degree and tiles (iga).
+struct MethodChoice {
+    std::string method;
+    int level = 3;
+    int degree = 8;
+    int tiles = 6;
+};
+
 /// The keyword arguments gradient, gradient_level and gradient_degree.
 struct GradientChoice {
     std::string gradient = "auto";
@@ -36,11 +44,13 @@ struct GradientChoice {
     int degree = 2;
 };
 
-HeatGeodesicsOptions heat_options(const Mesh& mesh, const std::string& method, int level,
-                                  const GradientChoice& gradient, double time_factor, const RuleNames& rules) {
+HeatGeodesicsOptions heat_options(const Mesh& mesh, const MethodChoice& method, const GradientChoice& gradient,
+                                  double time_factor, const RuleNames& rules) {
     HeatGeodesicsOptions options;
-    options.method = parse_inner_product_method(method);
-    options.level = level;
+    options.method = parse_laplacian_method(method.method);
+    options.level = method.level;
+    options.iga_quadrature.degree = method.degree;
+    options.iga_quadrature.subdivide_near_extraordinary = method.tiles;
     options.gradient = parse_heat_gradient(gradient.gradient);
     options.gradient_level = gradient.level.value_or(-1);
     options.gradient_quadrature.degree = gradient.degree;
@@ -49,15 +59,21 @@ HeatGeodesicsOptions heat_options(const Mesh& mesh, const std::string& method, i
     return options;
 }
 
-py::dict report(const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
-                const std::vector<Index>& sources, double time_factor, const GeodesicResult& r) {
-    const bool sec = uses_subdivision(parse_inner_product_method(method));
-    py::dict out("scheme"_a = scheme, "method"_a = method, "level"_a = sec ? level : 0,
+py::dict report(const Mesh& mesh, const std::string& scheme, const HeatGeodesicsOptions& options,
+                const std::vector<Index>& sources, const GeodesicResult& r) {
+    const bool iga = options.method == LaplacianMethod::Iga;
+    const py::object quadrature =
+        iga ? py::object(py::dict("degree"_a = options.iga_quadrature.degree,
+                                  "tiles"_a = options.iga_quadrature.subdivide_near_extraordinary))
+            : py::object(py::none());
+    py::dict out("scheme"_a = scheme, "method"_a = to_string(options.method),
+                 "level"_a = has_level(options.method) ? options.level : 0, "quadrature"_a = quadrature,
                  "gradient"_a = r.gradient,
                  "gradient_level"_a =
                      r.gradient_level ? py::object(py::int_(*r.gradient_level)) : py::object(py::none()),
                  "vertices"_a = mesh.mesh.num_vertices(),
-                 "closed"_a = mesh.mesh.topology().is_closed(), "sources"_a = sources, "time_factor"_a = time_factor,
+                 "closed"_a = mesh.mesh.topology().is_closed(), "sources"_a = sources,
+                 "time_factor"_a = options.time_factor,
                  "t"_a = r.time_step, "mean_edge_length"_a = r.mean_edge_length,
                  "max_edge_length"_a = r.max_edge_length, "distance_min"_a = r.distance.minCoeff(),
                  "distance_max"_a = r.distance.maxCoeff(), "limit_distance_min"_a = r.limit_distance.minCoeff(),
@@ -78,15 +94,15 @@ void bind_geodesics(py::module_& m) {
     m.def(
         "geodesic_distance",
         [](const Mesh& mesh, const std::string& scheme, const py::handle& sources, const std::string& method, int level,
-           const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
+           int degree, int tiles, const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
            double time_factor, std::optional<int> reference_level,
            std::optional<std::int64_t> max_memory, std::optional<std::string> boundary,
            std::optional<std::string> creasing, std::optional<std::string> triangles) {
             return naming_source(mesh, [&] {
                 GeodesicOptions options;
-                options.heat =
-                    heat_options(mesh, method, level, GradientChoice{gradient, gradient_level, gradient_degree},
-                                 time_factor, RuleNames{boundary, creasing, triangles});
+                options.heat = heat_options(mesh, MethodChoice{method, level, degree, tiles},
+                                            GradientChoice{gradient, gradient_level, gradient_degree}, time_factor,
+                                            RuleNames{boundary, creasing, triangles});
                 options.reference_level = reference_level;
                 options.max_memory = max_memory;
                 const std::vector<Index> list = sources_from(sources);
@@ -96,44 +112,49 @@ void bind_geodesics(py::module_& m) {
                     const py::gil_scoped_release release;
                     r = geodesic_distance(mesh.mesh, kind, list, options);
                 }
-                return report(mesh, scheme, method, level, list, time_factor, r);
+                return report(mesh, scheme, options.heat, list, r);
             });
         },
-        "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3,
-        "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
+        "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "degree"_a = 8,
+        "tiles"_a = 6, "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2,
+        "time_factor"_a = 1.0,
         "reference_level"_a = py::none(), "max_memory"_a = py::none(), "boundary"_a = py::none(),
         "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Geodesic distance on the limit surface from `sources` (a control vertex or a list of them) by the
 heat method (Crane et al. 2013) with the operators of `method` ('dec', 'decsnap', 'sec', 'secsnap';
-SEC §4.2): the dict of `limsurf geodesic --json` plus 'distance' (#V: values at the control vertices
-for dec, control coefficients of the limit function for sec) and 'limit_distance' (#V: at the limit
-point of each control vertex). sec, secsnap normalise the heat gradient on the limit surface
-(gradient='limit', quadrature of degree gradient_degree per face) or on the control mesh subdivided
-gradient_level times (gradient='subdivided'); 'auto' takes subdivided when gradient_level is given or
-level < 3, else limit (apps/geodesics.h says why). t = time_factor · (mean control edge length)²;
+SEC §4.2) or Galerkin with the limit basis ('iga', mass and stiffness integrated with `degree` per
+tile and `tiles` levels towards extraordinary vertices): the dict of `limsurf geodesic --json` plus
+'distance' (#V: values at the control vertices for dec, control coefficients of the limit function
+for sec and iga) and 'limit_distance' (#V: at the limit point of each control vertex). iga
+normalises the heat gradient on the limit surface (quadrature of degree gradient_degree per face);
+sec, secsnap there too (gradient='limit') or on the control mesh subdivided gradient_level times
+(gradient='subdivided'); 'auto' takes subdivided when gradient_level is given or level < 3, else
+limit (apps/geodesics.h says why). t = time_factor · (mean control edge length)²;
 reference_level=K also runs the heat method with DEC on the K-times subdivided mesh (same t) and
 reports 'reference'.
 Raises limsurf.InputError for a source out of range, no source, or a disconnected mesh.)");
 
     py::class_<HeatGeodesics>(m, "HeatGeodesics",
                               R"(The heat method set up and factorised once for repeated queries:
-HeatGeodesics(mesh, scheme, method='sec', level=3, gradient='auto', gradient_level=None, gradient_degree=2,
-time_factor=1.0).distance(sources)
+HeatGeodesics(mesh, scheme, method='sec', level=3, degree=8, tiles=6, gradient='auto', gradient_level=None,
+gradient_degree=2, time_factor=1.0).distance(sources)
 costs two back-substitutions (three on open meshes) and one divergence per call.)")
         .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
-                         const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
-                         double time_factor, std::optional<std::string> boundary,
+                         int degree, int tiles, const std::string& gradient, std::optional<int> gradient_level,
+                         int gradient_degree, double time_factor, std::optional<std::string> boundary,
                          std::optional<std::string> creasing, std::optional<std::string> triangles) {
                  return naming_source(mesh, [&] {
-                     const HeatGeodesicsOptions options =
-                         heat_options(mesh, method, level, GradientChoice{gradient, gradient_level, gradient_degree},
-                                      time_factor, RuleNames{boundary, creasing, triangles});
+                     const HeatGeodesicsOptions options = heat_options(
+                         mesh, MethodChoice{method, level, degree, tiles},
+                         GradientChoice{gradient, gradient_level, gradient_degree}, time_factor,
+                         RuleNames{boundary, creasing, triangles});
                      const SchemeKind kind = scheme_from(scheme);
                      const py::gil_scoped_release release;
                      return HeatGeodesics(mesh.mesh, kind, options);
                  });
              }),
-             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "gradient"_a = "auto",
+             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "degree"_a = 8, "tiles"_a = 6,
+             "gradient"_a = "auto",
              "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
              "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
         .def(

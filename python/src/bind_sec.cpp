@@ -72,8 +72,8 @@ py::dict poisson(const Mesh& mesh, const std::string& scheme, const py::handle& 
             const py::gil_scoped_release release;
             r = solve_surface_poisson(mesh.mesh, kind, options, data);
         }
-        const bool sec = options.method == PoissonMethod::Sec || options.method == PoissonMethod::SecSnap;
-        const bool iga = options.method == PoissonMethod::Iga;
+        const bool sec = options.method == LaplacianMethod::Sec || options.method == LaplacianMethod::SecSnap;
+        const bool iga = options.method == LaplacianMethod::Iga;
         const Eigen::VectorXd& u = r.solution.u;
         py::dict out("scheme"_a = scheme, "method"_a = to_string(options.method), "level"_a = sec ? options.level : 0,
                      "lumped"_a = options.lumped, "vertices"_a = n, "closed"_a = mesh.mesh.topology().is_closed(),
@@ -143,7 +143,7 @@ divergence d0ᵀ M1 (#V × #E). The strong Laplacian is M0⁻¹ L.)");
             LIMSURF_CHECK(threads >= 0, InputError, "threads must be >= 0 (0: all cores), not ", threads);
             SurfacePoissonOptions options;
             options.num_threads = threads;
-            options.method = parse_poisson_method(method);
+            options.method = parse_laplacian_method(method);
             options.level = level;
             options.lumped = lumped;
             options.degree = degree;

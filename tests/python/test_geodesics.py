@@ -5,14 +5,15 @@ import pytest
 
 import limsurf
 
-KEYS = ("scheme", "method", "level", "gradient", "gradient_level", "vertices", "closed", "sources", "time_factor",
-        "t", "mean_edge_length", "max_edge_length", "distance_min", "distance_max", "limit_distance_min",
+KEYS = ("scheme", "method", "level", "quadrature", "gradient", "gradient_level", "vertices", "closed", "sources",
+        "time_factor", "t", "mean_edge_length", "max_edge_length", "distance_min", "distance_max", "limit_distance_min",
         "limit_distance_max", "source_values", "reference")
 
 
 @pytest.mark.parametrize("name, scheme, method, sources", [("genus2", "catmull-clark", "sec", [0]),
                                                            ("tri_torus", "loop", "dec", [3, 20]),
-                                                           ("quad_grid", "catmull-clark", "secsnap", [12])])
+                                                           ("quad_grid", "catmull-clark", "secsnap", [12]),
+                                                           ("tri_torus", "loop", "iga", [3])])
 def test_geodesic_distance_equals_the_cli(mesh_path, cli, name, scheme, method, sources):
     args = ["geodesic", mesh_path(name), "--scheme", scheme, "--method", method, "--reference-level", 2,
             "--time-factor", 2, "--json"]

@@ -1,8 +1,11 @@
 // Geodesic distance by the heat method (Crane, Weischedel & Wardetzky 2013) with the operators of
-// SEC (§2.3, §4.2): the driver behind `limsurf geodesic` and limsurf.geodesic_distance /
+// SEC (§2.3, §4.2) or Galerkin with the limit basis (iga, as the paper's Figs. 6 and 9 compare):
+// the driver behind `limsurf geodesic` and limsurf.geodesic_distance /
 // limsurf.HeatGeodesics in Python. docs/guide/geodesic.md shows it at work.
 //
-// The three steps, all unknowns on the control vertices (#V), M0, L = d0ᵀ M1 d0 of --method:
+// The three steps, all unknowns on the control vertices (#V), with M0 and L of --method (the
+// inner products' M0 and d0ᵀ M1 d0; for iga the mass and Laplace–Beltrami stiffness of the limit
+// basis, fem/galerkin.h, integrated with iga_quadrature):
 //   1. heat:    (M0 + t L) u = δ, δ the unit point masses at the sources; on open meshes u is the
 //               average of the Neumann solution and the one with u = 0 on the boundary (Crane §3.2);
 //   2. field:   X = −∇u / |∇u| and its integrated divergence b_i = ∫ ∇φ_i · X (below);
@@ -11,7 +14,8 @@
 //   - dec, decsnap: per face of the control mesh (decsnap: its vertices at their limit positions),
 //     b_i = Σ_f |f| ∇φ_i|_f · X_f (the cotan divergence on triangles; on polygons the gradient
 //     exact for linear functions on planar polygons);
-//   - sec, secsnap with HeatGradient::Limit (the default from L = 3 on): at the quadrature samples of the limit
+//   - iga, and sec, secsnap with HeatGradient::Limit (the default from L = 3 on): at the quadrature samples of the
+//   limit
 //     surface (gradient_quadrature: the rule per ptex face), ∇u the surface gradient of the limit
 //     function Σ u_i Φ_i in the limit metric, b_i = Σ_s w_s X_s · ∇Φ_i(s) dA_s — the Galerkin
 //     divergence of the normalised field, so that |∇φ| ≈ 1 on the limit surface; per source it
@@ -35,13 +39,13 @@
 // would otherwise over-smooth every distance; --time-factor (h_max/h_mean)² reproduces the
 // paper's rule. Both lengths are reported.
 //
-// Source load: the unit point mass ∫ δ φ_i = φ_i(source): e_s for dec (hat functions); for sec the
-// limit stencil of s (row s of P = LimitBasis::vertex_limit_matrix), and the mass is lumped (SEC
+// Source load: the unit point mass ∫ δ φ_i = φ_i(source): e_s for dec (hat functions); for sec and
+// iga the limit stencil of s (row s of P = LimitBasis::vertex_limit_matrix), and the mass is lumped (SEC
 // §3.5) in M0 + t L — with e_s or the consistent mass the coefficients of u oscillate in sign
 // around the source and ∇u points the wrong way (measured; docs/guide/geodesic.md).
 //
 // Shift: dec and decsnap represent φ by its values at the control vertices, and φ_s = 0 (with
-// several sources the mean of their values is subtracted). sec and secsnap represent the limit
+// several sources the mean of their values is subtracted). sec, secsnap and iga represent the limit
 // function Σ φ_i Φ_i, which cannot follow the cone tip |x| of a distance at the source (the
 // smooth basis rounds it); the constant is fixed instead so that the limit function at the limit
 // points of the sources' 1-ring neighbours equals their chord length to the nearest source (the
@@ -59,6 +63,7 @@
 
 #include <Eigen/Core>
 
+#include "limsurf/apps/laplacian_method.h"
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/mesh/topology.h"
@@ -85,10 +90,12 @@ enum class HeatGradient {
 [[nodiscard]] HeatGradient parse_heat_gradient(const std::string& name);
 
 struct HeatGeodesicsOptions {
-    InnerProductMethod method = InnerProductMethod::Sec;
+    LaplacianMethod method = LaplacianMethod::Sec;
     int level = 3;  ///< sec, secsnap: the level L of the inner products (0..8)
+    /// iga: the rule of the mass and stiffness (degree 8 with 6 tile levels, as `limsurf poisson`)
+    SamplerOptions iga_quadrature{.degree = 8, .subdivide_near_extraordinary = 6, .num_threads = 0};
     HeatGradient gradient = HeatGradient::Automatic;
-    /// HeatGradient::Limit: the rule per ptex face (degree 2: 2 × 2 Gauss points on quads, 3 points
+    /// HeatGradient::Limit and iga: the rule per ptex face (degree 2: 2 × 2 Gauss points on quads, 3 points
     /// on triangles; tile levels towards extraordinary corners). Its threads: num_threads below.
     SamplerOptions gradient_quadrature{.degree = 2, .subdivide_near_extraordinary = 0, .num_threads = 0};
     /// HeatGradient::Subdivided (and Automatic, which it then makes Subdivided): the level (0..8);
@@ -109,9 +116,10 @@ class HeatGeodesics {
     /// @brief Prepares the heat method on the limit surface of (@p topology, @p X) (#V × 3).
     /// @throws InputError when the mesh has more than one connected component (naming a vertex of
     ///   the second), time_factor is not positive and finite, a level is out of range, X has the
-    ///   wrong size, gradient_level is set with HeatGradient::Limit, the gradient quadrature is out
-    ///   of LimitSampler's range; NumericalError when a factorisation fails (degenerate faces) or
-    ///   the limit surface is singular at a gradient sample; otherwise as control_inner_products
+    ///   wrong size, gradient_level is set with HeatGradient::Limit or with iga, iga is asked for
+    ///   the subdivided gradient, a quadrature is out of LimitSampler's range; NumericalError when
+    ///   a factorisation fails (degenerate faces) or the limit surface is singular at a quadrature
+    ///   point; otherwise as control_inner_products (and assemble_laplace_beltrami for iga)
     HeatGeodesics(const Topology& topology, const Points& X, SchemeKind scheme,
                   const HeatGeodesicsOptions& options = {});
     HeatGeodesics(const ControlMesh& mesh, SchemeKind scheme, const HeatGeodesicsOptions& options = {});

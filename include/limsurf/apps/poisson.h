@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "limsurf/apps/laplacian_method.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/scheme/scheme.h"
@@ -17,16 +18,8 @@
 
 namespace limsurf {
 
-/// How the Laplacian is discretised.
-enum class PoissonMethod { Dec, DecSnap, Sec, SecSnap, Iga };
-
-/// "dec", "decsnap", "sec", "secsnap", "iga".
-[[nodiscard]] const char* to_string(PoissonMethod method) noexcept;
-/// @throws InputError naming the accepted values
-[[nodiscard]] PoissonMethod parse_poisson_method(const std::string& name);
-
 struct SurfacePoissonOptions {
-    PoissonMethod method = PoissonMethod::Sec;
+    LaplacianMethod method = LaplacianMethod::Sec;
     int level = 3;        ///< sec, secsnap: the level L of the inner products (0..8)
     bool lumped = false;  ///< dec, sec: lump M0 (and M2) (SEC §3.5); refused for iga
     int degree = 8;       ///< iga: quadrature degree per tile

@@ -10,6 +10,7 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
+#include "limsurf/fem/galerkin.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/refine/hierarchy.h"
@@ -187,8 +188,9 @@ struct LimitGradient {
 
 GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind scheme,
                                 const HeatGeodesicsOptions& options, int gradient_level) {
-    if (!uses_subdivision(options.method) || gradient_level == 0) {
-        return GradientMesh(t, evaluation_positions(t, X, options.method, scheme, options.scheme_options));
+    const InnerProductMethod method = inner_product_method(options.method);
+    if (!uses_subdivision(method) || gradient_level == 0) {
+        return GradientMesh(t, evaluation_positions(t, X, method, scheme, options.scheme_options));
     }
     RefineOptions refine;
     refine.scheme = scheme;
@@ -197,10 +199,32 @@ GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind s
     const Hierarchy h(t, refine);
     const Topology& fine = h.topology(gradient_level);
     const Points XL =
-        evaluation_positions(fine, h.positions(gradient_level, X), options.method, scheme, options.scheme_options);
+        evaluation_positions(fine, h.positions(gradient_level, X), method, scheme, options.scheme_options);
     GradientMesh mesh(fine, XL);
     mesh.A = h.accumulated(gradient_level);
     return mesh;
+}
+
+/// The lumped mass and the Laplacian of options.method: the inner products' M0 and d0ᵀ M1 d0 (dec
+/// .. secsnap), or the Galerkin mass and stiffness on the limit surface of @p basis (iga). The mass
+/// is lumped (SEC §3.5; a no-op for the diagonal DEC M0): a consistent mass (SEC's or the limit
+/// basis') makes (M0 + t L)⁻¹ δ, for t ~ h², close to the L² projection of a point mass, whose
+/// coefficients oscillate in sign, and the normalised gradient then points the wrong way far from
+/// the source.
+std::pair<SparseMatrix, SparseMatrix> mass_and_laplacian(const Topology& t, const Points& X, SchemeKind scheme,
+                                                         const HeatGeodesicsOptions& options, const LimitBasis* basis) {
+    if (options.method == LaplacianMethod::Iga) {
+        SamplerOptions quadrature = options.iga_quadrature;
+        quadrature.num_threads = options.num_threads;
+        GalerkinMatrices galerkin = assemble_laplace_beltrami(LimitSampler(*basis, quadrature), X);
+        return {lumped(galerkin.mass), std::move(galerkin.stiffness)};
+    }
+    InnerProductOptions ip;
+    ip.method = inner_product_method(options.method);
+    ip.level = options.level;
+    ip.num_threads = options.num_threads;
+    const Operators ops(t, control_inner_products(t, X, scheme, ip, options.scheme_options));
+    return {lumped(ops.inner_products().M0), ops.laplacian()};
 }
 
 void check_sources(const std::vector<Index>& sources, Index num_vertices) {
@@ -371,41 +395,40 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
                          " lie in different ones): geodesic distances between components are undefined; "
                          "compute each component on its own");
     }
-    const bool sec = uses_subdivision(options.method);
+    const bool smooth = uses_limit_basis(options.method);
+    const bool iga = options.method == LaplacianMethod::Iga;
     LIMSURF_CHECK(options.gradient != HeatGradient::Limit || options.gradient_level < 0, InputError,
                   "a gradient level (", options.gradient_level,
                   ") applies to the subdivided gradient only; the limit gradient has no level");
+    LIMSURF_CHECK(!iga || (options.gradient != HeatGradient::Subdivided && options.gradient_level < 0), InputError,
+                  "iga normalises the heat gradient on the limit surface (its stiffness's metric): the subdivided "
+                  "gradient and a gradient level apply to sec and secsnap only");
     const bool use_limit =
-        sec && (options.gradient == HeatGradient::Limit ||
-                (options.gradient == HeatGradient::Automatic && options.gradient_level < 0 && options.level >= 3));
-    m.gradient_level = sec ? (options.gradient_level < 0 ? options.level : options.gradient_level) : 0;
+        iga ||
+        (smooth && (options.gradient == HeatGradient::Limit ||
+                    (options.gradient == HeatGradient::Automatic && options.gradient_level < 0 && options.level >= 3)));
+    m.gradient_level = smooth && !use_limit ? (options.gradient_level < 0 ? options.level : options.gradient_level) : 0;
     LIMSURF_CHECK(m.gradient_level >= 0 && m.gradient_level <= 8, InputError,
                   "the gradient level must be in [0, 8], got ", m.gradient_level);
     const auto setup_start = Clock::now();
     std::tie(m.h_mean, m.h_max) = edge_lengths(topology, X);
     m.t = options.time_step.value_or(options.time_factor * m.h_mean * m.h_mean);
     LIMSURF_CHECK(std::isfinite(m.t) && m.t > 0.0, InputError, "the time step must be positive and finite, got ", m.t);
-    InnerProductOptions ip;
-    ip.method = options.method;
-    ip.level = options.level;
-    ip.num_threads = options.num_threads;
-    const Operators ops(topology, control_inner_products(topology, X, scheme, ip, options.scheme_options));
-    const SparseMatrix L = ops.laplacian();
-    // The mass lumped (SEC §3.5; a no-op for the diagonal DEC M0): the consistent SEC mass makes
-    // (M0 + t L)⁻¹ δ, for t ~ h², close to the L² projection of a point mass, whose coefficients
-    // oscillate in sign, and the normalised gradient then points the wrong way far from the source.
-    const SparseMatrix heat_matrix = SparseMatrix(lumped(ops.inner_products().M0) + m.t * L);
-    if (!use_limit) {
+    std::optional<LimitBasis> basis;
+    if (smooth) {
+        basis.emplace(topology, scheme, options.scheme_options);
+    }
+    const auto [mass, L] = mass_and_laplacian(topology, X, scheme, options, basis ? &*basis : nullptr);
+    const SparseMatrix heat_matrix = SparseMatrix(mass + m.t * L);
+    if (use_limit) {
+        SamplerOptions quadrature = options.gradient_quadrature;
+        quadrature.num_threads = options.num_threads;
+        m.limit_gradient.emplace(*basis, X, quadrature);
+    } else {
         m.gradient.emplace(make_gradient_mesh(topology, X, scheme, options, m.gradient_level));
     }
-    if (sec) {
-        const LimitBasis basis(topology, scheme, options.scheme_options);
-        if (use_limit) {
-            SamplerOptions quadrature = options.gradient_quadrature;
-            quadrature.num_threads = options.num_threads;
-            m.limit_gradient.emplace(basis, X, quadrature);
-        }
-        m.P = basis.vertex_limit_matrix();
+    if (smooth) {
+        m.P = basis->vertex_limit_matrix();
         m.limit_points = *m.P * X;
         m.neighbours.resize(n);
         for (Index e = 0; e < topology.num_edges(); ++e) {
@@ -511,7 +534,7 @@ ReferenceComparison compare_geodesics_with_reference(const Topology& topology, c
     const Topology& fine = h.topology(level);
     const Points XK = h.positions(level, X);
     HeatGeodesicsOptions dec;
-    dec.method = InnerProductMethod::Dec;
+    dec.method = LaplacianMethod::Dec;
     dec.time_step = t;
     dec.scheme_options = scheme_options;
     // Vertex points come first at every level, so control vertex s is level-K vertex s.

@@ -1,20 +1,11 @@
 #include "limsurf/apps/poisson.h"
 
-#include <array>
-#include <utility>
-
 #include "limsurf/core/error.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/sampler.h"
 
 namespace limsurf {
 namespace {
-
-constexpr std::array<std::pair<PoissonMethod, const char*>, 5> method_names{{{PoissonMethod::Dec, "dec"},
-                                                                             {PoissonMethod::DecSnap, "decsnap"},
-                                                                             {PoissonMethod::Sec, "sec"},
-                                                                             {PoissonMethod::SecSnap, "secsnap"},
-                                                                             {PoissonMethod::Iga, "iga"}}};
 
 Eigen::VectorXd boundary_values(const SurfacePoissonData& data, const Points& X) {
     return data.boundary ? data.boundary(X) : Eigen::VectorXd::Zero(X.rows());
@@ -43,7 +34,7 @@ PoissonSolution solve_with_inner_products(const ControlMesh& mesh, SchemeKind sc
                                           const SurfacePoissonOptions& options, const SurfacePoissonData& data,
                                           PoissonProblem& problem) {
     InnerProductOptions ip;
-    ip.method = parse_inner_product_method(to_string(options.method));
+    ip.method = inner_product_method(options.method);
     ip.level = options.level;
     ip.lumped = options.lumped;
     ip.num_threads = options.num_threads;
@@ -61,27 +52,9 @@ PoissonSolution solve_with_inner_products(const ControlMesh& mesh, SchemeKind sc
 
 }  // namespace
 
-const char* to_string(PoissonMethod method) noexcept {
-    for (const auto& [value, name] : method_names) {
-        if (value == method) {
-            return name;
-        }
-    }
-    return "?";
-}
-
-PoissonMethod parse_poisson_method(const std::string& name) {
-    for (const auto& [value, method_name] : method_names) {
-        if (name == method_name) {
-            return value;
-        }
-    }
-    throw InputError("unknown Poisson method '" + name + "' (expected dec, decsnap, sec, secsnap or iga)");
-}
-
 SurfacePoissonResult solve_surface_poisson(const ControlMesh& mesh, SchemeKind scheme,
                                            const SurfacePoissonOptions& options, const SurfacePoissonData& data) {
-    const bool iga = options.method == PoissonMethod::Iga;
+    const bool iga = options.method == LaplacianMethod::Iga;
     LIMSURF_CHECK(!iga || !options.lumped, InputError,
                   "lumping applies to the inner products of dec and sec, not to iga");
     LIMSURF_CHECK(data.f || data.f_values, InputError, "poisson needs a right-hand side (a function or vertex values)");
