@@ -8,6 +8,8 @@
 //                                  mesh and the Cholesky factorisations (counters: setup_s, factor_s)
 //   GeodesicSolve/method/mesh      one distance() from a prefactorised HeatGeodesics (a new source
 //                                  each iteration)
+//   GeodesicBatch/method/mesh      distances() of 16 single-source sets per call (counter per_source:
+//                                  seconds per set)
 //   GeodesicSubdivided/level/mesh  DEC heat method on the control mesh subdivided `level` times:
 //                                  refinement, set-up, factorisation and one solve (level 3: the
 //                                  reference of `--reference-level 3`)
@@ -17,6 +19,7 @@
 // Meshes: genus2 refined 4 times by Catmull–Clark (12 800 quads);
 //         tri_valence_7 refined 4 times by Loop (10 752 triangles).
 #include <string>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -102,6 +105,25 @@ void BM_GeodesicSolve(benchmark::State& state) {
     label(state, m, method_name(static_cast<int>(state.range(0))));
 }
 
+void BM_GeodesicBatch(benchmark::State& state) {
+    const Mesh& m = mesh(static_cast<int>(state.range(1)));
+    const limsurf::HeatGeodesics heat(m.topology, m.X, m.scheme, options_for(static_cast<int>(state.range(0))));
+    constexpr int batch = 16;
+    limsurf::Index source = 0;
+    for (auto _ : state) {
+        std::vector<std::vector<limsurf::Index>> sets(batch);
+        for (auto& set : sets) {
+            set = {source};
+            source = (source + 997) % m.topology.num_vertices();
+        }
+        benchmark::DoNotOptimize(heat.distances(sets).data());
+    }
+    // Seconds per source set (the time per iteration divided by the batch).
+    state.counters["per_source"] =
+        benchmark::Counter(batch, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    label(state, m, std::string(method_name(static_cast<int>(state.range(0)))) + ", 16 sources per call");
+}
+
 void BM_GeodesicSubdivided(benchmark::State& state) {
     const int level = static_cast<int>(state.range(0));
     const Mesh& m = mesh(static_cast<int>(state.range(1)));
@@ -124,6 +146,7 @@ void BM_GeodesicSubdivided(benchmark::State& state) {
 
 BENCHMARK(BM_GeodesicSetup)->ArgsProduct({{0, 1, 2, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GeodesicSolve)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GeodesicBatch)->ArgsProduct({{0, 1, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GeodesicSubdivided)
     ->ArgsProduct({{1, 2, 3}, {0, 1}})
     ->Unit(benchmark::kMillisecond)

@@ -171,6 +171,24 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
             "sources"_a,
             "The distance (#V) from a control vertex or a list of them, as geodesic_distance()['distance'].")
         .def(
+            "distances",
+            [](const HeatGeodesics& self, const py::sequence& source_sets) {
+                std::vector<std::vector<Index>> sets;
+                sets.reserve(source_sets.size());
+                for (const py::handle sources : source_sets) {
+                    sets.push_back(sources_from(sources));
+                }
+                Eigen::MatrixXd d;
+                {
+                    const py::gil_scoped_release release;
+                    d = self.distances(sets);
+                }
+                return to_numpy(d);
+            },
+            "source_sets"_a,
+            "distance() for each entry of source_sets (a vertex or a list of vertices each) in one pass: "
+            "an array #V × len(source_sets), column k for source_sets[k], several times cheaper per set.")
+        .def(
             "source_values",
             [](const HeatGeodesics& self, const py::handle& phi, const py::handle& sources) {
                 const std::vector<Index> list = sources_from(sources);

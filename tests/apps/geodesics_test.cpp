@@ -116,6 +116,31 @@ TEST(HeatGeodesics, PrefactorisedQueriesEqualFreshOnes) {
     EXPECT_LT((g.distance({5, 5}) - first).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST(HeatGeodesics, BatchedSourceSetsEqualSingleQueries) {
+    // Closed (genus2) and open (quad_grid: the interior factor too), every method.
+    struct Case {
+        const char* name;
+        std::vector<std::vector<Index>> sets;
+    };
+    for (const Case& c : {Case{"genus2", {{5}, {0, 30}, {47}, {5}}}, Case{"quad_grid", {{12}, {0, 24}}}}) {
+        const ControlMesh mesh = bundled(c.name);
+        for (const auto method : {LaplacianMethod::Dec, LaplacianMethod::Sec, LaplacianMethod::Iga}) {
+            const HeatGeodesics g(mesh, SchemeKind::CatmullClark, with_method(method));
+            const Eigen::MatrixXd batch = g.distances(c.sets);
+            ASSERT_EQ(batch.rows(), mesh.num_vertices());
+            ASSERT_EQ(batch.cols(), static_cast<Index>(c.sets.size()));
+            for (std::size_t k = 0; k < c.sets.size(); ++k) {
+                const Eigen::VectorXd single = g.distance(c.sets[k]);
+                EXPECT_LT((batch.col(static_cast<Index>(k)) - single).cwiseAbs().maxCoeff(),
+                          1e-12 * single.cwiseAbs().maxCoeff())
+                    << c.name << ' ' << to_string(method) << " set " << k;
+            }
+            EXPECT_EQ(g.distances({}).cols(), 0);
+            EXPECT_THROW((void)g.distances({{1}, {mesh.num_vertices()}}), InputError);
+        }
+    }
+}
+
 TEST(HeatGeodesics, SeveralSourcesAreNearlyTheMinimumOfSingleFields) {
     const SchemeKind cc = SchemeKind::CatmullClark;
     const ControlMesh mesh = refined("genus2", cc, 1);

@@ -52,6 +52,20 @@ def test_prefactorised_queries_match_one_off_calls(mesh_path):
     assert np.allclose(finer.distance(7), coarse, atol=0.03 * coarse.max())
 
 
+def test_distances_batches_source_sets(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("quad_grid"))  # open: the Neumann/Dirichlet average too
+    heat = limsurf.HeatGeodesics(mesh, "catmull-clark")
+    sets = [12, [0, 24], 7]
+    batch = heat.distances(sets)
+    assert batch.shape == (len(mesh.V), 3)
+    for k, sources in enumerate(sets):
+        single = heat.distance(sources)
+        assert np.allclose(batch[:, k], single, rtol=0, atol=1e-12 * np.abs(single).max())
+    assert heat.distances([]).shape == (len(mesh.V), 0)
+    with pytest.raises(limsurf.InputError, match="source vertex 99 is out of range"):
+        heat.distances([3, [4, 99]])
+
+
 def test_errors(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("genus2"))
     with pytest.raises(limsurf.InputError, match="source vertex 48 is out of range"):

@@ -110,7 +110,8 @@ struct HeatGeodesicsOptions {
 
 /// One set-up of the heat method: the inner products and the factorisations of M0 + t L (and its
 /// interior block on open meshes) and of L (one vertex pinned), so that each distance() costs
-/// two (three on open meshes) back-substitutions and one divergence on the gradient mesh.
+/// two (three on open meshes) back-substitutions and one divergence of the normalised field;
+/// distances() shares the back-substitutions among many source sets.
 class HeatGeodesics {
   public:
     /// @brief Prepares the heat method on the limit surface of (@p topology, @p X) (#V × 3).
@@ -133,6 +134,14 @@ class HeatGeodesics {
     /// @throws InputError when @p sources is empty or names a vertex out of range (naming it);
     ///   NumericalError when the result is not finite
     [[nodiscard]] Eigen::VectorXd distance(const std::vector<Index>& sources) const;
+
+    /// @brief distance() for several source sets at once (#V × sets; column k for source_sets[k]):
+    ///   the back-substitutions take every set in one pass through each factor, which is what a
+    ///   solve costs (docs/guide/geodesic.md), so per set this is several times cheaper than
+    ///   distance(). Equal to distance() per column to rounding (batched triangular solves sum in
+    ///   another order). No sets: #V × 0. Thread-safe (const).
+    /// @throws as distance(), for the first bad set
+    [[nodiscard]] Eigen::MatrixXd distances(const std::vector<std::vector<Index>>& source_sets) const;
 
     /// @brief The values of @p phi (#V) at @p sources as distance() measures them (control values
     ///   or limit values, see the header): within source_spread of 0 for a distance() result.

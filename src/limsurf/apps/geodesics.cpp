@@ -162,27 +162,44 @@ struct LimitGradient {
 
     [[nodiscard]] Index num_samples() const noexcept { return static_cast<Index>(metric.size()); }
 
-    [[nodiscard]] Eigen::VectorXd divergence_of_normalised_gradient(const Eigen::VectorXd& u) const {
-        Eigen::VectorXd b = Eigen::VectorXd::Zero(num_vertices);
+    /// The divergence for every column of @p U (#V × sets) in one pass over the samples, so that
+    /// their weights are read once for all the sets.
+    [[nodiscard]] Eigen::MatrixXd divergence_of_normalised_gradient(const Eigen::MatrixXd& U) const {
+        // One set (distance()) with fixed-size arithmetic, as fast as a scalar loop; many sets with
+        // the columns side by side, so that each sample's weights are read once for all of them.
+        return U.cols() == 1 ? divergence<1>(U) : divergence<Eigen::Dynamic>(U);
+    }
+
+  private:
+    template <int Sets>
+    [[nodiscard]] Eigen::MatrixXd divergence(const Eigen::MatrixXd& U) const {
+        using Values = Eigen::Array<double, Sets, 1>;
+        const Index k = U.cols();
+        const Eigen::MatrixXd Ut = U.transpose();  // sets × #V: one vertex's values side by side
+        Eigen::MatrixXd Bt = Eigen::MatrixXd::Zero(k, num_vertices);
+        Values du(k), dv(k), pu(k), pv(k), norm(k);
         for (std::size_t s = 0; s + 1 < offsets.size(); ++s) {
-            double du = 0.0, dv = 0.0;
-            for (std::size_t k = offsets[s]; k < offsets[s + 1]; ++k) {
-                const double value = u[vertices[k]];
-                du += value * D[2 * k];
-                dv += value * D[2 * k + 1];
+            du.setZero();
+            dv.setZero();
+            for (std::size_t e = offsets[s]; e < offsets[s + 1]; ++e) {
+                const Eigen::Map<const Values> values(Ut.data() + static_cast<std::ptrdiff_t>(vertices[e]) * k, k);
+                du += D[2 * e] * values;
+                dv += D[2 * e + 1] * values;
             }
             const Eigen::Vector4d& m = metric[s];
-            const double pu = m[0] * du + m[1] * dv, pv = m[1] * du + m[2] * dv;
-            const double norm = std::sqrt(du * pu + dv * pv);
-            if (!(norm > 0.0) || !std::isfinite(norm)) {
-                continue;  // u constant here (underflow far from the sources): no direction to follow
-            }
-            const double scale = -m[3] / norm;
-            for (std::size_t k = offsets[s]; k < offsets[s + 1]; ++k) {
-                b[vertices[k]] += scale * (pu * D[2 * k] + pv * D[2 * k + 1]);
+            pu = m[0] * du + m[1] * dv;
+            pv = m[1] * du + m[2] * dv;
+            norm = (du * pu + dv * pv).sqrt();
+            // u constant here (underflow far from the sources): no direction to follow, no term.
+            norm = (norm > 0.0 && norm.isFinite()).select(-m[3] / norm, 0.0);  // now the scale
+            pu *= norm;
+            pv *= norm;
+            for (std::size_t e = offsets[s]; e < offsets[s + 1]; ++e) {
+                Eigen::Map<Values>(Bt.data() + static_cast<std::ptrdiff_t>(vertices[e]) * k, k) +=
+                    D[2 * e] * pu + D[2 * e + 1] * pv;
             }
         }
-        return b;
+        return Bt.transpose();
     }
 };
 
@@ -325,50 +342,70 @@ struct HeatGeodesics::Impl {
     std::optional<detail::SparseCholesky> poisson;  ///< L without the pinned vertex 0
     std::vector<Index> free_index;                  ///< vertex → row of poisson, or −1
 
-    [[nodiscard]] Eigen::VectorXd heat_solution(const std::vector<Index>& sources) const {
+    /// The heat solutions u (#V × sets), one column per source set, solved together.
+    [[nodiscard]] Eigen::MatrixXd heat_solutions(const std::vector<std::vector<Index>>& sets) const {
         // The load of unit point masses at the sources, ∫ δ φ_i = φ_i(source): e_s for the hat
-        // functions of dec; for sec the limit stencil of s (row s of P), without which the
+        // functions of dec; for sec and iga the limit stencil of s (row s of P), without which the
         // coefficients of u oscillate in sign around the source (measured: 4.7, −0.83, 0.64 … on
         // sphere_quads) and so does the direction of ∇u.
-        Eigen::VectorXd delta = Eigen::VectorXd::Zero(num_vertices);
-        for (const Index s : sources) {
-            if (P) {
-                delta += P->row(s).transpose();
-            } else {
-                delta[s] += 1.0;
-            }
-        }
-        Eigen::VectorXd u = heat->solve(delta);
-        if (heat_interior) {  // Crane §3.2: the mean of the Neumann and the Dirichlet solutions
-            Eigen::VectorXd interior_delta = Eigen::VectorXd::Zero(num_interior);
-            for (Index v = 0; v < num_vertices; ++v) {
-                if (interior_index[v] >= 0) {
-                    interior_delta[interior_index[v]] = delta[v];
+        const Index k = static_cast<Index>(sets.size());
+        Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(num_vertices, k);
+        for (Index j = 0; j < k; ++j) {
+            for (const Index s : sets[static_cast<std::size_t>(j)]) {
+                if (P) {
+                    delta.col(j) += P->row(s).transpose();
+                } else {
+                    delta(s, j) += 1.0;
                 }
             }
-            const Eigen::VectorXd interior_u = heat_interior->solve(interior_delta);
+        }
+        Eigen::MatrixXd u = heat->solve_columns(delta);
+        if (heat_interior) {  // Crane §3.2: the mean of the Neumann and the Dirichlet solutions
+            Eigen::MatrixXd interior_delta(num_interior, k);
             for (Index v = 0; v < num_vertices; ++v) {
-                u[v] = 0.5 * (u[v] + (interior_index[v] >= 0 ? interior_u[interior_index[v]] : 0.0));
+                if (interior_index[v] >= 0) {
+                    interior_delta.row(interior_index[v]) = delta.row(v);
+                }
+            }
+            const Eigen::MatrixXd interior_u = heat_interior->solve_columns(interior_delta);
+            for (Index v = 0; v < num_vertices; ++v) {
+                if (interior_index[v] >= 0) {
+                    u.row(v) = 0.5 * (u.row(v) + interior_u.row(interior_index[v]));
+                } else {
+                    u.row(v) *= 0.5;
+                }
             }
         }
         return u;
     }
 
-    [[nodiscard]] Eigen::VectorXd integrate(const Eigen::VectorXd& b) const {
-        Eigen::VectorXd reduced(num_vertices - 1);
+    /// L φ = b for every column of @p b (#V × sets), vertex 0 pinned to 0.
+    [[nodiscard]] Eigen::MatrixXd integrate(const Eigen::MatrixXd& b) const {
+        Eigen::MatrixXd reduced(num_vertices - 1, b.cols());
         for (Index v = 0; v < num_vertices; ++v) {
             if (free_index[v] >= 0) {
-                reduced[free_index[v]] = b[v];
+                reduced.row(free_index[v]) = b.row(v);
             }
         }
-        const Eigen::VectorXd solved = poisson->solve(reduced);
-        Eigen::VectorXd phi = Eigen::VectorXd::Zero(num_vertices);
+        const Eigen::MatrixXd solved = poisson->solve_columns(reduced);
+        Eigen::MatrixXd phi = Eigen::MatrixXd::Zero(num_vertices, b.cols());
         for (Index v = 0; v < num_vertices; ++v) {
             if (free_index[v] >= 0) {
-                phi[v] = solved[free_index[v]];
+                phi.row(v) = solved.row(free_index[v]);
             }
         }
         return phi;
+    }
+
+    [[nodiscard]] Eigen::MatrixXd divergence_of_normalised_gradient(const Eigen::MatrixXd& U) const {
+        if (limit_gradient) {
+            return limit_gradient->divergence_of_normalised_gradient(U);
+        }
+        Eigen::MatrixXd B(num_vertices, U.cols());
+        for (Index j = 0; j < U.cols(); ++j) {
+            B.col(j) = gradient->divergence_of_normalised_gradient(U.col(j));
+        }
+        return B;
     }
 };
 
@@ -470,12 +507,20 @@ Eigen::VectorXd HeatGeodesics::source_values(const Eigen::VectorXd& phi, const s
 }
 
 Eigen::VectorXd HeatGeodesics::distance(const std::vector<Index>& sources) const {
+    return distances({sources}).col(0);
+}
+
+Eigen::MatrixXd HeatGeodesics::distances(const std::vector<std::vector<Index>>& source_sets) const {
     const Impl& m = *impl_;
-    check_sources(sources, m.num_vertices);
-    const Eigen::VectorXd u = m.heat_solution(sources);
-    Eigen::VectorXd phi = m.integrate(m.limit_gradient ? m.limit_gradient->divergence_of_normalised_gradient(u)
-                                                       : m.gradient->divergence_of_normalised_gradient(u));
-    phi.array() -= m.P ? m.ring_offset(phi, sources) : m.source_values(phi, sources).mean();
+    for (const std::vector<Index>& sources : source_sets) {
+        check_sources(sources, m.num_vertices);
+    }
+    Eigen::MatrixXd phi = m.integrate(m.divergence_of_normalised_gradient(m.heat_solutions(source_sets)));
+    for (Index j = 0; j < phi.cols(); ++j) {
+        const std::vector<Index>& sources = source_sets[static_cast<std::size_t>(j)];
+        const Eigen::VectorXd column = phi.col(j);
+        phi.col(j).array() -= m.P ? m.ring_offset(column, sources) : m.source_values(column, sources).mean();
+    }
     LIMSURF_CHECK(phi.allFinite(), NumericalError,
                   "the heat method gave a non-finite distance (degenerate geometry or a time step that underflows)");
     return phi;

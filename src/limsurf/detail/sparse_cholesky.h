@@ -34,6 +34,14 @@ class SparseCholesky {
         Eigen::VectorXd x = solver_.solve(b);
         return x;
     }
+    /// One solve per column of @p B, all in one pass through the factor.
+    [[nodiscard]] Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B) const {
+        if (A_.rows() == 0) {
+            return Eigen::MatrixXd(0, B.cols());
+        }
+        Eigen::MatrixXd X = solver_.solve(B);
+        return X;
+    }
     static const char* name() noexcept {
 #ifdef LIMSURF_HAVE_CHOLMOD
         return "cholmod";
