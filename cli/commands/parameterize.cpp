@@ -1,10 +1,11 @@
-// limsurf parameterize MESH --scheme loop|catmull-clark [--method dec|decsnap|sec|secsnap] [--level L]
+// limsurf parameterize MESH --scheme loop|catmull-clark [--method dec|decsnap|sec|secsnap|iga] [--level L]
 //   [--boundary free|circle] [--reference-level K] [--max-memory SIZE] [--degree D] [--tiles T]
 //   [--threads N] [-o OUT.obj|.vtk|.vtu|.ply] [--texture-png OUT.png [--squares N] [--view V] [--size WxH]] [--json]:
 // a map of the limit surface to the plane, (u, v) per control vertex (SEC §4.1): spectral conformal
 // (Mullen et al. 2008, --boundary free) or the boundary on the unit circle by limit arc length with a
-// harmonic interior (--boundary circle), with the inner products of --method; reports the
-// quasi-conformal distortion σ1/σ2 measured on the limit surface (SEC Fig. 1) and, for the circle,
+// harmonic interior (--boundary circle), with the inner products of --method or the limit basis
+// (iga); reports the quasi-conformal distortion σ1/σ2 measured on the limit surface (SEC Fig. 1)
+// and, for the circle,
 // the L² and L∞ differences from DEC on the K-times subdivided mesh (SEC Fig. 5).
 #include <filesystem>
 #include <iomanip>
@@ -62,7 +63,7 @@ void parse_size(const std::string& text, int& width, int& height) {
 
 nlohmann::json to_json(const ParameterizeCommandOptions& options, const ParameterizationOptions& p,
                        const ParameterizationResult& r) {
-    const bool sec = uses_subdivision(p.method);
+    const bool sec = has_level(p.method);
     const bool free = r.boundary == ParameterizationBoundary::Free;
     const QuasiConformalDistortion& d = r.distortion;
     nlohmann::json out{{"scheme", options.scheme},
@@ -157,7 +158,7 @@ int parameterize_and_report(const BuildResult& built, const ParameterizeCommandO
     LimitSchemeOptions limit_options;
     limit_options.scheme = options.scheme;
     ParameterizationOptions p;
-    p.method = parse_inner_product_method(options.method);
+    p.method = parse_laplacian_method(options.method);
     p.level = options.level;
     p.boundary = parse_parameterization_boundary(options.boundary);
     p.scheme_options = scheme_rules(mesh, limit_options);
@@ -223,7 +224,11 @@ void add_parameterize_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--scheme", options->scheme, "Subdivision scheme")
         ->required()
         ->check(CLI::IsMember({"loop", "catmull-clark"}));
-    add_inner_product_options(cmd, options->method, options->level);
+    cmd->add_option("--method", options->method,
+                    "dec, decsnap, sec, secsnap (inner products, default sec) or iga (Galerkin with the limit basis)")
+        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap", "iga"}));
+    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
+        ->check(CLI::Range(0, 8));
     cmd->add_option("--boundary", options->boundary,
                     "free: spectral conformal (default); circle: boundary on the unit circle, harmonic interior")
         ->check(CLI::IsMember({"free", "circle"}));

@@ -153,7 +153,8 @@ def poisson(mesh: Mesh, scheme: LimitScheme, rhs: SurfaceFunction | ArrayLike, *
             creasing: Creasing | None = None, triangles: Triangles | None = None,
             threads: int = 0) -> dict[str, object]: ...
 
-def parameterize(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec", level: int = 3,
+def parameterize(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method | Literal["iga"] = "sec",
+                 level: int = 3,
                  boundary: Literal["free", "circle"] = "free", reference_level: int | None = None,
                  max_memory: int | None = None, degree: int = 6, tiles: int = 3, threads: int = 0,
                  boundary_rule: Boundary | None = None, creasing: Creasing | None = None,

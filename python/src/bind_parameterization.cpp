@@ -20,7 +20,7 @@ py::dict parameterize_mesh(const Mesh& mesh, const std::string& scheme, const st
         LIMSURF_CHECK(kind == SchemeKind::Loop || kind == SchemeKind::CatmullClark, InputError,
                       "parameterize: scheme must be 'loop' or 'catmull-clark', got '", scheme, "'");
         ParameterizationOptions o;
-        o.method = parse_inner_product_method(method);
+        o.method = parse_laplacian_method(method);
         o.level = level;
         o.boundary = parse_parameterization_boundary(boundary);
         o.scheme_options = rules_for(mesh.mesh, rules);
@@ -34,7 +34,7 @@ py::dict parameterize_mesh(const Mesh& mesh, const std::string& scheme, const st
             r = parameterize(mesh.mesh, kind, o);
         }
         const QuasiConformalDistortion& d = r.distortion;
-        const bool sec = uses_subdivision(o.method);
+        const bool sec = has_level(o.method);
         const bool free = r.boundary == ParameterizationBoundary::Free;
         py::dict out("scheme"_a = scheme, "method"_a = method, "level"_a = sec ? level : 0,
                      "boundary"_a = to_string(r.boundary), "vertices"_a = r.uv.rows(),
@@ -79,7 +79,8 @@ void bind_parameterization(py::module_& m) {
 
 boundary='free': spectral conformal parameterisation (Mullen et al. 2008, SEC Eq. 17): the generalised
 eigenvector of the smallest non-zero λ of L_C U = λ B U, L_C = diag(L, L) − A (conformal energy, L of the
-inner products of `method`: 'dec', 'decsnap', 'sec', 'secsnap' at `level`), B = 1 on boundary vertices
+inner products of `method`: 'dec', 'decsnap', 'sec', 'secsnap' at `level`; 'iga': the limit basis'
+Galerkin stiffness and the area form ∫ du ∧ dv of the limit surface), B = 1 on boundary vertices
 (Mullen's choice), the constants deflated; centred (boundary mean 0), scaled so the parameter area is the
 surface's area, rotated so the first boundary vertex lies on +u.
 boundary='circle': a topological disk; the limit boundary on the unit circle by limit arc length, the

@@ -49,17 +49,22 @@ nlohmann::json run_json(const std::vector<std::string>& args) {
 }
 
 TEST(CliParameterize, PlanarMeshIsMappedConformally) {
-    const auto out = run_json({mesh("quad_grid"), "--scheme", "catmull-clark", "--method", "sec", "--level", "2"});
-    EXPECT_EQ(out.at("boundary"), "free");
-    EXPECT_LT(std::abs(out.at("eigenvalue").get<double>()), 1e-10);
-    // Exact up to rounding near the corners, where the quadrature's tiles shrink (measured 2e-8).
-    EXPECT_NEAR(out.at("distortion").at("mean").get<double>(), 1.0, 1e-8);
-    EXPECT_NEAR(out.at("distortion").at("max").get<double>(), 1.0, 1e-7);
-    EXPECT_EQ(out.at("distortion").at("flipped").get<int>(), 0);
-    // The grid is [-1, 1]²: mapped isometrically (area-normalised) and rotated so that its first
-    // boundary vertex, the corner (-1, -1), lies on the +u axis: u spans the diagonal, 2√2.
-    EXPECT_NEAR(out.at("u_max").get<double>() - out.at("u_min").get<double>(), 2.0 * std::sqrt(2.0), 1e-8);
-    EXPECT_NEAR(out.at("u_max").get<double>(), std::sqrt(2.0), 1e-8);
+    for (const std::string method : {"sec", "iga"}) {
+        SCOPED_TRACE(method);
+        const auto out = run_json({mesh("quad_grid"), "--scheme", "catmull-clark", "--method", method, "--level", "2"});
+        EXPECT_EQ(out.at("method"), method);
+        EXPECT_EQ(out.at("level"), method == "sec" ? 2 : 0);
+        EXPECT_EQ(out.at("boundary"), "free");
+        EXPECT_LT(std::abs(out.at("eigenvalue").get<double>()), 1e-10);
+        // Exact up to rounding near the corners, where the quadrature's tiles shrink (measured 2e-8).
+        EXPECT_NEAR(out.at("distortion").at("mean").get<double>(), 1.0, 1e-8);
+        EXPECT_NEAR(out.at("distortion").at("max").get<double>(), 1.0, 1e-7);
+        EXPECT_EQ(out.at("distortion").at("flipped").get<int>(), 0);
+        // The grid is [-1, 1]²: mapped isometrically (area-normalised) and rotated so that its first
+        // boundary vertex, the corner (-1, -1), lies on the +u axis: u spans the diagonal, 2√2.
+        EXPECT_NEAR(out.at("u_max").get<double>() - out.at("u_min").get<double>(), 2.0 * std::sqrt(2.0), 1e-8);
+        EXPECT_NEAR(out.at("u_max").get<double>(), std::sqrt(2.0), 1e-8);
+    }
 }
 
 TEST(CliParameterize, SecIsCloserToConformalThanDec) {

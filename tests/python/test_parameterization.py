@@ -11,7 +11,8 @@ KEYS = ("method", "level", "boundary", "vertices", "boundary_vertices", "boundar
 
 @pytest.mark.parametrize("name, scheme, method, boundary", [("shell_hemisphere", "catmull-clark", "sec", "free"),
                                                             ("disk_ev7_tris", "loop", "dec", "free"),
-                                                            ("disk_ev5_quads", "catmull-clark", "secsnap", "circle")])
+                                                            ("disk_ev5_quads", "catmull-clark", "secsnap", "circle"),
+                                                            ("disk_ev7_tris", "loop", "iga", "free")])
 def test_parameterize_equals_the_cli(mesh_path, cli, name, scheme, method, boundary):
     extra = ("--reference-level", 2) if boundary == "circle" else ()
     theirs = cli("parameterize", mesh_path(name), "--scheme", scheme, "--method", method, "--level", 2,

@@ -3,7 +3,9 @@
 // basis φ_i. The driver behind `limsurf parameterize` and limsurf.parameterize in Python.
 //
 // Two methods, both computed on the control mesh with the inner products of --method
-// (dec, decsnap, sec, secsnap; sec/inner_products.h):
+// (dec, decsnap, sec, secsnap; sec/inner_products.h) or with the limit basis (iga: the Galerkin
+// stiffness for L, the area form ∫ du ∧ dv of the limit surface for A, the Galerkin mass's total
+// for the surface area; fem/galerkin.h):
 //
 //   free (spectral conformal, Mullen, Tong, Alliez, Desbrun 2008; SEC Eq. 17): U = (u; v) (2#V)
 //     minimises the conformal energy E_C(U) = E_D(U) − A(U) = ½ Uᵀ L_C U under Uᵀ B U = 1 and
@@ -52,6 +54,7 @@
 
 #include <Eigen/Core>
 
+#include "limsurf/apps/laplacian_method.h"
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/quadrature/sampler.h"
@@ -81,12 +84,15 @@ struct DistortionOptions {
 };
 
 struct ParameterizationOptions {
-    InnerProductMethod method = InnerProductMethod::Sec;
+    LaplacianMethod method = LaplacianMethod::Sec;
     int level = 3;  ///< sec, secsnap: the level L of the inner products (0..8)
+    /// iga: the rule of the stiffness, mass and area form (degree 8 with 6 tile levels, as `limsurf poisson`)
+    SamplerOptions iga_quadrature{.degree = 8, .subdivide_near_extraordinary = 6, .num_threads = 0};
     ParameterizationBoundary boundary = ParameterizationBoundary::Free;
     SchemeOptions scheme_options;
     DistortionOptions distortion;
-    /// Threads for the SEC inner products (sec, secsnap); 0: hardware concurrency (the same result).
+    /// Threads for the SEC inner products (sec, secsnap) and the iga quadrature; 0: hardware
+    /// concurrency (the same result).
     int num_threads = 0;
     /// circle only: also solve with DEC on the K-times subdivided mesh and compare (SEC §4.1, Fig. 5).
     std::optional<int> reference_level;

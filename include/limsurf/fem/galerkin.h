@@ -37,6 +37,16 @@ struct GalerkinMatrices {
 ///   (parallel tangents), naming its ptex face
 [[nodiscard]] GalerkinMatrices assemble_laplace_beltrami(const LimitSampler& sampler, const Points& X);
 
+/// @brief The area form of maps to the plane: for (u, v) = Σ (u_i, v_i) φ_i and U = (u; v)
+///   stacked (2#V), the symmetric 2#V × 2#V matrix A_s with ½ Uᵀ A_s U = ∫ du ∧ dv, the signed
+///   area of the image (by Stokes ½ ∮ u dv − v du along the limit boundary; the integrand per ptex
+///   face is u_a v_b − u_b v_a in its own parameters, so no geometry enters). Its u–v block is
+///   W_ij = ∫ (∂_a φ_i ∂_b φ_j − ∂_b φ_i ∂_a φ_j) da db, antisymmetric; counter-clockwise images of
+///   the surface's orientation have positive area. Exact up to the sampler's rule (polynomial
+///   integrands per tile); interior faces cancel, so on a closed surface A_s = 0 to rounding.
+///   The Galerkin counterpart of the boundary area form of spectral conformal maps (Mullen et al.).
+[[nodiscard]] SparseMatrix assemble_area_form(const LimitSampler& sampler);
+
 /// @brief The load vector b_i = ∫ f φ_i dA, with @p f evaluated at the quadrature points of the
 ///   limit surface (not at the control points).
 /// @throws InputError when f returns the wrong number of values or a non-finite one

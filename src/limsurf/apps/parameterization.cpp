@@ -15,6 +15,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/core/parallel.h"
 #include "limsurf/detail/sparse_cholesky.h"
+#include "limsurf/fem/galerkin.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/rules.h"
 #include "limsurf/refine/hierarchy.h"
@@ -93,6 +94,23 @@ SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const P
     const SparseMatrix AL = boundary_area_form(h.topology(options.level));
     const SparseMatrix half = AL * A2;
     return SparseMatrix(A2.transpose() * half);
+}
+
+/// The operators of the inner products of options.method (dec .. secsnap).
+Operators inner_product_operators(const ControlMesh& mesh, SchemeKind scheme, const ParameterizationOptions& options) {
+    InnerProductOptions ip;
+    ip.method = inner_product_method(options.method);
+    ip.level = options.level;
+    ip.num_threads = options.num_threads;
+    const Topology& t = mesh.topology();
+    return Operators(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
+}
+
+/// iga's quadrature of the limit surface.
+LimitSampler iga_sampler(const ControlMesh& mesh, SchemeKind scheme, const ParameterizationOptions& options) {
+    SamplerOptions quadrature = options.iga_quadrature;
+    quadrature.num_threads = options.num_threads;
+    return LimitSampler(LimitBasis(mesh.topology(), scheme, options.scheme_options), quadrature);
 }
 
 /// B-orthogonal projection away from the constant maps (1,0) and (0,1): B is the boundary indicator.
@@ -434,16 +452,22 @@ ParameterizationBoundary parse_parameterization_boundary(const std::string& name
 ConformalSystem conformal_system(const ControlMesh& mesh, SchemeKind scheme, const ParameterizationOptions& options) {
     const Topology& t = mesh.topology();
     check_parameterizable(t, options);
-    InnerProductOptions ip;
-    ip.method = options.method;
-    ip.level = options.level;
-    ip.num_threads = options.num_threads;
-    const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
     ConformalSystem out;
-    out.surface_area = ops.inner_products().M0.sum();
-    out.area = uses_subdivision(options.method) && options.level > 0 ? pulled_back_area_form(t, scheme, options)
-                                                                     : boundary_area_form(t);
-    out.conformal = block_diagonal(ops.laplacian()) - out.area;
+    SparseMatrix L;
+    if (options.method == LaplacianMethod::Iga) {
+        const LimitSampler sampler = iga_sampler(mesh, scheme, options);
+        GalerkinMatrices galerkin = assemble_laplace_beltrami(sampler, mesh.positions());
+        out.surface_area = galerkin.mass.sum();
+        out.area = assemble_area_form(sampler);
+        L = std::move(galerkin.stiffness);
+    } else {
+        const Operators ops = inner_product_operators(mesh, scheme, options);
+        out.surface_area = ops.inner_products().M0.sum();
+        out.area = has_level(options.method) && options.level > 0 ? pulled_back_area_form(t, scheme, options)
+                                                                  : boundary_area_form(t);
+        L = ops.laplacian();
+    }
+    out.conformal = block_diagonal(L) - out.area;
     const Index n = t.num_vertices();
     Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * n);
     for (Index v = 0; v < n; ++v) {
@@ -606,12 +630,10 @@ ParameterizationResult parameterize(const ControlMesh& mesh, SchemeKind scheme,
         solve_spectral(mesh, system, result);
         result.times.solve = seconds_since(start);
     } else {
-        InnerProductOptions ip;
-        ip.method = options.method;
-        ip.level = options.level;
-        ip.num_threads = options.num_threads;
-        const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
-        const SparseMatrix L = ops.laplacian();
+        const SparseMatrix L =
+            options.method == LaplacianMethod::Iga
+                ? assemble_laplace_beltrami(iga_sampler(mesh, scheme, options), mesh.positions()).stiffness
+                : inner_product_operators(mesh, scheme, options).laplacian();
         auto [uv, length] = circle_boundary_values(mesh, scheme, options.scheme_options);
         result.boundary_length = length;
         result.times.assembly = seconds_since(start);

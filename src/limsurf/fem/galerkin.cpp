@@ -72,6 +72,36 @@ GalerkinMatrices assemble_laplace_beltrami(const LimitSampler& sampler, const Po
     return out;
 }
 
+SparseMatrix assemble_area_form(const LimitSampler& sampler) {
+    // Two unknowns per vertex (u, v) during assembly; restacked as (u; v) below.
+    auto [interleaved] = detail::assemble_elements<1, 2>(
+        sampler, [&](Index s, std::span<const Index> local, std::array<Eigen::MatrixXd, 1>& Ke) {
+            const double w = sampler.weight(s);
+            const auto W = sampler.limit_weights(s);
+            for (std::size_t i = 0; i < local.size(); ++i) {
+                for (std::size_t j = 0; j < local.size(); ++j) {
+                    const auto ii = static_cast<Index>(i), jj = static_cast<Index>(j);
+                    const double wedge = w * (W(Du, ii) * W(Dv, jj) - W(Dv, ii) * W(Du, jj));
+                    Ke[0](2 * local[i], 2 * local[j] + 1) += wedge;  // u_i v_j, and its mirror
+                    Ke[0](2 * local[j] + 1, 2 * local[i]) += wedge;
+                }
+            }
+        });
+    const Index n = sampler.num_vertices();
+    const auto stacked = [n](Index r) { return (r % 2) * n + r / 2; };
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(at(interleaved.nonZeros()));
+    for (Index r = 0; r < interleaved.outerSize(); ++r) {
+        for (SparseMatrix::InnerIterator it(interleaved, r); it; ++it) {
+            triplets.emplace_back(stacked(static_cast<Index>(it.row())), stacked(static_cast<Index>(it.col())),
+                                  it.value());
+        }
+    }
+    SparseMatrix out(2 * n, 2 * n);
+    out.setFromTriplets(triplets.begin(), triplets.end());
+    return out;
+}
+
 Eigen::VectorXd galerkin_load(const LimitSampler& sampler, const Points& X, const SurfaceFunction& f) {
     require_size(sampler, X);
     const Index n = sampler.num_samples();
