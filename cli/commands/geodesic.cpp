@@ -187,16 +187,8 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::IsMember({"loop", "catmull-clark"}));
     cmd->add_option("--source", options->sources, "Source vertex (0-based control vertex index; repeatable)")
         ->required();
-    cmd->add_option("--method", options->method,
-                    "dec, decsnap, sec, secsnap (inner products, default sec) or iga (Galerkin with the limit basis)")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap", "iga"}));
-    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
-    cmd->add_option("--degree", options->degree,
-                    "iga: quadrature degree per tile of the mass and stiffness (1..60, default 8)")
-        ->check(CLI::Range(1, 60));
-    cmd->add_option("--tiles", options->tiles, "iga: tile levels towards extraordinary vertices (0..20, default 6)")
-        ->check(CLI::Range(0, 20));
+    add_laplacian_method_options(cmd, options->method, options->level);
+    add_iga_quadrature_options(cmd, options->degree, options->tiles);
     cmd->add_option("--gradient", options->gradient,
                     "sec, secsnap: normalise the heat gradient on the limit surface (limit) or on the control "
                     "mesh subdivided --gradient-level times (subdivided); auto (default): subdivided when "

@@ -77,7 +77,6 @@ T choose_rule(const std::string& flag, const std::map<std::string, T>& names, co
     return flag.empty() ? hint.value_or(fallback) : names.at(flag);
 }
 
-/// The rules chosen on the command line, else the file's hints, else the defaults.
 /// --method dec|decsnap|sec|secsnap and --level L (0..8): the inner products of the SEC
 /// applications (sec/inner_products.h), the same words and range in every command.
 inline void add_inner_product_options(CLI::App* cmd, std::string& method, int& level) {
@@ -87,6 +86,24 @@ inline void add_inner_product_options(CLI::App* cmd, std::string& method, int& l
         ->check(CLI::Range(0, 8));
 }
 
+/// --method dec|decsnap|sec|secsnap|iga and --level L (0..8): how an application discretises the
+/// Laplacian (apps/laplacian_method.h), the same words and range in every command that takes iga.
+inline void add_laplacian_method_options(CLI::App* cmd, std::string& method, int& level) {
+    cmd->add_option("--method", method,
+                    "dec, decsnap, sec, secsnap (inner products, default sec) or iga (Galerkin with the limit basis)")
+        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap", "iga"}));
+    cmd->add_option("--level", level, "Subdivision level L of sec and secsnap (0..8, default 3)")
+        ->check(CLI::Range(0, 8));
+}
+
+/// --degree D (1..60) and --tiles T (0..20): iga's quadrature of the limit surface (SamplerOptions).
+inline void add_iga_quadrature_options(CLI::App* cmd, int& degree, int& tiles) {
+    cmd->add_option("--degree", degree, "iga: quadrature degree per tile (1..60, default 8)")->check(CLI::Range(1, 60));
+    cmd->add_option("--tiles", tiles, "iga: tile levels towards extraordinary vertices (0..20, default 6)")
+        ->check(CLI::Range(0, 20));
+}
+
+/// The rules chosen on the command line, else the file's hints, else the defaults.
 inline SchemeOptions scheme_rules(const ControlMesh& mesh, const LimitSchemeOptions& options) {
     const SchemeHints& hints = mesh.hints();
     const SchemeOptions defaults;

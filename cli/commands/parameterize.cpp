@@ -224,11 +224,7 @@ void add_parameterize_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--scheme", options->scheme, "Subdivision scheme")
         ->required()
         ->check(CLI::IsMember({"loop", "catmull-clark"}));
-    cmd->add_option("--method", options->method,
-                    "dec, decsnap, sec, secsnap (inner products, default sec) or iga (Galerkin with the limit basis)")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap", "iga"}));
-    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
+    add_laplacian_method_options(cmd, options->method, options->level);
     cmd->add_option("--boundary", options->boundary,
                     "free: spectral conformal (default); circle: boundary on the unit circle, harmonic interior")
         ->check(CLI::IsMember({"free", "circle"}));

@@ -151,15 +151,8 @@ void add_poisson_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--scheme", options->scheme, "Subdivision scheme")
         ->required()
         ->check(CLI::IsMember({"loop", "catmull-clark", "c2g0"}));
-    cmd->add_option("--method", options->method,
-                    "dec, decsnap, sec, secsnap (inner products, default sec) or iga (Galerkin with the limit basis)")
-        ->check(CLI::IsMember({"dec", "decsnap", "sec", "secsnap", "iga"}));
-    cmd->add_option("--degree", options->degree, "iga: quadrature degree per tile (1..60, default 8)")
-        ->check(CLI::Range(1, 60));
-    cmd->add_option("--tiles", options->tiles, "iga: tile levels towards extraordinary vertices (0..20, default 6)")
-        ->check(CLI::Range(0, 20));
-    cmd->add_option("--level", options->level, "Subdivision level L of sec and secsnap (0..8, default 3)")
-        ->check(CLI::Range(0, 8));
+    add_laplacian_method_options(cmd, options->method, options->level);
+    add_iga_quadrature_options(cmd, options->degree, options->tiles);
     cmd->add_flag("--lumped", options->lumped, "Lump M0 (and M2): diag(M 1) (SEC §3.5)");
     auto* rhs = cmd->add_option("--rhs", options->rhs, "Right-hand side f(x, y, z), a formula (muParser; pi known)");
     auto* rhs_file = cmd->add_option("--rhs-file", options->rhs_file, "Right-hand side: one value per vertex");
