@@ -1,7 +1,7 @@
 // limsurf membrane MESH --scheme c2g0|loop|catmull-clark --area A0 (--volume V0 | --reduced-volume v0)
 //   [--mean-curvature M0 | --reduced-mean-curvature m0] [--spontaneous-curvature H0]
 //   [--regularize-harmonic EPS] [--max-iterations K] [--tolerance T] [--degree D] [--threads N]
-//   -o OUT.obj [--field-output OUT.vtk] [--resolution N] [--json]
+//   -o OUT.obj [--field-output OUT.vtk] [--resolution N] [--intersection-resolution N] [--json]
 // limsurf membrane MESH --scheme S --evaluate-only [--spontaneous-curvature H0] [--field-output OUT.vtk] [--json]:
 // biomembrane shapes (c2g0-sphere-scheme-biomembranes §3; apps/membrane.h, docs/guide/membrane.md):
 // the Canham or Helfrich problem (3.1) with hard constraints from the input mesh as initial guess,
@@ -10,7 +10,9 @@
 //
 // A solve that does not converge is not an error (there is no convention for it among the other
 // commands, whose solvers are direct): exit 0, "converged": false with the residuals in the JSON,
-// a warning on stderr, and the last iterate (finite) written.
+// a warning on stderr, and the last iterate (finite) written. Every run also reports whether the
+// limit surface passes through itself (apps/self_intersection.h; a warning after a solve when it does:
+// the shape is then no membrane, whatever its energy).
 #include "limsurf/apps/membrane.h"
 
 #include <algorithm>
@@ -30,6 +32,7 @@
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "commands/threads_option.h"
+#include "limsurf/apps/self_intersection.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/io/vertex_field.h"
 #include "limsurf/io/vtk.h"
@@ -57,7 +60,8 @@ struct MembraneCommandOptions {
     bool evaluate_only = false;
     std::string output;
     std::string field_output;
-    int resolution = 0;  // 0: automatic, about field_points points
+    int resolution = 0;               // 0: automatic, about field_points points
+    int intersection_resolution = 0;  // 0: automatic (SelfIntersectionOptions)
     bool json = false;
 };
 
@@ -114,6 +118,28 @@ nlohmann::json stage_json(const MembraneProblem& problem, const MembraneResult& 
     out["converged"] = result.converged;
     out["status"] = result.status;
     return out;
+}
+
+/// Whether the limit surface of @p X passes through itself, and where.
+nlohmann::json self_intersection_json(const MembraneCommandOptions& options, const LimitBasis& basis, const Points& X) {
+    SelfIntersectionOptions check;
+    check.resolution = options.intersection_resolution;
+    check.num_threads = options.threads;
+    const SelfIntersections found = limit_self_intersections(basis, X, check);
+    return {{"intersects", found.intersects()},
+            {"intersecting_pairs", found.intersecting_pairs},
+            {"control_faces", found.control_faces},
+            {"resolution", found.resolution},
+            {"triangles", found.triangles}};
+}
+
+void print_self_intersection_text(const nlohmann::json& s) {
+    std::cout << "  self-intersection: " << (s.at("intersects").get<bool>() ? "YES, " : "none")
+              << (s.at("intersects").get<bool>()
+                      ? std::to_string(s.at("intersecting_pairs").get<std::size_t>()) + " triangle pairs over " +
+                            std::to_string(s.at("control_faces").size()) + " control faces"
+                      : std::string())
+              << " (tessellation of " << s.at("triangles") << " triangles, resolution " << s.at("resolution") << ")\n";
 }
 
 MembraneRequest request_of(const MembraneCommandOptions& options) {
@@ -224,6 +250,7 @@ int evaluate_and_report(const MembraneCommandOptions& options, const ControlMesh
                        {"degree", options.degree},
                        {"volume_is_exact", functionals.volume_is_exact()}};
     out.update(values_json(functionals.evaluate(mesh.positions()), options.spontaneous_curvature));
+    out["self_intersection"] = self_intersection_json(options, basis, mesh.positions());
     std::optional<FieldSurface> surface;
     if (!options.field_output.empty()) {
         surface = field_surface(basis, mesh.positions(), options.resolution, options.threads);
@@ -244,6 +271,7 @@ int evaluate_and_report(const MembraneCommandOptions& options, const ControlMesh
         }
     }
     std::cout << "  (volume " << (functionals.volume_is_exact() ? "exact, trilinear forms" : "by quadrature") << ")\n";
+    print_self_intersection_text(out["self_intersection"]);
     if (!options.field_output.empty()) {
         std::cout << "wrote       " << options.field_output << '\n';
     }
@@ -275,6 +303,7 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
     }
     out["output"] = options.output;
     const MembraneResult& answer = run.final_result();
+    out["self_intersection"] = self_intersection_json(options, basis, answer.positions);
     std::optional<FieldSurface> surface;
     if (!options.field_output.empty()) {
         surface = field_surface(basis, answer.positions, options.resolution, options.threads);
@@ -292,6 +321,11 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
         print_warnings({"the harmonic regularisation did not converge (" + run.regularization->status + "): '" +
                         options.output + "' holds its last iterate; see the residuals"});
     }
+    if (out["self_intersection"]["intersects"].get<bool>()) {
+        print_warnings({"the limit surface of '" + options.output + "' passes through itself (" +
+                        std::to_string(out["self_intersection"]["intersecting_pairs"].get<std::size_t>()) +
+                        " triangle pairs of its tessellation meet; see \"self_intersection\" in the JSON)"});
+    }
     if (options.json) {
         print_json(out);
         return exit_ok;
@@ -303,6 +337,7 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
     if (run.regularization) {
         print_stage_text("regularized", out["regularization"]);
     }
+    print_self_intersection_text(out["self_intersection"]);
     std::cout << "wrote       " << options.output << '\n';
     if (!options.field_output.empty()) {
         std::cout << "wrote       " << options.field_output << '\n';
@@ -385,6 +420,10 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
                     "The limit surface as triangles with mean_curvature and gaussian_curvature per point (.vtk, .vtu)");
     cmd->add_option("--resolution", options->resolution,
                     "Segments per ptex face edge of --field-output (1..256; default: about 100000 points)")
+        ->check(CLI::Range(1, 256));
+    cmd->add_option("--intersection-resolution", options->intersection_resolution,
+                    "Segments per ptex face edge of the tessellation the self-intersection check searches "
+                    "(1..256; default: about 100000 points)")
         ->check(CLI::Range(1, 256));
     for (CLI::Option* solve_only : {area, volume, reduced_volume, mean, reduced_mean, regularize, iterations, tolerance,
                                     objective_tolerance, output}) {

@@ -323,6 +323,20 @@ def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Memb
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
 
+class SelfIntersections(TypedDict):
+    intersects: bool
+    intersecting_pairs: int
+    control_faces: list[int]
+    resolution: int
+    triangles: int
+
+@overload
+def self_intersections(mesh: Mesh, scheme: Scheme, *, X: ArrayLike | None = None, resolution: int = 0,
+                       threads: int = 0) -> SelfIntersections: ...
+@overload
+def self_intersections(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Scheme, *, X: ArrayLike | None = None,
+                       resolution: int = 0, threads: int = 0) -> SelfIntersections: ...
+
 # IGA-tuned Catmull–Clark weights (docs/guide/tune.md, docs/guide/python.md).
 TuningShape = Literal["cup", "saddle"]
 Constraint = Literal["exact", "relaxed", "none"]

@@ -1,6 +1,7 @@
 // Biomembrane shapes (membrane/, apps/membrane.h): limsurf.shape_functionals (the functionals of
-// c2g0-sphere-scheme-biomembranes §3 and their exact gradients) and limsurf.minimize_membrane (the
-// dict of `limsurf membrane --json` plus the positions). Both take a Mesh, or arrays V, F.
+// c2g0-sphere-scheme-biomembranes §3 and their exact gradients), limsurf.minimize_membrane (the
+// dict of `limsurf membrane --json` plus the positions) and limsurf.self_intersections (whether a
+// limit surface passes through itself, apps/self_intersection.h). Each takes a Mesh, or arrays V, F.
 #include <exception>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "arrays.h"
 #include "common.h"
 #include "limsurf/apps/membrane.h"
+#include "limsurf/apps/self_intersection.h"
 
 namespace limsurf::python {
 namespace {
@@ -25,16 +27,37 @@ struct ShapeArguments {
     int threads = 0;
 };
 
-/// The functionals of @p mesh's topology under @p scheme (built with the GIL released).
-ShapeFunctionals functionals_of(const Mesh& mesh, const std::string& scheme, const ShapeArguments& args) {
+/// The limit basis of @p mesh under @p scheme, with the file's rules (built with the GIL released).
+LimitBasis basis_of(const Mesh& mesh, const std::string& scheme) {
     const SchemeKind kind = scheme_from(scheme);
+    const SchemeOptions rules = rules_for(mesh.mesh, {});
+    const py::gil_scoped_release release;
+    return LimitBasis(mesh.mesh.topology(), kind, rules);
+}
+
+/// The functionals of @p basis (built with the GIL released).
+ShapeFunctionals functionals_of(const LimitBasis& basis, const ShapeArguments& args) {
     ShapeOptions options;
     options.degree = args.degree;
     options.subdivide_near_extraordinary = args.subdivide_near_extraordinary;
     options.num_threads = args.threads;
     const py::gil_scoped_release release;
-    const LimitBasis basis(mesh.mesh.topology(), kind, rules_for(mesh.mesh, {}));
     return ShapeFunctionals(basis, options);
+}
+
+/// `limsurf membrane --json`'s "self_intersection" for the limit surface of @p X.
+py::dict self_intersection_dict(const LimitBasis& basis, const Points& X, int resolution, int threads) {
+    SelfIntersectionOptions options;
+    options.resolution = resolution;
+    options.num_threads = threads;
+    SelfIntersections found;
+    {
+        const py::gil_scoped_release release;
+        found = limit_self_intersections(basis, X, options);
+    }
+    return py::dict("intersects"_a = found.intersects(), "intersecting_pairs"_a = found.intersecting_pairs,
+                    "control_faces"_a = found.control_faces, "resolution"_a = found.resolution,
+                    "triangles"_a = found.triangles);
 }
 
 /// A Mesh from arrays, through limsurf.Mesh (the same validation and warnings).
@@ -63,7 +86,7 @@ py::dict shape_functionals(const Mesh& mesh, const std::string& scheme, const st
                            bool gradients, std::optional<double> spontaneous_curvature, const ShapeArguments& args) {
     return naming_source(mesh, [&] {
         const Points positions = X ? points_from(*X, "X") : mesh.mesh.positions();
-        const ShapeFunctionals functionals = functionals_of(mesh, scheme, args);
+        const ShapeFunctionals functionals = functionals_of(basis_of(mesh, scheme), args);
         ShapeValues values;
         {
             const py::gil_scoped_release release;
@@ -169,7 +192,8 @@ py::dict minimize_membrane(const Mesh& mesh, const std::string& scheme, const Me
                            const std::optional<py::function>& callback, const ShapeArguments& args) {
     return naming_source(mesh, [&] {
         (void)membrane_problem(request);  // a bad request fails before the functionals are built
-        const ShapeFunctionals functionals = functionals_of(mesh, scheme, args);
+        const LimitBasis basis = basis_of(mesh, scheme);
+        const ShapeFunctionals functionals = functionals_of(basis, args);
         std::exception_ptr error;
         const MembraneProgress progress = progress_of(callback, error);
         MembraneRun run;
@@ -180,7 +204,9 @@ py::dict minimize_membrane(const Mesh& mesh, const std::string& scheme, const Me
         if (error) {
             std::rethrow_exception(error);
         }
-        return run_dict(scheme, mesh, functionals, args, request, run);
+        py::dict out = run_dict(scheme, mesh, functionals, args, request, run);
+        out["self_intersection"] = self_intersection_dict(basis, run.final_result().positions, 0, args.threads);
+        return out;
     });
 }
 
@@ -224,9 +250,35 @@ an exception in it stops the solve and is raised. Raises limsurf.InputError for 
 (area <= 0, reduced volume outside (0, 1], both or neither volume options) or an open mesh,
 limsurf.UnsupportedError for Doo–Sabin or without Ipopt.)";
 
+constexpr const char* self_intersections_doc = R"(Whether the limit surface passes through itself
+(c2g0-sphere-scheme-biomembranes Fig. 7): self_intersections(mesh, scheme, ...) or
+self_intersections(V, F, scheme, ...), any scheme. The exact limit surface is tessellated (`resolution`
+segments per ptex face edge; 0: about 100 000 points), the copies of shared points welded, and the
+triangle pairs that meet other than where the surface's connectivity joins them counted (CGAL's rule).
+A dict with 'intersects', 'intersecting_pairs', 'control_faces' (sorted: the control faces whose limit
+patches take part), 'resolution' and 'triangles' — the "self_intersection" of `limsurf membrane --json`.
+X: other positions (#V × 3) for the same faces. Raises limsurf.InputError for a resolution outside 0..256.)";
+
 }  // namespace
 
 void bind_membrane(py::module_& m) {
+    const auto intersections = [](const Mesh& mesh, const std::string& scheme, std::optional<py::object> X,
+                                  int resolution, int threads) {
+        return naming_source(mesh, [&] {
+            const Points positions = X ? points_from(*X, "X") : mesh.mesh.positions();
+            return self_intersection_dict(basis_of(mesh, scheme), positions, resolution, threads);
+        });
+    };
+    m.def("self_intersections", intersections, "mesh"_a, "scheme"_a, py::kw_only(), "X"_a = py::none(),
+          "resolution"_a = 0, "threads"_a = 0, self_intersections_doc);
+    m.def(
+        "self_intersections",
+        [intersections](const py::object& V, const py::object& F, const std::string& scheme,
+                        std::optional<py::object> X, int resolution, int threads) {
+            return intersections(mesh_from(V, F), scheme, std::move(X), resolution, threads);
+        },
+        "V"_a, "F"_a, "scheme"_a, py::kw_only(), "X"_a = py::none(), "resolution"_a = 0, "threads"_a = 0);
+
     const auto shape = [](const Mesh& mesh, const std::string& scheme, std::optional<py::object> X, bool gradients,
                           std::optional<double> spontaneous_curvature, int degree, int subdivide_near_extraordinary,
                           int threads) {

@@ -232,6 +232,74 @@ TEST(CliMembrane, AnUnfinishedSolveExitsZeroWithConvergedFalseAndAWarning) {
     EXPECT_NEAR(number(out, "scale"), std::sqrt(1.0 / initial), 1e-14);
 }
 
+/// The icosahedron with vertex 0 pulled through the middle to 3 radii beyond the far side (x0 → −3 x0 +
+/// 0.3 x5): its Loop limit surface passes through itself (tests/unit/mesh/self_intersection_cgal_test.cpp
+/// checks the same surface's tessellation against CGAL).
+fs::path pulled_icosahedron() {
+    std::ifstream in(mesh("icosahedron"));
+    std::vector<std::string> lines;
+    std::vector<std::array<double, 3>> points;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("v ", 0) == 0) {
+            std::istringstream fields(line.substr(2));
+            std::array<double, 3> p{};
+            fields >> p[0] >> p[1] >> p[2];
+            points.push_back(p);
+        } else {
+            lines.push_back(line);
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        points[0][k] = -3.0 * points[0][k] + 0.3 * points[5][k];
+    }
+    const fs::path path = temp_dir() / "pulled_icosahedron.obj";
+    std::ofstream out(path);
+    out.precision(17);
+    for (const auto& p : points) {
+        out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    }
+    for (const auto& line : lines) {
+        out << line << '\n';
+    }
+    return path;
+}
+
+TEST(CliMembrane, ReportsWhetherTheLimitSurfacePassesThroughItself) {
+    const auto round = evaluate(mesh("icosahedron"), "loop").at("self_intersection");
+    EXPECT_FALSE(round.at("intersects").get<bool>());
+    EXPECT_EQ(round.at("intersecting_pairs").get<int>(), 0);
+    EXPECT_TRUE(round.at("control_faces").empty());
+    EXPECT_GT(round.at("triangles").get<int>(), 10000);  // the automatic resolution: ~100 000 points
+
+    const fs::path pulled = pulled_icosahedron();
+    const auto crossed = evaluate(pulled.string(), "loop").at("self_intersection");
+    EXPECT_TRUE(crossed.at("intersects").get<bool>());
+    EXPECT_GT(crossed.at("intersecting_pairs").get<int>(), 0);
+    // Every patch that takes part lies next to the pulled vertex or across from it; the patches of
+    // the five faces around vertex 0 stretch through the others.
+    const auto faces = crossed.at("control_faces").get<std::vector<int>>();
+    EXPECT_LT(faces.size(), 20u);
+    // Coarser and finer tessellations agree on the verdict.
+    for (const char* resolution : {"3", "12"}) {
+        const auto at = run_json({"membrane", pulled.string(), "--scheme", "loop", "--evaluate-only", "--json",
+                                  "--intersection-resolution", resolution});
+        EXPECT_TRUE(at.at("self_intersection").at("intersects").get<bool>()) << resolution;
+        EXPECT_EQ(at.at("self_intersection").at("resolution").get<int>(), std::stoi(resolution));
+    }
+    // A solve whose answer passes through itself warns (here: stopped after one iteration).
+    const fs::path obj = temp_dir() / "pulled_out.obj";
+    const CliRun run = limsurf({"membrane", pulled.string(), "--scheme", "loop", "--area", "1", "--reduced-volume",
+                                "0.7", "--max-iterations", "1", "-o", obj.string()});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("passes through itself"), std::string::npos) << run.err;
+    EXPECT_NE(run.out.find("self-intersection: YES"), std::string::npos) << run.out;
+    // Out of range: a usage error.
+    EXPECT_NE(
+        limsurf({"membrane", pulled.string(), "--scheme", "loop", "--evaluate-only", "--intersection-resolution", "0"})
+            .exit_code,
+        0);
+}
+
 TEST(CliMembrane, BadInputExitsWithOneClearLineAndNoFile) {
     const fs::path obj = temp_dir() / "refused.obj";
     const std::string area = "12.566370614359172";

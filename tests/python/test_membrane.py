@@ -69,6 +69,24 @@ def test_minimize_membrane_equals_the_cli(mesh_path, cli, tmp_path):
     assert np.array_equal(ours["positions"], limsurf.read_mesh(out).V)
 
 
+def test_self_intersections_equal_the_cli(mesh_path, cli, tmp_path):
+    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
+    X = mesh.V.copy()
+    X[0] = -3.0 * X[0] + 0.3 * X[5]  # pulled through the middle: the Loop surface crosses itself
+    pulled = tmp_path / "pulled.obj"
+    limsurf.write_mesh(pulled, mesh.with_positions(X))
+    for path, expected in ((mesh_path("icosahedron"), False), (pulled, True)):
+        theirs = cli("membrane", path, "--scheme", "loop", "--evaluate-only", "--intersection-resolution", 7,
+                     "--json")["self_intersection"]
+        ours = limsurf.self_intersections(limsurf.read_mesh(path), "loop", resolution=7)
+        assert ours == theirs and ours["intersects"] == expected
+    # Other positions for the same faces, and arrays instead of a Mesh.
+    assert limsurf.self_intersections(mesh, "loop", X=X, resolution=7) == ours
+    assert limsurf.self_intersections(mesh.V, mesh.F, "loop", X=X, resolution=7) == ours
+    with pytest.raises(limsurf.InputError, match="resolution"):
+        limsurf.self_intersections(mesh, "loop", resolution=300)
+
+
 def test_callback_sees_every_iteration_and_can_stop_the_solve(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("icosahedron"))
     seen = []
