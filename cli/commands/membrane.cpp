@@ -423,7 +423,7 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::Range(1, 256));
     cmd->add_option("--intersection-resolution", options->intersection_resolution,
                     "Segments per ptex face edge of the tessellation the self-intersection check searches "
-                    "(1..256; default: about 100000 points)")
+                    "(1..256; default: about 40000 points)")
         ->check(CLI::Range(1, 256));
     for (CLI::Option* solve_only : {area, volume, reduced_volume, mean, reduced_mean, regularize, iterations, tolerance,
                                     objective_tolerance, output}) {

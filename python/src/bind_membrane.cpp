@@ -253,7 +253,7 @@ limsurf.UnsupportedError for Doo–Sabin or without Ipopt.)";
 constexpr const char* self_intersections_doc = R"(Whether the limit surface passes through itself
 (c2g0-sphere-scheme-biomembranes Fig. 7): self_intersections(mesh, scheme, ...) or
 self_intersections(V, F, scheme, ...), any scheme. The exact limit surface is tessellated (`resolution`
-segments per ptex face edge; 0: about 100 000 points), the copies of shared points welded, and the
+segments per ptex face edge; 0: about 40 000 points), the copies of shared points welded, and the
 triangle pairs that meet other than where the surface's connectivity joins them counted (CGAL's rule).
 A dict with 'intersects', 'intersecting_pairs', 'control_faces' (sorted: the control faces whose limit
 patches take part), 'resolution' and 'triangles' — the "self_intersection" of `limsurf membrane --json`.

@@ -16,7 +16,7 @@ SelfIntersections limit_self_intersections(const LimitBasis& basis, const Points
     LIMSURF_CHECK(std::isfinite(options.weld_tolerance) && options.weld_tolerance > 0.0, InputError,
                   "weld tolerance must be positive and finite, got ", options.weld_tolerance);
     TessellationOptions tess;
-    tess.resolution = options.resolution > 0 ? options.resolution : automatic_resolution(basis, 100000);
+    tess.resolution = options.resolution > 0 ? options.resolution : automatic_resolution(basis, 40000);
     tess.curvature = false;
     tess.num_threads = options.num_threads;
     const LimitTessellation t = tessellate_limit_surface(basis, X, tess);
