@@ -134,12 +134,14 @@ nlohmann::json self_intersection_json(const MembraneCommandOptions& options, con
 }
 
 void print_self_intersection_text(const nlohmann::json& s) {
-    std::cout << "  self-intersection: " << (s.at("intersects").get<bool>() ? "YES, " : "none")
-              << (s.at("intersects").get<bool>()
-                      ? std::to_string(s.at("intersecting_pairs").get<std::size_t>()) + " triangle pairs over " +
-                            std::to_string(s.at("control_faces").size()) + " control faces"
-                      : std::string())
-              << " (tessellation of " << s.at("triangles") << " triangles, resolution " << s.at("resolution") << ")\n";
+    std::cout << "  self-intersection: ";
+    if (s.at("intersects").get<bool>()) {
+        std::cout << "YES, " << s.at("intersecting_pairs") << " triangle pairs over " << s.at("control_faces").size()
+                  << " control faces";
+    } else {
+        std::cout << "none";
+    }
+    std::cout << " (tessellation of " << s.at("triangles") << " triangles, resolution " << s.at("resolution") << ")\n";
 }
 
 MembraneRequest request_of(const MembraneCommandOptions& options) {

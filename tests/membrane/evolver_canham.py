@@ -117,6 +117,24 @@ def spheroid(level: int, v0: float, initial: str, area0: float) -> tuple[list[Ve
     return [(k * x, k * y, k * z) for x, y, z in shape], faces
 
 
+def obj_mesh(path: Path, area0: float) -> tuple[list[Vec], list]:
+    """The vertices and triangles of an OBJ file, scaled about the vertex centroid to area area0."""
+    points, faces = [], []
+    for line in path.read_text().splitlines():
+        fields = line.split()
+        if fields and fields[0] == "v":
+            points.append(tuple(float(t) for t in fields[1:4]))
+        elif fields and fields[0] == "f":
+            corners = [int(t.split("/")[0]) - 1 for t in fields[1:]]
+            if len(corners) != 3:
+                raise ValueError(f"{path}: only triangles, got a face of {len(corners)} corners")
+            faces.append(tuple(corners))
+    centre = [sum(p[k] for p in points) / len(points) for k in range(3)]
+    points = [tuple(p[k] - centre[k] for k in range(3)) for p in points]
+    k = math.sqrt(area0 / area_volume(points, faces)[0])
+    return [(k * x, k * y, k * z) for x, y, z in points], faces
+
+
 def datafile(points: list[Vec], faces, area0: float | None, volume0: float | None) -> str:
     """Evolver's vertices/edges/faces/bodies; hard constraints only for the targets given."""
     lines = ["// The Canham problem: written by tests/membrane/evolver_canham.py",
@@ -197,6 +215,9 @@ def main(argv=None) -> int:
     p.add_argument("--area", type=float, default=4.0 * math.pi, help="A0 (default 4π)")
     p.add_argument("--refine", type=int, default=3, help="icosphere level K: 10·4^K + 2 vertices (default 3)")
     p.add_argument("--initial", choices=("prolate", "oblate"), default="prolate")
+    p.add_argument("--initial-mesh", default=None,
+                   help="start from this closed triangle mesh (OBJ, e.g. a limsurf shape subdivided) instead of a "
+                        "spheroid: scaled to area A0 about its centroid; --refine and --initial are then unused")
     p.add_argument("--tolerance", type=float, default=1e-10, help="stop when a block changes W less (relative)")
     p.add_argument("--max-blocks", type=int, default=400)
     p.add_argument("--time", action="store_true", help="add the (seconds, W) trace of every block")
@@ -219,7 +240,10 @@ def main(argv=None) -> int:
         if args.reduced_volume is None or not 0.0 < args.reduced_volume < 1.0 or args.area <= 0.0:
             p.error("--reduced-volume must be in (0, 1) and --area positive")
         volume0 = args.reduced_volume * 4.0 * math.pi / 3.0 * (args.area / (4.0 * math.pi)) ** 1.5
-        points, faces = spheroid(args.refine, args.reduced_volume, args.initial, args.area)
+        if args.initial_mesh:
+            points, faces = obj_mesh(Path(args.initial_mesh), args.area)
+        else:
+            points, faces = spheroid(args.refine, args.reduced_volume, args.initial, args.area)
         fe = datafile(points, faces, args.area, volume0)
         commands = script(args.tolerance, args.max_blocks, args.time)
     try:
@@ -234,7 +258,7 @@ def main(argv=None) -> int:
            "refine": args.refine, "blocks": blocks, "seconds": seconds,
            "wall_seconds": time.monotonic() - start}
     if not args.evaluate_sphere:
-        out.update({"initial": args.initial, "target_reduced_volume": args.reduced_volume,
+        out.update({"initial": args.initial_mesh or args.initial, "target_reduced_volume": args.reduced_volume,
                     "target_area": args.area, "converged": blocks < args.max_blocks,
                     "inertia_moments": inertia_moments(vertices)})
         if args.time:

@@ -16,6 +16,7 @@
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/mesh/self_intersection.h"
+#include "triangle_soup.h"
 #include "limsurf/render/tessellation.h"
 #include "support/paths.h"
 
@@ -50,18 +51,8 @@ Pairs cgal_pairs(const Points& points, const Triangles& triangles) {
 }
 
 TEST(SelfIntersectionCgal, CrowdedSoupOfLooseTriangles) {
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> where(0.0, 8.0), offset(-1.0, 1.0);
     const Index n = 400;
-    Points p(3 * n, 3);
-    Triangles t(n, 3);
-    for (Index k = 0; k < n; ++k) {
-        const Eigen::RowVector3d centre(where(rng), where(rng), where(rng));
-        for (int c = 0; c < 3; ++c) {
-            p.row(3 * k + c) = centre + Eigen::RowVector3d(offset(rng), offset(rng), offset(rng));
-            t(k, c) = 3 * k + c;
-        }
-    }
+    const auto [p, t] = test::random_triangle_soup(11, n, 8.0);
     const Pairs expected = cgal_pairs(p, t);
     ASSERT_GT(expected.size(), 50u);
     EXPECT_EQ(intersecting_triangle_pairs(p, t), expected);

@@ -5,13 +5,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "limsurf/core/error.h"
 #include "limsurf/mesh/self_intersection.h"
+#include "triangle_soup.h"
 
 namespace limsurf {
 namespace {
@@ -134,18 +134,8 @@ TEST(SelfIntersection, ClosedSurfaceAndAVertexPushedThroughIt) {
 // Random triangles in a box: the grid search must find what testing every pair on its own finds,
 // whatever the order of the triangles.
 TEST(SelfIntersection, GridSearchFindsEveryPairOnce) {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> where(0.0, 6.0), offset(-1.0, 1.0);
     const Index n = 150;
-    Points p(3 * n, 3);
-    Triangles t(n, 3);
-    for (Index k = 0; k < n; ++k) {
-        const Eigen::RowVector3d centre(where(rng), where(rng), where(rng));
-        for (int c = 0; c < 3; ++c) {
-            p.row(3 * k + c) = centre + Eigen::RowVector3d(offset(rng), offset(rng), offset(rng));
-            t(k, c) = 3 * k + c;
-        }
-    }
+    const auto [p, t] = test::random_triangle_soup(7, n, 6.0);
     Pairs brute;
     for (Index i = 0; i < n; ++i) {
         for (Index j = i + 1; j < n; ++j) {
