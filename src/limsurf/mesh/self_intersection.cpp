@@ -208,7 +208,9 @@ struct Grid {
 };
 
 // Cells about twice the mean largest extent of a triangle's box, so that a triangle covers a few
-// cells and a cell holds a few triangles; coarser when the grid would have more cells than 2^40.
+// cells and a cell holds a few triangles; at most 10^4 cells per axis; and coarser (doubled until it
+// holds) when the boxes would cover more than 16 cells each on average plus 10^6 in all — a few
+// triangles far larger than the rest would otherwise list themselves in millions of cells.
 Grid make_grid(const std::vector<Box>& boxes) {
     Box all{Vec::Constant(std::numeric_limits<double>::infinity()),
             Vec::Constant(-std::numeric_limits<double>::infinity())};
@@ -222,11 +224,23 @@ Grid make_grid(const std::vector<Box>& boxes) {
     grid.origin = all.lo;
     const double span = std::max((all.hi - all.lo).maxCoeff(), std::numeric_limits<double>::min());
     grid.cell = extent_sum > 0.0 ? 2.0 * extent_sum / static_cast<double>(boxes.size()) : span;
-    grid.cell = std::max(grid.cell, span / 1e4);  // at most 10^4 cells per axis
-    for (int k = 0; k < 3; ++k) {
-        grid.size[k] = static_cast<std::int64_t>(std::floor((all.hi[k] - all.lo[k]) / grid.cell)) + 1;
+    grid.cell = std::max(grid.cell, span / 1e4);
+    const double budget = 16.0 * static_cast<double>(boxes.size()) + 1e6;
+    for (;;) {
+        for (int k = 0; k < 3; ++k) {
+            grid.size[k] = static_cast<std::int64_t>(std::floor((all.hi[k] - all.lo[k]) / grid.cell)) + 1;
+        }
+        double entries = 0.0;
+        for (const Box& b : boxes) {
+            const auto lo = grid.cell_of(b.lo), hi = grid.cell_of(b.hi);
+            entries += static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
+                       static_cast<double>(hi[2] - lo[2] + 1);
+        }
+        if (entries <= budget || grid.cell >= span) {
+            return grid;
+        }
+        grid.cell *= 2.0;
     }
-    return grid;
 }
 
 bool boxes_overlap(const Box& a, const Box& b) noexcept {

@@ -160,6 +160,31 @@ TEST(SelfIntersection, GridSearchFindsEveryPairOnce) {
     EXPECT_EQ(mapped, brute);
 }
 
+// One triangle 10^6 times larger than 20 000 small ones crossing it. Cells sized by the mean triangle
+// alone would list the large one in about (n/2)^2 = 10^8 cells; the grid coarsens instead, and the
+// crossings are all found (measured: 0.05 s and 17 MB; 16.7 s and 2.6 GB before the cap).
+TEST(SelfIntersection, OneHugeTriangleAmongSmallOnes) {
+    const Index n = 20000;
+    Points p(3 * n + 3, 3);
+    Triangles t(n + 1, 3);
+    for (Index k = 0; k < n; ++k) {       // small vertical triangles through the plane z = 0, on a diagonal
+        const double x = 1.0 + 0.02 * k;  // up to 401: inside the large triangle (x + y <= 1000)
+        p.row(3 * k) << x, x, -1e-3;
+        p.row(3 * k + 1) << x + 1e-3, x, 1e-3;
+        p.row(3 * k + 2) << x, x + 1e-3, 1e-3;
+        t.row(k) << 3 * k, 3 * k + 1, 3 * k + 2;
+    }
+    p.row(3 * n) << 0, 0, 0;
+    p.row(3 * n + 1) << 1e3, 0, 0;
+    p.row(3 * n + 2) << 0, 1e3, 0;
+    t.row(n) << 3 * n, 3 * n + 1, 3 * n + 2;
+    const Pairs pairs = intersecting_triangle_pairs(p, t);
+    ASSERT_EQ(pairs.size(), static_cast<std::size_t>(n));
+    for (Index k = 0; k < n; ++k) {
+        EXPECT_EQ(pairs[static_cast<std::size_t>(k)], (std::array<Index, 2>{k, n}));
+    }
+}
+
 TEST(SelfIntersection, WeldingMergesCopiesOfAPoint) {
     // Two triangles with their own copies of the shared edge's ends, one copy off by 1e-13.
     const Points p = points_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1e-13, 0}, {0, 0, 0}, {1, -1, 0}});
