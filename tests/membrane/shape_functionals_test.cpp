@@ -16,6 +16,8 @@
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/membrane/shape_functionals.h"
+#include "limsurf/quadrature/integrals.h"
+#include "limsurf/quadrature/sampler.h"
 #include "limsurf/refine/refine.h"
 #include "support/mesh_zoo.h"
 
@@ -205,6 +207,37 @@ INSTANTIATE_TEST_SUITE_P(Meshes, WithExactVolume,
                                            Case{"cube", SchemeKind::CatmullClark},
                                            Case{"dodecahedron", SchemeKind::CatmullClark}),
                          [](const ::testing::TestParamInfo<Case>& param) { return param.param.mesh; });
+
+// Elements of bit-identical weights (every regular patch of one rotation) share one kernel of
+// dense weights (shape_functionals.cpp): on subdivided meshes with most faces regular, deformed so
+// that no two faces carry the same geometry, area, quadrature volume and their gradients equal the
+// integrals of quadrature/integrals.h, which apply each sample's own weights (an independent path).
+TEST(ShapeFunctionals, SharedKernelsAgreeWithPerSampleIntegrals) {
+    for (const auto& [name, scheme] :
+         {std::pair{"tetra_2", SchemeKind::C2g0}, std::pair{"icosahedron", SchemeKind::Loop},
+          std::pair{"cube", SchemeKind::CatmullClark}}) {
+        SCOPED_TRACE(name);
+        const ControlMesh mesh = bundled(name);
+        const Level level = refine(mesh.topology(), scheme);
+        const LimitBasis basis(level.topology, scheme);
+        Points X = perturbed(on_unit_sphere(level.S0 * mesh.positions()), 21, 0.04);
+        X.rowwise() -= X.colwise().mean();  // the functionals' volume is about this centroid
+        const ShapeOptions options{.degree = 6, .subdivide_near_extraordinary = 2, .exact_volume = false};
+        const ShapeFunctionals functionals(basis, options);
+        const LimitSampler sampler(basis, SamplerOptions{options.degree, options.subdivide_near_extraordinary, 0});
+        ASSERT_EQ(functionals.num_samples(), sampler.num_samples());
+        const std::array<ShapeFunctional, 2> wanted{ShapeFunctional::Area, ShapeFunctional::Volume};
+        const ShapeValues at = functionals.evaluate(X, wanted);
+        EXPECT_NEAR(at.area, area(sampler, X), 1e-13 * at.area);
+        EXPECT_NEAR(at.volume, enclosed_volume(sampler, X), 1e-13 * at.area);
+        const Points area_g = area_gradient(sampler, X);
+        EXPECT_LT((at.gradient_of(ShapeFunctional::Area) - area_g).norm(), 1e-12 * area_g.norm());
+        // The functionals' volume gradient includes the centroid's motion (∫ n dA / 3#V per vertex),
+        // which vanishes up to the quadrature error of ∫ n dA on a closed surface.
+        const Points volume_g = volume_gradient(sampler, X);
+        EXPECT_LT((at.gradient_of(ShapeFunctional::Volume) - volume_g).norm(), 1e-6 * volume_g.norm());
+    }
+}
 
 /// W, v and m of the limit surface of a mesh whose vertices lie on the unit sphere.
 struct SphereNumbers {

@@ -3,6 +3,7 @@
 // planar grid's limit surface from its B-spline boundary curve; the inertia of the degenerate cubes,
 // whose limit surface is the unit cube), and a witness: the
 // polyhedral area and volume of deeply subdivided control meshes, Richardson-extrapolated.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -14,6 +15,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "limsurf/core/error.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/integrals.h"
@@ -66,6 +68,34 @@ TEST(LimitSampler, TilesCoverTheDomainAndCrowdTowardsExtraordinaryCorners) {
         }
         EXPECT_NEAR(total, domain * m.basis.num_ptex_faces(), 1e-12);
     }
+}
+
+// A sampler over a range of ptex faces (a large mesh in pieces) holds exactly the samples of those
+// faces: the pieces, one after the other, are the whole sampler, sample for sample.
+TEST(LimitSampler, PiecesOfPtexFacesAreTheWholeSampler) {
+    const Loaded m("dodecahedron");
+    const SamplerOptions options{4, 2, 2};
+    const LimitSampler whole(m.basis, options);
+    const Index faces = m.basis.num_ptex_faces();
+    Index s = 0;
+    for (const auto& [first, last] : {std::pair<Index, Index>{0, 7}, {7, 7}, {7, 31}, {31, faces}}) {
+        const LimitSampler piece(m.basis, options, first, last);
+        for (Index i = 0; i < piece.num_samples(); ++i, ++s) {
+            ASSERT_LT(s, whole.num_samples());
+            EXPECT_EQ(piece.point(i).face, whole.point(s).face);
+            EXPECT_GE(piece.point(i).face, first);
+            EXPECT_LT(piece.point(i).face, last);
+            EXPECT_EQ(piece.point(i).u, whole.point(s).u);
+            EXPECT_EQ(piece.point(i).v, whole.point(s).v);
+            EXPECT_EQ(piece.weight(i), whole.weight(s));
+            EXPECT_TRUE(std::ranges::equal(piece.vertices(i), whole.vertices(s)));
+            EXPECT_TRUE(piece.limit_weights(i) == whole.limit_weights(s));
+        }
+    }
+    EXPECT_EQ(s, whole.num_samples());
+    EXPECT_THROW(LimitSampler(m.basis, options, 3, 2), InputError);
+    EXPECT_THROW(LimitSampler(m.basis, options, -1, 2), InputError);
+    EXPECT_THROW(LimitSampler(m.basis, options, 0, faces + 1), InputError);
 }
 
 TEST(LimitSampler, EvaluateAllMatchesEvaluateOne) {

@@ -53,6 +53,10 @@ class LimitSampler {
     /// @brief Places the rules and evaluates the limit weights (with second derivatives) once.
     /// @throws InputError when the degree is out of the rules' range or the tile level is outside 0..30
     LimitSampler(const LimitBasis& basis, const SamplerOptions& options);
+    /// @brief The samples of ptex faces [first_ptex_face, last_ptex_face) only: a large mesh in
+    ///   pieces, so that the weights of all its samples need not be held at once.
+    /// @throws InputError as above, or when the range is not within 0..basis.num_ptex_faces()
+    LimitSampler(const LimitBasis& basis, const SamplerOptions& options, Index first_ptex_face, Index last_ptex_face);
     /// Shorthand for LimitSampler(basis, {degree, subdivide_near_extraordinary}).
     LimitSampler(const LimitBasis& basis, int degree, int subdivide_near_extraordinary = 0);
 

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <mutex>
 #include <numbers>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -186,18 +188,35 @@ Points ShapeValues::helfrich_gradient(double spontaneous_curvature) const {
     return w - 2.0 * h0 * m + h0 * h0 * a;
 }
 
+/// The samples of one element (a ptex face) against the element's support, dense: row r n + i of
+/// `rows` (n samples) is row r (value, ∂u, ∂v, ∂uu, ∂uv, ∂vv) of sample i's limit weights over the
+/// support's slots, so that the rows of one kind are adjacent (the value rows can be left out of
+/// the backward product). Elements whose kernels are bit-identical share one: every regular patch
+/// of one rotation evaluates the same basis at the same quadrature points (limit/limit_basis.cpp's
+/// fast patches), so a mesh of 20 000 faces needs a handful of kernels, which stay in cache, instead
+/// of hundreds of MB of per-sample weights streamed from memory on every evaluation.
+struct ElementKernel {
+    std::vector<double> weights;  // per sample: its parameter-domain quadrature weight
+    Eigen::MatrixXd rows;         // (6 × samples) × slots
+
+    [[nodiscard]] Eigen::Index num_samples() const { return static_cast<Eigen::Index>(weights.size()); }
+};
+
 struct ShapeFunctionals::Impl {
     ShapeOptions options;
     SchemeKind scheme = SchemeKind::Loop;
     bool triangle = true;
-    LimitSampler sampler;
+    Index num_vertices = 0;
+    Index num_samples = 0;
     std::unique_ptr<EnclosedVolume> exact_volume;
-    // Elements: the ptex faces with samples, samples [element_samples[e], element_samples[e+1]).
-    std::vector<Index> element_samples;
-    // The support of element e: slots [element_slots[e], element_slots[e+1]) of slot_vertex.
+    // Elements: the ptex faces with samples; element e's kernel and face.
+    std::vector<ElementKernel> kernels;
+    std::vector<std::size_t> element_kernel;
+    std::vector<Index> element_face;
+    // The support of element e: slots [element_slots[e], element_slots[e+1]) of slot_vertex, in
+    // the order of first appearance among its samples' limit weights.
     std::vector<std::size_t> element_slots;
     std::vector<Index> slot_vertex;
-    std::vector<Index> entry_slot;  // per sampler entry (in sample order): its slot
     // Gather: the slots of vertex v, in element order: vertex_slots[vertex_offsets[v] .. +1).
     std::vector<std::size_t> vertex_offsets;
     std::vector<std::size_t> vertex_slots;
@@ -209,42 +228,98 @@ struct ShapeFunctionals::Impl {
 
     Impl(const LimitBasis& basis, const ShapeOptions& o)
         : options(o), scheme(basis.scheme()), triangle(basis.domain() == ParameterDomain::Triangle),
-          sampler(basis, SamplerOptions{o.degree, o.subdivide_near_extraordinary, o.num_threads}) {
-        build_supports(basis.topology().num_vertices());
+          num_vertices(basis.topology().num_vertices()) {
+        // The sampler's per-sample weights are only read here, into the kernels; a piece of the
+        // mesh at a time, so that they are never all held at once (hundreds of MB at 10k vertices).
+        const SamplerOptions sampling{o.degree, o.subdivide_near_extraordinary, o.num_threads};
+        constexpr Index faces_per_piece = 2048;
+        element_slots.assign(1, 0);
+        KernelIndex index;
+        for (Index first = 0; first < basis.num_ptex_faces(); first += faces_per_piece) {
+            const LimitSampler piece(basis, sampling, first, std::min(first + faces_per_piece, basis.num_ptex_faces()));
+            num_samples += piece.num_samples();
+            add_elements(piece, index);
+        }
+        build_gather();
     }
 
-    void build_supports(Index num_vertices);
+    using KernelIndex = std::unordered_multimap<std::size_t, std::size_t>;  // kernels by a hash of their bytes
+    void add_elements(const LimitSampler& piece, KernelIndex& index);
+    [[nodiscard]] std::size_t intern(const ElementKernel& kernel, KernelIndex& index);
+    void build_gather();
     [[nodiscard]] ShapeValues evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const;
 };
 
-void ShapeFunctionals::Impl::build_supports(Index num_vertices) {
-    const Index n = sampler.num_samples();
+void ShapeFunctionals::Impl::add_elements(const LimitSampler& piece, KernelIndex& index) {
+    const Index n = piece.num_samples();
+    std::vector<Index> element_samples;  // element e of the piece: samples [element_samples[e], .. [e+1])
     for (Index s = 0; s < n; ++s) {
-        if (s == 0 || sampler.point(s).face != sampler.point(s - 1).face) {
+        if (s == 0 || piece.point(s).face != piece.point(s - 1).face) {
             element_samples.push_back(s);
+            element_face.push_back(piece.point(s).face);
         }
     }
     element_samples.push_back(n);
     const std::size_t num_elements = element_samples.size() - 1;
-    element_slots.assign(1, 0);
     std::vector<Index> slot_of(static_cast<std::size_t>(num_vertices), invalid_index);
+    ElementKernel kernel;
     for (std::size_t e = 0; e < num_elements; ++e) {
         const std::size_t first_slot = slot_vertex.size();
         for (Index s = element_samples[e]; s < element_samples[e + 1]; ++s) {
-            for (const Index v : sampler.vertices(s)) {
+            for (const Index v : piece.vertices(s)) {
                 Index& slot = slot_of[static_cast<std::size_t>(v)];
                 if (slot == invalid_index) {
                     slot = static_cast<Index>(slot_vertex.size() - first_slot);
                     slot_vertex.push_back(v);
                 }
-                entry_slot.push_back(slot);
+            }
+        }
+        const auto num_slots = static_cast<Eigen::Index>(slot_vertex.size() - first_slot);
+        const Index first = element_samples[e];
+        const Index count = element_samples[e + 1] - first;
+        kernel.weights.resize(static_cast<std::size_t>(count));
+        kernel.rows.setZero(6 * count, num_slots);
+        for (Index i = 0; i < count; ++i) {
+            kernel.weights[static_cast<std::size_t>(i)] = piece.weight(first + i);
+            const auto vertices = piece.vertices(first + i);
+            const auto w = piece.limit_weights(first + i);
+            for (std::size_t k = 0; k < vertices.size(); ++k) {
+                const Index slot = slot_of[static_cast<std::size_t>(vertices[k])];
+                for (Index r = 0; r < 6; ++r) {
+                    kernel.rows(r * count + i, slot) += w(r, static_cast<Eigen::Index>(k));
+                }
             }
         }
         for (std::size_t k = first_slot; k < slot_vertex.size(); ++k) {
             slot_of[static_cast<std::size_t>(slot_vertex[k])] = invalid_index;
         }
         element_slots.push_back(slot_vertex.size());
+        element_kernel.push_back(intern(kernel, index));
     }
+}
+
+/// The index of @p kernel among the kernels, added when no bit-identical one is there yet.
+std::size_t ShapeFunctionals::Impl::intern(const ElementKernel& kernel, KernelIndex& index) {
+    const auto bytes = [](const double* data, Eigen::Index size) {
+        return std::string_view(reinterpret_cast<const char*>(data), sizeof(double) * static_cast<std::size_t>(size));
+    };
+    const std::hash<std::string_view> hash_of;
+    const std::size_t hash = hash_of(bytes(kernel.rows.data(), kernel.rows.size())) ^
+                             (31 * hash_of(bytes(kernel.weights.data(), kernel.num_samples())) +
+                              static_cast<std::size_t>(kernel.rows.cols()));
+    const auto [begin, end] = index.equal_range(hash);
+    for (auto it = begin; it != end; ++it) {  // equal hashes: compared entry by entry
+        const ElementKernel& other = kernels[it->second];
+        if (other.weights == kernel.weights && other.rows.cols() == kernel.rows.cols() && other.rows == kernel.rows) {
+            return it->second;
+        }
+    }
+    index.emplace(hash, kernels.size());
+    kernels.push_back(kernel);
+    return kernels.size() - 1;
+}
+
+void ShapeFunctionals::Impl::build_gather() {
     // Transpose: slots per vertex, in increasing slot (= element) order.
     vertex_offsets.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
     for (const Index v : slot_vertex) {
@@ -261,8 +336,8 @@ void ShapeFunctionals::Impl::build_supports(Index num_vertices) {
 }
 
 ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const {
-    LIMSURF_CHECK(X.rows() == sampler.num_vertices(), InputError, "control points have ", X.rows(),
-                  " rows, the mesh has ", sampler.num_vertices(), " vertices");
+    LIMSURF_CHECK(X.rows() == num_vertices, InputError, "control points have ", X.rows(), " rows, the mesh has ",
+                  num_vertices, " vertices");
     LIMSURF_CHECK(X.allFinite(), InputError, "the control points have a non-finite coordinate");
     std::array<bool, num_shape_functionals> wanted{};
     for (const ShapeFunctional f : gradients) {
@@ -280,7 +355,8 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
         }
     }
 
-    const std::size_t num_elements = element_samples.size() - 1;
+    const bool value_rows_needed = local_wanted[index_of(ShapeFunctional::Volume)];
+    const std::size_t num_elements = element_face.size();
     const std::size_t num_slots = slot_vertex.size();
     // Per element: the six integrals; per slot: a 3-vector per requested functional, side by side.
     const std::size_t width = 3 * requested.size();
@@ -288,50 +364,61 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     std::unique_lock<std::mutex> workspace_lock(workspace_mutex, std::try_to_lock);
     std::vector<double> own_workspace;
     std::vector<double>& slot_gradient = workspace_lock.owns_lock() ? workspace : own_workspace;
-    slot_gradient.resize(num_slots * width);  // zeroed per element below, in parallel
+    slot_gradient.resize(num_slots * width);  // every element writes its own slots below
     std::vector<Index> degenerate(num_elements, invalid_index);
     std::vector<Vec3> element_normal_area(num_elements, Vec3::Zero());
     const Vec3 centroid = X.colwise().mean().transpose();
 
     parallel_ranges(static_cast<Index>(num_elements), options.num_threads, [&](Index begin, Index end) {
         SampleTerms terms;
-        // The requested local gradients side by side (6 × 3R), so that each control vertex of a
-        // sample costs one small matrix product for all of them.
-        Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 3 * num_shape_functionals> stacked(6, width);
+        Eigen::Matrix<double, Eigen::Dynamic, 3> element_points;  // slots × 3
+        Eigen::Matrix<double, Eigen::Dynamic, 3> derivatives;     // (6 × samples) × 3
+        Eigen::MatrixXd local;                                    // (6 × samples) × width
         for (Index e = begin; e < end; ++e) {
             const auto ue = static_cast<std::size_t>(e);
-            std::array<double, num_shape_functionals> sum{};
+            const ElementKernel& kernel = kernels[element_kernel[ue]];
             const std::size_t first_slot = element_slots[ue];
-            std::fill(slot_gradient.begin() + static_cast<std::ptrdiff_t>(first_slot * width),
-                      slot_gradient.begin() + static_cast<std::ptrdiff_t>(element_slots[ue + 1] * width), 0.0);
-            for (Index s = element_samples[ue]; s < element_samples[ue + 1]; ++s) {
-                const Local d = sampler.evaluate(X, s);
-                if (!sample_terms(d, sampler.weight(s), triangle, centroid, local_wanted, terms)) {
-                    degenerate[ue] = sampler.point(s).face;
+            const auto num_element_slots = static_cast<Eigen::Index>(element_slots[ue + 1] - first_slot);
+            element_points.resize(num_element_slots, 3);
+            for (Eigen::Index k = 0; k < num_element_slots; ++k) {
+                element_points.row(k) = X.row(slot_vertex[first_slot + static_cast<std::size_t>(k)]);
+            }
+            // All samples of the element at once: the positions and derivatives forwards, ...
+            derivatives.noalias() = kernel.rows * element_points;
+            local.resize(kernel.rows.rows(), static_cast<Eigen::Index>(width));
+            std::array<double, num_shape_functionals> sum{};
+            const Eigen::Index n = kernel.num_samples();
+            for (Eigen::Index i = 0; i < n; ++i) {
+                Local d;
+                for (Eigen::Index r = 0; r < 6; ++r) {
+                    d.row(r) = derivatives.row(r * n + i);
+                }
+                if (!sample_terms(d, kernel.weights[static_cast<std::size_t>(i)], triangle, centroid, local_wanted,
+                                  terms)) {
+                    degenerate[ue] = element_face[ue];
                     break;
                 }
                 for (std::size_t f = 0; f < sum.size(); ++f) {
                     sum[f] += terms.value[f];
                 }
                 element_normal_area[ue] += terms.normal_area;
-                if (requested.empty()) {
-                    continue;
-                }
-                const auto weights = sampler.limit_weights(s);
-                const auto vertices = sampler.vertices(s);
-                // The sampler's entries of sample s start at the entry of its first vertex.
-                const std::size_t entry0 = static_cast<std::size_t>(vertices.data() - sampler.vertices(0).data());
-                for (std::size_t r = 0; r < requested.size(); ++r) {
-                    stacked.middleCols<3>(static_cast<Eigen::Index>(3 * r)) = terms.local[requested[r]];
-                }
-                for (std::size_t k = 0; k < vertices.size(); ++k) {
-                    const std::size_t slot = first_slot + static_cast<std::size_t>(entry_slot[entry0 + k]);
-                    Eigen::Map<Eigen::RowVectorXd> target(&slot_gradient[slot * width],
-                                                          static_cast<Eigen::Index>(width));
-                    target.noalias() += weights.col(static_cast<Eigen::Index>(k)).transpose() * stacked;
+                for (std::size_t f = 0; f < requested.size(); ++f) {
+                    for (Eigen::Index r = 0; r < 6; ++r) {
+                        local.block<1, 3>(r * n + i, static_cast<Eigen::Index>(3 * f)) =
+                            terms.local[requested[f]].row(r);
+                    }
                 }
             }
             element_values[ue] = sum;
+            if (!requested.empty() && degenerate[ue] == invalid_index) {
+                // ... and the local gradients backwards through the same weights, per slot.
+                Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> target(
+                    &slot_gradient[first_slot * width], num_element_slots, static_cast<Eigen::Index>(width));
+                // Only the quadrature volume depends on the position itself: without it the value
+                // rows of the local gradients are 0 and a sixth of the product is skipped.
+                const Eigen::Index skip = value_rows_needed ? 0 : n;
+                target.noalias() = kernel.rows.bottomRows(6 * n - skip).transpose() * local.bottomRows(6 * n - skip);
+            }
         }
     });
     for (std::size_t e = 0; e < num_elements; ++e) {
@@ -354,22 +441,24 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     out.gaussian = total[index_of(ShapeFunctional::Gaussian)];
     out.harmonic = total[index_of(ShapeFunctional::Harmonic)];
 
-    const Index num_vertices = sampler.num_vertices();
-    for (std::size_t r = 0; r < requested.size(); ++r) {
-        Points& g = out.gradient[requested[r]];
-        g.setZero(num_vertices, 3);
-        parallel_ranges(num_vertices, options.num_threads, [&](Index begin, Index end) {
-            for (Index v = begin; v < end; ++v) {
-                const auto uv = static_cast<std::size_t>(v);
-                for (std::size_t k = vertex_offsets[uv]; k < vertex_offsets[uv + 1]; ++k) {
-                    const double* source = &slot_gradient[vertex_slots[k] * width + 3 * r];
-                    g(v, 0) += source[0];
-                    g(v, 1) += source[1];
-                    g(v, 2) += source[2];
+    for (const std::size_t f : requested) {
+        out.gradient[f].setZero(num_vertices, 3);
+    }
+    // One pass over the slots of each vertex (in element order) for every requested functional.
+    parallel_ranges(num_vertices, options.num_threads, [&](Index begin, Index end) {
+        for (Index v = begin; v < end; ++v) {
+            const auto uv = static_cast<std::size_t>(v);
+            for (std::size_t k = vertex_offsets[uv]; k < vertex_offsets[uv + 1]; ++k) {
+                const double* source = &slot_gradient[vertex_slots[k] * width];
+                for (std::size_t r = 0; r < requested.size(); ++r) {
+                    Points& g = out.gradient[requested[r]];
+                    g(v, 0) += source[3 * r];
+                    g(v, 1) += source[3 * r + 1];
+                    g(v, 2) += source[3 * r + 2];
                 }
             }
-        });
-    }
+        }
+    });
     if (local_wanted[index_of(ShapeFunctional::Volume)]) {
         // The centroid c = mean of X moves with every control point: ∂V/∂X_v −= ∫ n dA / (3 #V).
         Vec3 normal_area = Vec3::Zero();
@@ -429,10 +518,10 @@ ShapeValues ShapeFunctionals::evaluate_all(const Points& X) const {
 }
 
 Index ShapeFunctionals::num_vertices() const noexcept {
-    return impl_->sampler.num_vertices();
+    return impl_->num_vertices;
 }
 Index ShapeFunctionals::num_samples() const noexcept {
-    return impl_->sampler.num_samples();
+    return impl_->num_samples;
 }
 SchemeKind ShapeFunctionals::scheme() const noexcept {
     return impl_->scheme;

@@ -170,7 +170,14 @@ LimitSampler::LimitSampler(const LimitBasis& basis, int degree, int subdivide_ne
     : LimitSampler(basis, SamplerOptions{degree, subdivide_near_extraordinary, 0}) {}
 
 LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& options)
+    : LimitSampler(basis, options, 0, basis.num_ptex_faces()) {}
+
+LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& options, Index first_ptex_face,
+                           Index last_ptex_face)
     : options_(options), domain_(basis.domain()), num_vertices_(basis.topology().num_vertices()) {
+    LIMSURF_CHECK(0 <= first_ptex_face && first_ptex_face <= last_ptex_face && last_ptex_face <= basis.num_ptex_faces(),
+                  InputError, "ptex faces [", first_ptex_face, ", ", last_ptex_face, ") are not within the ",
+                  basis.num_ptex_faces(), " ptex faces of the surface");
     LIMSURF_CHECK(options.subdivide_near_extraordinary >= 0 && options.subdivide_near_extraordinary <= 30, InputError,
                   "tile levels near extraordinary vertices must be in 0..30, not ",
                   options.subdivide_near_extraordinary);
@@ -178,7 +185,7 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
         domain_ == ParameterDomain::Quad ? square_rule(options.degree) : triangle_rule(options.degree);
 
     std::vector<Pending> pending;
-    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+    for (Index p = first_ptex_face; p < last_ptex_face; ++p) {
         if (!basis.has_limit_surface(p)) {
             continue;
         }
