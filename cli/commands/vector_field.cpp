@@ -32,6 +32,7 @@ struct VectorFieldCommandOptions {
     LimitSchemeOptions scheme;
     std::string method = "sec";
     int level = 3;
+    std::string vertex_mass = "exact";
     std::vector<std::string> sources, sinks, vortices, strokes;
     double weight = 1000.0;
     int sample_level = 2;
@@ -143,6 +144,7 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
     options.inner_products.method = parse_inner_product_method(o.method);
     options.inner_products.level = o.level;
     options.inner_products.num_threads = o.threads;
+    options.vertex_mass = o.vertex_mass == "lumped" ? VertexMassInverse::Lumped : VertexMassInverse::Exact;
     options.scheme_options = scheme_rules(mesh, o.scheme);
     if (o.reference_level >= 0) {
         options.reference_level = o.reference_level;
@@ -170,6 +172,8 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
                        {"closed", t.is_closed()},
                        {"genus", t.genus()},
                        {"solver", r.solver},
+                       {"vertex_mass", o.vertex_mass},
+                       {"solver_steps", r.solver_steps},
                        {"energy", r.energy},
                        {"w_norm", r.w.norm()},
                        {"max_residual", r.max_residual},
@@ -212,8 +216,11 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
         return exit_ok;
     }
     std::cout << std::setprecision(6) << "vector-field " << o.method << (sec ? " level " + std::to_string(o.level) : "")
-              << ", " << t.num_edges() << " edges, " << r.solver << "\nenergy       " << r.energy
-              << "  (anti-holomorphic, ½ wᵀ L1 w)\n";
+              << ", " << t.num_edges() << " edges, " << r.solver
+              << (r.solver_steps > 0          ? ", exact M0^-1 in " + std::to_string(r.solver_steps) + " CG steps"
+                  : o.vertex_mass == "lumped" ? ", lumped M0"
+                                              : "")
+              << "\nenergy       " << r.energy << "  (anti-holomorphic, ½ wᵀ L1 w)\n";
     for (const ConstraintReport& c : r.constraints) {
         std::cout << "constraint   " << std::left << std::setw(10) << c.kind << std::right
                   << (c.kind == "source"      ? " vertex "
@@ -246,6 +253,10 @@ void add_vector_field_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("input", o->input, "Input mesh (.obj, .off, .ply)")->required();
     add_limit_scheme_options(cmd, o->scheme);
     add_inner_product_options(cmd, o->method, o->level);
+    cmd->add_option("--vertex-mass", o->vertex_mass,
+                    "M0^-1 in the divergence energy: exact (default; conjugate gradients when M0 is not "
+                    "diagonal, as for sec) or lumped (diag(M0 1)^-1, one sparse solve)")
+        ->check(CLI::IsMember({"exact", "lumped"}));
     cmd->add_option("--source", o->sources, "Source V:s[:w]: divergence s > 0 at vertex V (repeatable)");
     cmd->add_option("--sink", o->sinks, "Sink V:s[:w]: divergence -s at vertex V (repeatable)");
     cmd->add_option("--vorticity", o->vortices, "Vortex F:c[:w]: circulation c around face F (repeatable)");

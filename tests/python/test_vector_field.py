@@ -15,7 +15,8 @@ def test_design_equals_the_cli(mesh_path, cli, tmp_path):
     ours = limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], sinks=[(30, 1.0)],
                                        vortices=[(7, 0.5, 1e4)], strokes=[([0, 1], 0.3)], method="sec", level=2,
                                        reference_level=2)
-    for key in ("scheme", "method", "level", "vertices", "edges", "faces", "closed", "genus", "solver", "energy",
+    for key in ("scheme", "method", "level", "vertices", "edges", "faces", "closed", "genus", "solver",
+                "vertex_mass", "solver_steps", "energy",
                 "w_norm", "max_residual", "source_imbalance", "vorticity_imbalance", "constraints", "warnings",
                 "samples", "reference"):
         assert ours[key] == theirs[key], key
@@ -23,6 +24,20 @@ def test_design_equals_the_cli(mesh_path, cli, tmp_path):
     v = ours["vectors"]
     assert v["points"].shape == v["vectors"].shape == (800, 3)
     assert np.abs(np.einsum("ij,ij->i", v["vectors"], v["normals"])).max() < 1e-12  # tangent
+
+
+def test_lumped_vertex_mass_equals_the_cli(mesh_path, cli):
+    theirs = cli("vector-field", mesh_path("genus2"), "--scheme", "catmull-clark", "--level", 2, "--source", "0:1",
+                 "--sink", "30:1", "--vertex-mass", "lumped", "--json")
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    ours = limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], sinks=[(30, 1.0)], level=2,
+                                       vertex_mass="lumped")
+    exact = limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], sinks=[(30, 1.0)], level=2)
+    assert ours["vertex_mass"] == theirs["vertex_mass"] == "lumped"
+    assert ours["solver_steps"] == theirs["solver_steps"] == 0
+    assert ours["energy"] == theirs["energy"]
+    # The exact M0⁻¹ bounds the lumped one from above (M0 <= diag(M0 1)): a larger energy at the minimiser.
+    assert exact["solver_steps"] > 0 and exact["energy"] > ours["energy"]
 
 
 def test_constant_field_on_a_plane(mesh_path):
@@ -36,6 +51,8 @@ def test_constant_field_on_a_plane(mesh_path):
 
 def test_errors(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("genus2"))
+    with pytest.raises(limsurf.InputError, match="unknown vertex_mass 'diagonal'"):
+        limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], vertex_mass="diagonal")
     with pytest.raises(limsurf.InputError, match="vertex 48 is out of range"):
         limsurf.design_vector_field(mesh, "catmull-clark", sources=[(48, 1.0)])
     with pytest.raises(limsurf.InputError, match="at least one constraint"):

@@ -5,9 +5,9 @@ Run by ctest (`studies.plots`) with LIMSURF_CLI naming the limsurf binary; by ha
   LIMSURF_CLI=build/release/cli/limsurf /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/studies
 
 Checked: vector_fields.{csv,json,png,svg} exist and parse (PNG signature and size, SVG is XML without a
-date), the CSV has the documented columns and finite errors; the design driven by vortices and a stroke is
-far closer to the reference with SEC than with DEC (the paper's kind of field: measured 0.26x at quick
-levels); the Hodge parts of SEC are closer than DEC's (the paper: an 80 % improvement; quick: above 50 %);
+date), the CSV has the documented columns and finite errors; every design (vortices and a stroke, sources
+and sinks, all of them) is far closer to the reference with SEC than with DEC (measured 0.26x, 0.12x and
+0.08x at quick levels); the Hodge parts of SEC are closer than DEC's (the paper: an 80 % improvement; quick: above 50 %);
 every run reached its reference on the subdivided mesh (1600 edges at K = 2).
 """
 
@@ -69,12 +69,16 @@ def test_files(outdir):
         assert float(row["seconds"]) > 0.0
 
 
-def test_sec_is_closer_for_the_papers_kind_of_field(outdir):
+@pytest.mark.parametrize("case", ["vortices+stroke", "sources+sinks", "all"])
+def test_sec_is_closer_for_every_constraint_set(outdir, case):
     summary = json.loads((outdir / "vector_fields.json").read_text(encoding="utf-8"))
-    design = summary["design"]["vortices+stroke"]
+    design = summary["design"][case]
+    # Quick levels measured 0.26x, 0.12x and 0.08x (sources need the exact M0⁻¹, the default).
     assert design["sec L=2"]["l2_relative"] < 0.5 * design["dec"]["l2_relative"]
-    # SEC meets the same constraints: its misfit is of the order of DEC's (soft constraints, weight 1000).
-    assert design["sec L=2"]["max_residual"] < 2 * design["dec"]["max_residual"]
+    if case == "vortices+stroke":
+        # SEC meets the same constraints: its misfit is of the order of DEC's (soft constraints, weight 1000).
+        # With sources it is larger: the exact divergence energy is larger (the reference's, about 4x DEC's).
+        assert design["sec L=2"]["max_residual"] < 2 * design["dec"]["max_residual"]
 
 
 def test_sec_hodge_parts_are_closer(outdir):

@@ -119,8 +119,23 @@ struct VectorFieldConstraints {
     std::vector<StrokeConstraint> strokes;
 };
 
+/// How M0⁻¹ enters the divergence term ‖d0ᵀ M1 w‖²_{M0⁻¹} of the anti-holomorphic energy (SEC Eq. 4).
+enum class VertexMassInverse {
+    /// The inverse of the inner products' own M0. The term is then ‖P div w‖², P the L2 projection onto
+    /// the 0-forms: a source (the divergence tested against φ_v) asks for a divergence in the span of the
+    /// φ's, as in the continuous problem, and the minimiser converges to it. The default. For dec and
+    /// decsnap M0 is diagonal and this is Lumped.
+    Exact,
+    /// diag(M0 1)⁻¹, the mass lumping the paper mentions for locality (§2.3): anti_holomorphic_matrix,
+    /// sparse. With a non-diagonal M0 (sec, secsnap) the divergence energy then asks every unconstrained
+    /// vertex for zero tested divergence, and a source's field tends to a Green's function instead of the
+    /// continuous minimiser (docs/guide/vector_field.md "Accuracy").
+    Lumped,
+};
+
 struct VectorFieldOptions {
-    InnerProductOptions inner_products;  ///< dec, decsnap, sec, secsnap and L (lumped: see design_vector_field)
+    InnerProductOptions inner_products;  ///< dec, decsnap, sec, secsnap and L
+    VertexMassInverse vertex_mass = VertexMassInverse::Exact;
     SchemeOptions scheme_options;
     /// Also design with DEC on the K-times subdivided mesh and compare (K >= 1); empty: no reference.
     std::optional<int> reference_level;
@@ -145,7 +160,7 @@ struct VectorFieldReference {
 
 struct VectorFieldResult {
     Eigen::VectorXd w;    ///< #E: the designed 1-form
-    double energy = 0.0;  ///< E_A(w) = ½ wᵀ L1 w (without the constraint penalties)
+    double energy = 0.0;  ///< E_A(w) = ½ wᵀ L1 w with the chosen M0⁻¹ (without the constraint penalties)
     std::vector<ConstraintReport> constraints;
     double max_residual = 0.0;  ///< max over constraints of |achieved − target| / max(|target|, tiny)
     /// Closed surfaces: Σ strengths and Σ circulations (both must be 0: Σ_v (d0ᵀ M1 w)_v = (d0 1)ᵀ M1 w = 0
@@ -154,19 +169,26 @@ struct VectorFieldResult {
     double vorticity_imbalance = 0.0;
     std::vector<std::string> warnings;  ///< e.g. imbalanced sources or vortices on a closed surface
     std::string solver;
+    /// Conjugate-gradient steps of the exact-M0 solve (VertexMassInverse::Exact with a non-diagonal M0);
+    /// 0 when the system was solved directly.
+    int solver_steps = 0;
     std::optional<VectorFieldReference> reference;
 };
 
-/// @brief The matrix of the anti-holomorphic energy (SEC Eq. 4), L1 = d1ᵀ M2 d1 + M1 d0 D0⁻¹ d0ᵀ M1 with
-///   D0 = diag(M0 1), the lumped M0 (exact for dec and decsnap, whose M0 is diagonal; for sec and secsnap
-///   M0⁻¹ would be dense, and lumping is what the paper suggests, §2.3). #E × #E, symmetric positive
-///   semi-definite; its kernel is the harmonic 1-forms (d1 h = 0, d0ᵀ M1 h = 0), whatever D0 is.
+/// @brief The lumped matrix of the anti-holomorphic energy (SEC Eq. 4), L1 = d1ᵀ M2 d1 + M1 d0 D0⁻¹ d0ᵀ M1
+///   with D0 = diag(M0 1) (VertexMassInverse::Lumped; exact for dec and decsnap, whose M0 is diagonal; for
+///   sec and secsnap the exact M0⁻¹ is dense and design_vector_field applies it without forming L1).
+///   #E × #E, symmetric positive semi-definite; its kernel is the harmonic 1-forms (d1 h = 0,
+///   d0ᵀ M1 h = 0), whatever D0 is.
 [[nodiscard]] SparseMatrix anti_holomorphic_matrix(const Topology& topology, const InnerProducts& inner_products);
 
 /// @brief Designs the smoothest 1-form meeting @p constraints softly (Fisher et al. 2007):
 ///   minimises E_A(w) + ½ Σ_c κ weight_c (a_c · w − target_c)², κ = 1 / (area of the control mesh) so that
 ///   weights are dimensionless and scale-invariant, through the normal equations
-///   (L1 + Aᵀ W A + ε M1) w = Aᵀ W t (sparse Cholesky). ε = 1e-10 · mean diag(L1) / mean diag(M1) only
+///   (L1 + Aᵀ W A + ε M1) w = Aᵀ W t: by sparse Cholesky when M0⁻¹ is lumped or M0 diagonal; with the exact
+///   M0⁻¹ of a non-diagonal M0 (the default for sec, secsnap) by conjugate gradients preconditioned with the
+///   Cholesky factor of the lumped system, each step one solve with it and one with M0's factor, to a
+///   relative residual of 1e-12 (solver_steps). ε = 1e-10 · mean diag(L1) / mean diag(M1) only
 ///   keeps the system definite where no constraint fixes the harmonic part (sources and vortices cannot:
 ///   their rows are orthogonal to the harmonic forms; strokes fix some harmonic directions). In the directions
 ///   left free the minimiser is taken M1-orthogonal to the harmonic forms; the solve gives that only up to
@@ -179,7 +201,8 @@ struct VectorFieldResult {
 /// @throws InputError for no constraints, an element out of range (naming it), a stroke with fewer than two
 ///   vertices or two consecutive vertices without an edge between them (naming them), a vertex or face
 ///   constrained twice, a weight that is not positive and finite, a non-finite target; as
-///   control_inner_products; NumericalError when the factorisation fails
+///   control_inner_products; NumericalError when a factorisation fails or the conjugate gradients do not
+///   converge in 2000 steps
 [[nodiscard]] VectorFieldResult design_vector_field(const Topology& topology, const Points& X0, SchemeKind scheme,
                                                     const VectorFieldConstraints& constraints,
                                                     const VectorFieldOptions& options);
