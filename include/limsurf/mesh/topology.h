@@ -163,7 +163,9 @@ class Topology {
     /// Builds the tables without validating: the faces come from a refinement step.
     Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
              const SharpnessTags& sharpness);
-    void build(const std::vector<detail::HalfEdge>& half_edges, const SharpnessTags& sharpness);
+    /// The tables from validated half-edges. Returns false, with the tables unusable, when some vertex's
+    /// faces form several fans (a bow-tie: the one-ring walk ends before it has seen every face).
+    [[nodiscard]] bool build(std::span<const detail::HalfEdge> half_edges, const SharpnessTags& sharpness);
 
     static std::size_t at(Index i) { return static_cast<std::size_t>(i); }
     template <class T>
@@ -173,7 +175,7 @@ class Topology {
         return std::span<const T>(table).subspan(begin, end - begin);
     }
     /// Returns, parallel to edge_faces_, the corner at which each of those faces enters the edge.
-    std::vector<Index> build_edges(const std::vector<detail::HalfEdge>& half_edges);
+    std::vector<Index> build_edges(std::span<const detail::HalfEdge> half_edges);
     /// From face_edges_, face_edge_signs_ and the face count of each edge in edge_face_offsets_[e + 1]:
     /// the offsets and edge_faces_; the corner at which each face enters the edge into
     /// @p edge_face_corners when it is not null.
@@ -181,7 +183,9 @@ class Topology {
     /// vertex_is_boundary_ and the one-ring offsets from each vertex's number of faces (in
     /// vertex_face_offsets_[v + 1]); sizes the one-ring tables.
     void allocate_one_rings();
-    void build_one_rings(const std::vector<Index>& edge_face_corners);
+    /// Walks around each vertex counter-clockwise. Returns false when a walk ends early: a vertex
+    /// whose faces form several fans.
+    [[nodiscard]] bool build_one_rings(const std::vector<Index>& edge_face_corners);
     void build_boundary_loops();
     void build_components();
     void apply_sharpness(const SharpnessTags& sharpness);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
+#include <stdexcept>
 #include <utility>
 
 #include "limsurf/core/error.h"
@@ -52,12 +53,19 @@ Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std:
                    const SharpnessTags& sharpness)
     : num_vertices_(num_vertices), face_offsets_(face_offsets.begin(), face_offsets.end()),
       face_vertices_(face_vertices.begin(), face_vertices.end()) {
+    const detail::FaceListView faces{num_vertices, face_offsets, face_vertices};
     ValidationReport report;
-    std::vector<detail::HalfEdge> half_edges;
-    detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report,
-                               &half_edges);
+    detail::HalfEdges half_edges;
+    // Bow-tie vertices are found by the one-ring walk, which needs manifold, consistently oriented
+    // edges (checked here); the report for them comes from the full check, as validate() writes it.
+    detail::check_connectivity(faces, sharpness, SourceMap{}, report, &half_edges, detail::VertexFans::LeftToTheCaller);
     throw_if_unusable(report);
-    build(half_edges, sharpness);
+    if (!build(half_edges, sharpness)) {
+        ValidationReport full;
+        detail::check_connectivity(faces, sharpness, SourceMap{}, full);
+        throw_if_unusable(full);
+        throw std::logic_error("limsurf bug: a one-ring walk ended early but no vertex is non-manifold");
+    }
 }
 
 Topology::Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets,
@@ -70,15 +78,20 @@ Topology::Topology(Trusted, Index num_vertices, std::span<const Index> face_offs
     detail::check_connectivity({num_vertices, face_offsets, face_vertices}, sharpness, SourceMap{}, report);
     LIMSURF_ASSERT(!report.has_errors(), "refinement produced an invalid topology: ", report.summary());
 #endif
-    build(detail::sorted_half_edges_unchecked({num_vertices, face_offsets, face_vertices}), sharpness);
+    [[maybe_unused]] const bool manifold =
+        build(detail::sorted_half_edges_unchecked({num_vertices, face_offsets, face_vertices}), sharpness);
+    LIMSURF_ASSERT(manifold, "refinement produced a non-manifold vertex");
 }
 
-void Topology::build(const std::vector<detail::HalfEdge>& half_edges, const SharpnessTags& sharpness) {
+bool Topology::build(std::span<const detail::HalfEdge> half_edges, const SharpnessTags& sharpness) {
     const std::vector<Index> edge_face_corners = build_edges(half_edges);
-    build_one_rings(edge_face_corners);
+    if (!build_one_rings(edge_face_corners)) {
+        return false;
+    }
     build_boundary_loops();
     build_components();
     apply_sharpness(sharpness);
+    return true;
 }
 
 namespace detail {
@@ -101,23 +114,21 @@ Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vect
     return Topology(num_vertices, offsets, corners, sharpness);
 }
 
-std::vector<Index> Topology::build_edges(const std::vector<detail::HalfEdge>& half_edges) {
-    // half_edges is sorted by (edge key, face): each run of equal keys is one edge (a group).
-    std::vector<Index> group_of_corner(face_vertices_.size());
-    std::vector<Index> group_size;
+std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_edges) {
+    // half_edges is sorted by (edge key, face): each run of equal keys is one edge (a group). Each
+    // corner's group goes into face_edges_ first, and is replaced by its edge below (no table of
+    // its own: a million quads have 4M corners).
+    face_edges_.resize(face_vertices_.size());
+    Index num_groups = 0;
     for (size_t i = 0; i < half_edges.size(); ++i) {
-        if (i == 0 || half_edges[i].key != half_edges[i - 1].key) {
-            group_size.push_back(0);
-        }
-        group_of_corner[at(half_edges[i].corner)] = static_cast<Index>(group_size.size()) - 1;
-        ++group_size.back();
+        num_groups += i == 0 || half_edges[i].key != half_edges[i - 1].key ? 1 : 0;
+        face_edges_[at(half_edges[i].corner)] = num_groups - 1;
     }
-    const auto num_groups = static_cast<Index>(group_size.size());
 
     // Edges numbered in order of first appearance in the face list (locality, like Vtr), in one pass
-    // over the corners; then their faces (at most two: validated) in a second pass.
+    // over the corners, which also counts each edge's faces (at most two: validated); then the
+    // faces themselves in a second pass.
     std::vector<Index> edge_of_group(at(num_groups), invalid_index);
-    face_edges_.resize(face_vertices_.size());
     face_edge_signs_.resize(face_vertices_.size());
     edge_vertices_.resize(2 * at(num_groups));
     edge_face_offsets_.assign(at(num_groups) + 1, 0);
@@ -128,14 +139,13 @@ std::vector<Index> Topology::build_edges(const std::vector<detail::HalfEdge>& ha
         for (Index c = first; c <= last; ++c) {
             const Index a = face_vertices_[at(c)];
             const Index b = face_vertices_[at(c == last ? first : c + 1)];
-            const Index g = group_of_corner[at(c)];
-            Index& e = edge_of_group[at(g)];
+            Index& e = edge_of_group[at(face_edges_[at(c)])];
             if (e == invalid_index) {
                 e = num_numbered++;
                 edge_vertices_[2 * at(e)] = std::min(a, b);
                 edge_vertices_[2 * at(e) + 1] = std::max(a, b);
-                edge_face_offsets_[at(e) + 1] = group_size[at(g)];
             }
+            ++edge_face_offsets_[at(e) + 1];
             face_edges_[at(c)] = e;
             face_edge_signs_[at(c)] = a < b ? 1 : -1;
         }
@@ -194,7 +204,7 @@ Index Topology::find_edge(Index a, Index b) const {
     return invalid_index;
 }
 
-void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
+bool Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // Per vertex: its number of corners, and the corner its walk starts at — the first corner in
     // face order, or for a boundary vertex the corner whose outgoing edge is its (single, the
     // vertex is manifold) outgoing boundary edge. No per-vertex corner lists are needed.
@@ -220,6 +230,7 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     allocate_one_rings();
     const std::vector<Index>& offsets = vertex_face_offsets_;
     std::vector<std::uint8_t> walked(at(num_vertices_), 0);
+    bool every_walk_complete = true;
 
     // The walk, for a way of finding a corner's face: arithmetic when all faces have one degree
     // (every refined level of Catmull–Clark and Loop), a table otherwise.
@@ -252,9 +263,16 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
                 // (looked up, not searched: a face of 10⁵ corners must not make the walk quadratic).
                 const Index other = edge_faces_[at(across)] == f ? 1 : 0;
                 corner = edge_face_corners[at(across + other)];
+                if (corner == start[at(v)]) {
+                    break;  // round the fan: the last step, unless another fan meets here
+                }
             }
-            LIMSURF_ASSERT(face_slot == offsets[at(v) + 1] && edge_slot == vertex_edge_offsets_[at(v) + 1],
-                           "one-ring walk of vertex ", v, " missed faces");
+            // A walk round one fan ends at a boundary edge or back at its start: short of the vertex's
+            // corners, some other fan meets this one only at the vertex (a bow-tie).
+            if (face_slot != offsets[at(v) + 1] || edge_slot != vertex_edge_offsets_[at(v) + 1]) {
+                every_walk_complete = false;
+                return;
+            }
         }
     };
     if (all_faces_have_degree(4)) {
@@ -268,6 +286,7 @@ void Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
         }
         walk([&](Index corner) { return corner_face[at(corner)]; });
     }
+    return every_walk_complete;
 }
 
 std::span<const Index> Topology::vertex_faces(Index v) const {
@@ -336,8 +355,10 @@ void Topology::build_components() {
         parent[at(b)] = a;
         size[at(a)] += size[at(b)];
     }
-    // Number components in order of their first face.
-    std::vector<Index> number(at(num_faces()), invalid_index);
+    // Number components in order of their first face (in the sizes' table, no longer needed: a
+    // table less to fault in).
+    std::vector<Index>& number = size;
+    std::fill(number.begin(), number.end(), invalid_index);
     face_component_.assign(at(num_faces()), 0);
     num_components_ = 0;
     for (Index f = 0; f < num_faces(); ++f) {

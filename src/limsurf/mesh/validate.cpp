@@ -141,7 +141,7 @@ class ParityUnionFind {
             const Index next = parent_[at(x)];
             const int old = parity_[at(x)];
             parent_[at(x)] = root;
-            parity_[at(x)] = remaining;
+            parity_[at(x)] = static_cast<std::uint8_t>(remaining);
             remaining ^= old;
             x = next;
         }
@@ -155,13 +155,13 @@ class ParityUnionFind {
             return (pa ^ pb) == relation;
         }
         parent_[at(rb)] = ra;
-        parity_[at(rb)] = pa ^ pb ^ relation;
+        parity_[at(rb)] = static_cast<std::uint8_t>(pa ^ pb ^ relation);
         return true;
     }
 
   private:
     std::vector<Index> parent_;
-    std::vector<int> parity_;
+    std::vector<std::uint8_t> parity_;  // 0 or 1
 };
 
 /// Small plain union-find for the fans around one vertex.
@@ -176,8 +176,8 @@ Index find_root(std::vector<Index>& parent, Index x) {
 class ConnectivityChecker {
   public:
     ConnectivityChecker(const FaceListView& faces, const SharpnessTags& sharpness, const SourceMap& source,
-                        ValidationReport& report)
-        : faces_(faces), sharpness_(sharpness), source_(source), report_(report) {}
+                        ValidationReport& report, VertexFans fans = VertexFans::Check)
+        : faces_(faces), sharpness_(sharpness), source_(source), report_(report), fans_(fans) {}
 
     void run() {
         check_offsets();
@@ -192,10 +192,10 @@ class ConnectivityChecker {
         check_tags();
     }
 
-    [[nodiscard]] std::vector<HalfEdge> take_half_edges() { return std::move(half_edges_); }
+    [[nodiscard]] HalfEdges take_half_edges() { return std::move(half_edges_); }
 
     /// Only the sorted half-edges, treating every face as valid (trusted input).
-    [[nodiscard]] std::vector<HalfEdge> collect_unchecked() {
+    [[nodiscard]] HalfEdges collect_unchecked() {
         good_face_.assign(at(num_faces()), 1);
         collect_half_edges();
         return std::move(half_edges_);
@@ -247,7 +247,7 @@ class ConnectivityChecker {
                                "]"));
                     good = false;
                 } else {
-                    ++vertex_use_[at(v)];
+                    vertex_use_[at(v)] = 1;
                 }
             }
             if (good) {
@@ -284,14 +284,15 @@ class ConnectivityChecker {
     /// the lower vertex, then a tiny insertion sort within each bucket, so the
     /// cost stays linear in the number of corners.
     void collect_half_edges() {
-        std::vector<Index> bucket(at(faces_.num_vertices) + 1, 0);
+        // Counted one slot to the right, so that filling moves bucket[v + 1] from v's start to its
+        // end, which is v + 1's start: afterwards bucket[v], bucket[v + 1] bound v's half-edges.
+        std::vector<Index> bucket(at(faces_.num_vertices) + 2, 0);
         for_each_good_corner(
-            [&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 1]; });
+            [&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 2]; });
         std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
         half_edges_.resize(at(bucket.back()));
-        std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
         for_each_good_corner([&](Index f, Index a, Index b, Index corner) {
-            half_edges_[at(fill[at(std::min(a, b))]++)] = {edge_key(a, b), f, corner};
+            half_edges_[at(bucket[at(std::min(a, b)) + 1]++)] = {edge_key(a, b), f, corner};
         });
         auto before = [](const HalfEdge& x, const HalfEdge& y) {
             return x.key != y.key ? x.key < y.key : x.face < y.face;
@@ -446,6 +447,10 @@ class ConnectivityChecker {
     }
 
     void check_vertices() {
+        if (fans_ == VertexFans::LeftToTheCaller) {
+            report_isolated_vertices();
+            return;
+        }
         // Corners grouped by vertex.
         std::vector<Index> offsets(at(faces_.num_vertices) + 1, 0);
         for (const HalfEdge& h : half_edges_) {
@@ -482,6 +487,15 @@ class ConnectivityChecker {
         }
     }
 
+    void report_isolated_vertices() {
+        for (Index v = 0; v < faces_.num_vertices; ++v) {
+            if (vertex_use_[at(v)] == 0) {
+                add(Problem::IsolatedVertex, source_.vertex_location(v),
+                    concat("vertex ", v, " is in no face (isolated)"));
+            }
+        }
+    }
+
     /// Number of edge-connected fans among the corners (next, prev) at one vertex.
     Index count_fans(std::span<const std::pair<Index, Index>> corners) {
         auto& by_neighbour = scratch_pairs_;  // (neighbour, corner)
@@ -512,10 +526,27 @@ class ConnectivityChecker {
     /// Two faces with the same vertex set share every edge, in particular the
     /// smallest edge of each: compare only faces meeting at their smallest edge.
     void check_duplicate_faces() {
-        std::vector<std::uint64_t> smallest_edge(at(num_faces()), ~std::uint64_t{0});
-        for (const HalfEdge& h : half_edges_) {
-            smallest_edge[at(h.face)] = std::min(smallest_edge[at(h.face)], h.key);
-        }
+        // A small face's smallest edge is computed from its corners where asked, not tabled (8 MB
+        // for a million faces, which cost more in first-touch page faults than the recomputation);
+        // a large face's is remembered, so that its many edges do not make the check quadratic.
+        std::unordered_map<Index, std::uint64_t> large_faces;
+        const auto smallest_edge = [&](Index f) {
+            const auto c = face(f);
+            constexpr size_t small = 16;
+            if (c.size() > small) {
+                if (const auto it = large_faces.find(f); it != large_faces.end()) {
+                    return it->second;
+                }
+            }
+            std::uint64_t smallest = ~std::uint64_t{0};
+            for (size_t k = 0; k < c.size(); ++k) {
+                smallest = std::min(smallest, edge_key(c[k], c[(k + 1) % c.size()]));
+            }
+            if (c.size() > small) {
+                large_faces.emplace(f, smallest);
+            }
+            return smallest;
+        };
         for_each_edge([&](size_t begin, size_t end) {
             if (end - begin > 16) {  // a non-manifold fan, already an error; avoid quadratic work
                 return;
@@ -524,7 +555,7 @@ class ConnectivityChecker {
                 for (size_t i = begin; i < j; ++i) {
                     const Index f = half_edges_[i].face;
                     const Index g = half_edges_[j].face;
-                    if (smallest_edge[at(f)] == half_edges_[i].key && smallest_edge[at(g)] == half_edges_[i].key &&
+                    if (smallest_edge(f) == half_edges_[i].key && smallest_edge(g) == half_edges_[i].key &&
                         same_vertex_set(face(f), face(g))) {
                         add(Problem::DuplicateFace, source_.face_location(g),
                             concat("face ", g, " has the same vertices as face ", f, " (duplicate face)"));
@@ -597,10 +628,11 @@ class ConnectivityChecker {
     const SharpnessTags& sharpness_;
     const SourceMap& source_;
     ValidationReport& report_;
+    VertexFans fans_;
     std::vector<std::uint8_t> good_face_;
-    std::vector<Index> vertex_use_;
+    std::vector<std::uint8_t> vertex_use_;  // 1: in some face
     std::vector<std::uint8_t> touches_non_manifold_edge_;
-    std::vector<HalfEdge> half_edges_;
+    HalfEdges half_edges_;
     std::unordered_map<Index, FlipTally> flip_tallies_;   // per orientation component (root face)
     std::vector<std::pair<Index, Index>> scratch_pairs_;  // reused by count_fans
     std::vector<Index> scratch_parents_;
@@ -609,15 +641,15 @@ class ConnectivityChecker {
 }  // namespace
 
 void check_connectivity(const FaceListView& faces, const SharpnessTags& sharpness, const SourceMap& source,
-                        ValidationReport& report, std::vector<HalfEdge>* sorted_half_edges) {
-    ConnectivityChecker checker(faces, sharpness, source, report);
+                        ValidationReport& report, HalfEdges* sorted_half_edges, VertexFans fans) {
+    ConnectivityChecker checker(faces, sharpness, source, report, fans);
     checker.run();
     if (sorted_half_edges != nullptr) {
         *sorted_half_edges = checker.take_half_edges();
     }
 }
 
-std::vector<HalfEdge> sorted_half_edges_unchecked(const FaceListView& faces) {
+HalfEdges sorted_half_edges_unchecked(const FaceListView& faces) {
     const SharpnessTags no_tags;
     const SourceMap no_source;
     ValidationReport unused;

@@ -208,6 +208,42 @@ TEST(Topology, RefusesBadConnectivityWithTheElementNamed) {
     EXPECT_THROW((void)Topology::from_polygons(3, {{0, 1, 1}}), InputError);
 }
 
+// The Topology constructor leaves bow-ties to its one-ring walk (which stops short at one) and then
+// reports them as validate() does: closed fans (the walk comes round early), open fans (it meets a
+// boundary edge early), mixed, three fans, a bow-tie walked after good vertices, and two of them.
+TEST(Topology, FindsEveryKindOfBowTieInItsOneRingWalk) {
+    const auto tetrahedron = [](Index a, Index b, Index c, Index d) {
+        return std::vector<std::vector<Index>>{{a, c, b}, {a, b, d}, {a, d, c}, {b, c, d}};
+    };
+    const auto joined = [](std::vector<std::vector<Index>> x, const std::vector<std::vector<Index>>& y) {
+        x.insert(x.end(), y.begin(), y.end());
+        return x;
+    };
+    const auto error_of = [](Index nv, const std::vector<std::vector<Index>>& faces) -> std::string {
+        try {
+            (void)Topology::from_polygons(nv, faces);
+        } catch (const TopologyError& error) {
+            return error.what();
+        }
+        return "no error";
+    };
+    const std::string two_fans =
+        "vertex 0 is non-manifold: its faces form 2 fans that meet only at this vertex (bow-tie)";
+    EXPECT_EQ(error_of(7, joined(tetrahedron(0, 1, 2, 3), tetrahedron(0, 4, 5, 6))), two_fans);  // closed + closed
+    EXPECT_EQ(error_of(6, joined(tetrahedron(0, 1, 2, 3), {{0, 4, 5}})), two_fans);              // closed + open
+    EXPECT_EQ(error_of(6, joined({{0, 4, 5}}, tetrahedron(0, 1, 2, 3))), two_fans);              // open + closed
+    EXPECT_EQ(error_of(7, {{0, 1, 2}, {0, 3, 4}, {0, 5, 6}}),
+              "vertex 0 is non-manifold: its faces form 3 fans that meet only at this vertex (bow-tie)");
+    // Vertex 6 is walked after vertices 1..5, whose walks are complete.
+    EXPECT_EQ(error_of(7, joined(tetrahedron(1, 2, 3, 6), tetrahedron(4, 5, 0, 6))),
+              "vertex 6 is non-manifold: its faces form 2 fans that meet only at this vertex (bow-tie)");
+    EXPECT_EQ(error_of(9, joined(joined(tetrahedron(0, 1, 2, 3), tetrahedron(0, 4, 5, 6)), {{6, 7, 8}})),
+              two_fans + " (and 1 more error)");
+    // Manifold meshes next to them still build: a closed and an open fan at every vertex.
+    EXPECT_NO_THROW((void)Topology::from_polygons(4, tetrahedron(0, 1, 2, 3)));
+    EXPECT_NO_THROW((void)Topology::from_polygons(4, {{0, 1, 2}, {0, 2, 3}}));
+}
+
 TEST(Topology, RejectsCreaseOnMissingEdge) {
     SharpnessTags tags;
     tags.creases.push_back({0, 7, 1.0, 0});
