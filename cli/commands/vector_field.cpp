@@ -144,7 +144,7 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
     options.inner_products.method = parse_inner_product_method(o.method);
     options.inner_products.level = o.level;
     options.inner_products.num_threads = o.threads;
-    options.vertex_mass = o.vertex_mass == "lumped" ? VertexMassInverse::Lumped : VertexMassInverse::Exact;
+    options.vertex_mass = parse_vertex_mass_inverse(o.vertex_mass);
     options.scheme_options = scheme_rules(mesh, o.scheme);
     if (o.reference_level >= 0) {
         options.reference_level = o.reference_level;

@@ -87,15 +87,13 @@ and the mean of the faces' vectors), 'fit_residual' and 'level'.)");
            int level, const std::string& vertex_mass, int sample_level, std::optional<int> reference_level,
            std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
-            LIMSURF_CHECK(vertex_mass == "exact" || vertex_mass == "lumped", InputError, "unknown vertex_mass '",
-                          vertex_mass, "' (exact or lumped)");
             return naming_source(mesh, [&] {
                 const VectorFieldConstraints c = constraints_from(sources, sinks, vortices, strokes, weight);
                 const SchemeKind kind = scheme_from(scheme);
                 VectorFieldOptions o;
                 o.inner_products.method = parse_inner_product_method(method);
                 o.inner_products.level = level;
-                o.vertex_mass = vertex_mass == "lumped" ? VertexMassInverse::Lumped : VertexMassInverse::Exact;
+                o.vertex_mass = parse_vertex_mass_inverse(vertex_mass);
                 o.scheme_options = rules_for(mesh.mesh, RuleNames{boundary, creasing, triangles});
                 o.reference_level = reference_level;
                 const Topology& t = mesh.mesh.topology();

@@ -329,7 +329,7 @@ TEST(VectorFieldTest, ReferenceOnTheSubdividedMesh) {
         o.reference_level = 3;
         const VectorFieldResult r =
             design_vector_field(mesh.topology(), mesh.positions(), SchemeKind::CatmullClark, c, o);
-        EXPECT_TRUE(r.reference && r.reference->edges == 6400);
+        EXPECT_EQ(r.reference ? r.reference->edges : 0, 6400);
         return r;
     };
     const std::pair<const VectorFieldConstraints*, double> cases[] = {
@@ -337,6 +337,7 @@ TEST(VectorFieldTest, ReferenceOnTheSubdividedMesh) {
     for (const auto& [c, ratio] : cases) {
         const VectorFieldResult dec = design(*c, InnerProductMethod::Dec, VertexMassInverse::Exact);
         const VectorFieldResult sec = design(*c, InnerProductMethod::Sec, VertexMassInverse::Exact);
+        ASSERT_TRUE(dec.reference && sec.reference);
         EXPECT_LT(sec.reference->l2_relative, ratio * dec.reference->l2_relative) << c->sources.size();
         // The energies too: SEC's within 1e-3 of the reference's (measured 1e-5), DEC's off by a factor 4.
         EXPECT_NEAR(sec.energy, sec.reference->energy, 1e-3 * sec.reference->energy) << c->sources.size();
@@ -345,6 +346,7 @@ TEST(VectorFieldTest, ReferenceOnTheSubdividedMesh) {
     // from the reference than even DEC.
     const VectorFieldResult lumped = design(sources, InnerProductMethod::Sec, VertexMassInverse::Lumped);
     const VectorFieldResult dec = design(sources, InnerProductMethod::Dec, VertexMassInverse::Lumped);
+    ASSERT_TRUE(lumped.reference && dec.reference);
     EXPECT_GT(lumped.reference->l2_relative, dec.reference->l2_relative);
 }
 
@@ -378,6 +380,14 @@ TEST(VectorFieldTest, BadInputIsRefusedClearly) {
     EXPECT_THROW(
         (void)one_form_vectors(t, mesh.positions(), SchemeKind::CatmullClark, Eigen::VectorXd::Zero(t.num_edges()), 7),
         InputError);
+    EXPECT_EQ(parse_vertex_mass_inverse("exact"), VertexMassInverse::Exact);
+    EXPECT_EQ(parse_vertex_mass_inverse(to_string(VertexMassInverse::Lumped)), VertexMassInverse::Lumped);
+    try {
+        (void)parse_vertex_mass_inverse("diagonal");
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "unknown vertex_mass 'diagonal' (expected exact or lumped)");
+    }
 }
 
 }  // namespace

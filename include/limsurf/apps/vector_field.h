@@ -133,6 +133,11 @@ enum class VertexMassInverse {
     Lumped,
 };
 
+/// "exact", "lumped".
+[[nodiscard]] const char* to_string(VertexMassInverse vertex_mass) noexcept;
+/// @throws InputError naming @p name unless it is "exact" or "lumped"
+[[nodiscard]] VertexMassInverse parse_vertex_mass_inverse(const std::string& name);
+
 struct VectorFieldOptions {
     InnerProductOptions inner_products;  ///< dec, decsnap, sec, secsnap and L
     VertexMassInverse vertex_mass = VertexMassInverse::Exact;

@@ -412,6 +412,25 @@ VectorFieldReference design_reference(const Topology& topology, const Points& X0
 
 }  // namespace
 
+const char* to_string(VertexMassInverse vertex_mass) noexcept {
+    switch (vertex_mass) {
+    case VertexMassInverse::Exact:
+        return "exact";
+    case VertexMassInverse::Lumped:
+        return "lumped";
+    }
+    return "?";
+}
+
+VertexMassInverse parse_vertex_mass_inverse(const std::string& name) {
+    for (const VertexMassInverse m : {VertexMassInverse::Exact, VertexMassInverse::Lumped}) {
+        if (name == to_string(m)) {
+            return m;
+        }
+    }
+    throw InputError("unknown vertex_mass '" + name + "' (expected exact or lumped)");
+}
+
 OneFormVectors one_form_vectors(const Topology& topology, const Points& X0, SchemeKind scheme, const Eigen::VectorXd& w,
                                 int level, const SchemeOptions& scheme_options) {
     LIMSURF_CHECK(w.size() == topology.num_edges(), InputError, "the 1-form has ", w.size(), " values for ",
@@ -600,8 +619,9 @@ VectorFieldResult design_vector_field(const Topology& topology, const Points& X0
     const Eigen::VectorXd rhs = At * W.cwiseProduct(t);
     const bool exact_mass = options.vertex_mass == VertexMassInverse::Exact && !is_diagonal(ip.M0);
     std::optional<detail::SparseCholesky> M0_factor;
-    const Eigen::VectorXd lumped_inverse = (ip.M0 * Eigen::VectorXd::Ones(ip.M0.cols())).cwiseInverse();
+    Eigen::VectorXd lumped_inverse;  // diag(M0 1)⁻¹, used only to swap the lumped divergence term for the exact one
     if (exact_mass) {
+        lumped_inverse = (ip.M0 * Eigen::VectorXd::Ones(ip.M0.cols())).cwiseInverse();
         M0_factor.emplace(ip.M0, "the vertex mass matrix M0");
         result.w =
             solve_with_exact_vertex_mass(K, solver, divergence, *M0_factor, lumped_inverse, rhs, result.solver_steps);
