@@ -657,15 +657,39 @@ class PlyReader {
 
 // ---- writing
 
-template <class T>
-void store(std::ostream& out, T value, bool swap) {
-    std::array<unsigned char, sizeof(T)> bytes{};
-    std::memcpy(bytes.data(), &value, sizeof(T));
-    if (swap) {
-        std::reverse(bytes.begin(), bytes.end());
+/// Binary values gathered into blocks before they reach the stream: one ostream::write per value
+/// (sentry, virtual calls) cost about as much as the refinement of a million-face mesh, so the
+/// writer's share of `limsurf subdivide` was a third (docs/BENCHMARKS.md).
+class BinaryStore {
+  public:
+    BinaryStore(std::ostream& out, bool swap) : out_(out), swap_(swap) { buffer_.reserve(block); }
+    BinaryStore(const BinaryStore&) = delete;
+    BinaryStore& operator=(const BinaryStore&) = delete;
+    ~BinaryStore() = default;  // what is left unflushed is dropped: call flush() at the end
+
+    template <class T>
+    void put(T value) {
+        std::array<unsigned char, sizeof(T)> bytes{};
+        std::memcpy(bytes.data(), &value, sizeof(T));
+        if (swap_) {
+            std::reverse(bytes.begin(), bytes.end());
+        }
+        buffer_.insert(buffer_.end(), bytes.begin(), bytes.end());
+        if (buffer_.size() >= block) {
+            flush();
+        }
     }
-    out.write(reinterpret_cast<const char*>(bytes.data()), sizeof(T));
-}
+    void flush() {
+        out_.write(reinterpret_cast<const char*>(buffer_.data()), static_cast<std::streamsize>(buffer_.size()));
+        buffer_.clear();
+    }
+
+  private:
+    static constexpr std::size_t block = std::size_t{1} << 16U;
+    std::ostream& out_;
+    bool swap_;
+    std::vector<unsigned char> buffer_;
+};
 
 }  // namespace
 
@@ -737,27 +761,29 @@ void write_ply(std::ostream& out, const PolygonSoup& soup, PlyEncoding encoding,
         detail::io_write_counted_faces(out, soup);
     } else {
         const bool swap = (encoding == PlyEncoding::BinaryLittleEndian) != (std::endian::native == std::endian::little);
+        BinaryStore store(out, swap);
         for (Index v = 0; v < soup.num_vertices(); ++v) {
             for (Index c = 0; c < 3; ++c) {
-                store<double>(out, soup.positions(v, c), swap);
+                store.put<double>(soup.positions(v, c));
             }
             for (const VertexField& field : fields) {
                 for (Eigen::Index c = 0; c < field.values.cols(); ++c) {
-                    store<double>(out, field.values(v, c), swap);
+                    store.put<double>(field.values(v, c));
                 }
             }
         }
         for (Index f = 0; f < soup.num_faces(); ++f) {
             const auto corners = soup.face(f);
             if (wide_counts) {
-                store<std::uint32_t>(out, static_cast<std::uint32_t>(corners.size()), swap);
+                store.put<std::uint32_t>(static_cast<std::uint32_t>(corners.size()));
             } else {
-                store<std::uint8_t>(out, static_cast<std::uint8_t>(corners.size()), swap);
+                store.put<std::uint8_t>(static_cast<std::uint8_t>(corners.size()));
             }
             for (const Index v : corners) {
-                store<std::int32_t>(out, v, swap);
+                store.put<std::int32_t>(v);
             }
         }
+        store.flush();
     }
     detail::io_check_written(out, "PLY");
 }
