@@ -1,9 +1,9 @@
 // Uniform refinement, 2 levels, topology + positions, on ~100k-face meshes:
 // limsurf (Hierarchy: every level's child topology, S0, provenance, then S0
-// products; and refine_finest: the same, keeping only the finest level) against OpenSubdiv Far (TopologyRefiner::RefineUniform +
-// PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's
-// uniform subdividers, each in the same binary and run. CGAL and OpenMesh
-// refine in place, so each iteration starts from a copy made outside the timer.
+// products; and refine_finest: the same, keeping only the finest level) against OpenSubdiv Far
+// (TopologyRefiner::RefineUniform + PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's uniform
+// subdividers, each in the same binary and run. CGAL and OpenMesh refine in place, so each iteration starts from a copy
+// made outside the timer.
 #include <vector>
 
 #include <CGAL/Simple_cartesian.h>
@@ -138,7 +138,10 @@ struct OsdPoint {
     }
 };
 
-void opensubdiv_refine(benchmark::State& state, const Mesh& mesh, OpenSubdiv::Sdc::SchemeType scheme) {
+/// @param full_topology the finest level with edges and one-rings too (UniformOptions::fullTopologyInLastLevel),
+///   as limsurf's finest Topology has them; by default Far keeps only its face list.
+void opensubdiv_refine(benchmark::State& state, const Mesh& mesh, OpenSubdiv::Sdc::SchemeType scheme,
+                       bool full_topology = false) {
     using namespace OpenSubdiv;
     std::vector<int> degrees(static_cast<std::size_t>(mesh.num_faces()));
     for (int f = 0; f < mesh.num_faces(); ++f) {
@@ -156,7 +159,9 @@ void opensubdiv_refine(benchmark::State& state, const Mesh& mesh, OpenSubdiv::Sd
     for (auto _ : state) {
         Far::TopologyRefiner* refiner = Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Create(
             descriptor, Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Options(scheme, sdc));
-        refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+        Far::TopologyRefiner::UniformOptions uniform(levels);
+        uniform.fullTopologyInLastLevel = full_topology;
+        refiner->RefineUniform(uniform);
         std::vector<OsdPoint> points(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
         for (int v = 0; v < descriptor.numVertices; ++v) {
             points[static_cast<std::size_t>(v)] = {{mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2)}};
@@ -180,6 +185,12 @@ void BM_OpenSubdiv_CatmullClark(benchmark::State& state) {
 }
 void BM_OpenSubdiv_Loop(benchmark::State& state) {
     opensubdiv_refine(state, triangles(), OpenSubdiv::Sdc::SCHEME_LOOP);
+}
+void BM_OpenSubdiv_full_CatmullClark(benchmark::State& state) {
+    opensubdiv_refine(state, quads(), OpenSubdiv::Sdc::SCHEME_CATMARK, true);
+}
+void BM_OpenSubdiv_full_Loop(benchmark::State& state) {
+    opensubdiv_refine(state, triangles(), OpenSubdiv::Sdc::SCHEME_LOOP, true);
 }
 
 // --- CGAL ------------------------------------------------------------------------
@@ -285,11 +296,13 @@ void BM_OpenMesh_Loop(benchmark::State& state) {
 BENCHMARK(BM_limsurf_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenSubdiv_full_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenSubdiv_full_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_DooSabin)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -163,6 +163,8 @@ class Topology {
     /// Builds the tables without validating: the faces come from a refinement step.
     Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
              const SharpnessTags& sharpness);
+    /// face_offsets_ and face_vertices_ from the caller's face list (in memory advised for huge pages).
+    void copy_face_list(std::span<const Index> face_offsets, std::span<const Index> face_vertices);
     /// The tables from validated half-edges. Returns false, with the tables unusable, when some vertex's
     /// faces form several fans (a bow-tie: the one-ring walk ends before it has seen every face).
     [[nodiscard]] bool build(std::span<const detail::HalfEdge> half_edges, const SharpnessTags& sharpness);

@@ -139,11 +139,13 @@ struct FinestLevel {
     std::vector<std::array<Index, 3>> counts;
 };
 
-/// @brief Refines @p base options.levels times and keeps only the finest level: each step's S0
-///   carries the positions and is dropped with the parent level, so the peak holds two
-///   topologies and one S0 instead of every level (for users who only want the refined mesh:
-///   `limsurf subdivide`). Topology and positions are those of Hierarchy(base,
-///   options).topology(L) and .positions(L, control_points), bit for bit. options.forms is ignored.
+/// @brief Refines @p base options.levels times and keeps only the finest level (for users who
+///   only want the refined mesh: `limsurf subdivide`). No step stores its S0: the face-split
+///   schemes write each row's product with the points as they build the row, summed as S0 · X
+///   sums (Doo–Sabin builds its S0 and drops it after the product); each parent level is dropped
+///   once its child exists, so the peak holds two topologies and the points. Topology and
+///   positions are those of Hierarchy(base, options).topology(L) and .positions(L,
+///   control_points), bit for bit. options.forms is ignored.
 /// @throws as Hierarchy's constructor and Hierarchy::positions (the same checks, before any work)
 [[nodiscard]] FinestLevel refine_finest(const Topology& base, const Points& control_points,
                                         const RefineOptions& options);

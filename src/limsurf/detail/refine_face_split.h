@@ -7,12 +7,16 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "limsurf/core/error.h"
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/sharpness.h"
 #include "limsurf/mesh/topology.h"
 #include "limsurf/refine/level.h"
 #include "limsurf/scheme/crease.h"
+#include "limsurf/scheme/scheme.h"
+#include "limsurf/scheme/tuned_weights.h"
 
 namespace limsurf::detail {
 
@@ -51,11 +55,25 @@ void require_triangles(const Topology& parent, const char* scheme);
 /// The corner of triangle @p f that is not an end of its edge @p e (invalid_index if e is not f's).
 [[nodiscard]] Index opposite_vertex(const Topology& parent, Index f, Index e);
 
+/// Per-vertex points carried through one refinement step while its rows are built, instead of
+/// storing S0 and multiplying after (refine_finest: nobody asks for S0, and at a million faces it
+/// is 10 million non-zeros written once and read once). The parent's are row-major, so that the
+/// points a row reads are one cache line each; the child's are written in order, as Points.
+struct CarriedPoints {
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> parent;  ///< #V_parent × 3
+    Points child;                                                      ///< #V_child × 3, written by the step
+};
+
 /// Builds a row-major sparse matrix row by row, in order, without triplets:
 /// duplicates within a row are merged and the row is sorted before it is appended.
+/// With CarriedPoints it stores nothing and writes each row's product with the parent points
+/// instead, summed as Eigen sums S0 · points (each coordinate from +0, entries in column order):
+/// the same bits.
 class SparseRowBuilder {
   public:
-    SparseRowBuilder(Index rows, Index cols, Index nnz_hint);
+    /// @param carried when not null: carry its parent points into its child table (resized here)
+    ///   and keep no matrix; @pre carried->parent has @p cols rows
+    SparseRowBuilder(Index rows, Index cols, Index nnz_hint, CarriedPoints* carried = nullptr);
     /// Adds @p weight to column @p col of the current row (exact zeros are skipped).
     void add(Index col, double weight) {
         if (weight == 0.0) {
@@ -75,7 +93,7 @@ class SparseRowBuilder {
     }
     /// Closes the current row and starts the next.
     void end_row();
-    /// The matrix; @pre every row has been ended
+    /// The matrix (rows × cols without entries when points were carried); @pre every row has been ended
     [[nodiscard]] SparseMatrix finish();
 
   private:
@@ -83,10 +101,13 @@ class SparseRowBuilder {
         Index col;
         double weight;
     };
+    /// Sorts the current row by column, merging repeated columns.
+    void sort_row();
     /// Rows up to this many entries merge repeated columns as they come (the usual case);
     /// longer rows append and are sorted and merged once, so a row stays O(n log n).
     static constexpr std::size_t max_searched = 32;
     SparseMatrix matrix_;
+    CarriedPoints* carried_ = nullptr;
     std::vector<Entry> row_;
     Index current_ = 0;
 };
@@ -189,6 +210,21 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 ///   blended with the crease rule by weight s (Sdc::Scheme::ComputeEdgeVertexMask).
 [[nodiscard]] bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effective,
                                         CreasingMethod method, Index e, std::vector<double>& scratch);
+
+/// @brief One step of each face-split scheme (refine_loop, refine_bilinear, refine_linear,
+///   refine_c2g0; Catmull–Clark: refine_catmull_clark_forced in tuned_copy.h). With @p carried its
+///   points are carried through the step (SparseRowBuilder) and the Level has an S0 without entries
+///   and no provenance; with nullptr, the scheme's public function.
+[[nodiscard]] Level refine_loop_step(const Topology& parent, const SchemeOptions& options, CarriedPoints* carried);
+[[nodiscard]] Level refine_bilinear_step(const Topology& parent, CarriedPoints* carried);
+[[nodiscard]] Level refine_linear_step(const Topology& parent, CarriedPoints* carried);
+[[nodiscard]] Level refine_c2g0_step(const Topology& parent, CarriedPoints* carried);
+
+/// @brief refine(parent, kind, options, weights)'s child topology, with @p carried's points carried to
+///   it: S0 · parent, bit for bit, without storing S0 where the scheme builds its rows in order (the
+///   face-split schemes; Doo–Sabin builds its S0 and multiplies).
+[[nodiscard]] Topology refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
+                                       const TunedWeights& weights, CarriedPoints& carried);
 
 /// @brief Assembles the Level from the child topology (detail::quad_split_topology or
 ///   detail::tri_split_topology, mesh/topology.h), S0 and the provenance.

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "limsurf/core/error.h"
+#include "limsurf/detail/huge_pages.h"
 
 namespace limsurf {
 namespace {
@@ -103,8 +104,14 @@ BuildResult build_control_mesh(const PolygonSoup& soup, const BuildOptions& opti
 PolygonSoup to_polygon_soup(const ControlMesh& mesh) {
     const Topology& topology = mesh.topology();
     PolygonSoup soup;
+    // Copies of up to a few hundred MB before writing a refined mesh: into memory advised for huge
+    // pages, whose first touch is what the copy costs (detail/huge_pages.h).
+    soup.positions.resize(mesh.positions().rows(), 3);
+    detail::advise_huge_pages(soup.positions.data(), sizeof(double) * static_cast<std::size_t>(soup.positions.size()));
     soup.positions = mesh.positions();
+    detail::reserve_huge(soup.face_offsets, topology.face_offsets().size());
     soup.face_offsets.assign(topology.face_offsets().begin(), topology.face_offsets().end());
+    detail::reserve_huge(soup.face_vertices, topology.all_face_vertices().size());
     soup.face_vertices.assign(topology.all_face_vertices().begin(), topology.all_face_vertices().end());
     soup.sharpness = topology.sharpness_tags();
     soup.hints = mesh.hints();

@@ -9,6 +9,7 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/detail/connectivity.h"
+#include "limsurf/detail/huge_pages.h"
 #include "limsurf/mesh/validate.h"
 
 namespace limsurf {
@@ -51,8 +52,8 @@ Index find_root(std::vector<Index>& parent, Index x) {
 
 Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
                    const SharpnessTags& sharpness)
-    : num_vertices_(num_vertices), face_offsets_(face_offsets.begin(), face_offsets.end()),
-      face_vertices_(face_vertices.begin(), face_vertices.end()) {
+    : num_vertices_(num_vertices) {
+    copy_face_list(face_offsets, face_vertices);
     const detail::FaceListView faces{num_vertices, face_offsets, face_vertices};
     ValidationReport report;
     detail::HalfEdges half_edges;
@@ -70,8 +71,8 @@ Topology::Topology(Index num_vertices, std::span<const Index> face_offsets, std:
 
 Topology::Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets,
                    std::span<const Index> face_vertices, const SharpnessTags& sharpness)
-    : num_vertices_(num_vertices), face_offsets_(face_offsets.begin(), face_offsets.end()),
-      face_vertices_(face_vertices.begin(), face_vertices.end()) {
+    : num_vertices_(num_vertices) {
+    copy_face_list(face_offsets, face_vertices);
 #ifndef NDEBUG
     // Debug and sanitizer builds still check what refinement produced.
     ValidationReport report;
@@ -81,6 +82,13 @@ Topology::Topology(Trusted, Index num_vertices, std::span<const Index> face_offs
     [[maybe_unused]] const bool manifold =
         build(detail::sorted_half_edges_unchecked({num_vertices, face_offsets, face_vertices}), sharpness);
     LIMSURF_ASSERT(manifold, "refinement produced a non-manifold vertex");
+}
+
+void Topology::copy_face_list(std::span<const Index> face_offsets, std::span<const Index> face_vertices) {
+    detail::reserve_huge(face_offsets_, face_offsets.size());
+    face_offsets_.assign(face_offsets.begin(), face_offsets.end());
+    detail::reserve_huge(face_vertices_, face_vertices.size());
+    face_vertices_.assign(face_vertices.begin(), face_vertices.end());
 }
 
 bool Topology::build(std::span<const detail::HalfEdge> half_edges, const SharpnessTags& sharpness) {
@@ -118,6 +126,7 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
     // half_edges is sorted by (edge key, face): each run of equal keys is one edge (a group). Each
     // corner's group goes into face_edges_ first, and is replaced by its edge below (no table of
     // its own: a million quads have 4M corners).
+    detail::reserve_huge(face_edges_, face_vertices_.size());
     face_edges_.resize(face_vertices_.size());
     Index num_groups = 0;
     for (size_t i = 0; i < half_edges.size(); ++i) {
@@ -128,9 +137,14 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
     // Edges numbered in order of first appearance in the face list (locality, like Vtr), in one pass
     // over the corners, which also counts each edge's faces (at most two: validated); then the
     // faces themselves in a second pass.
-    std::vector<Index> edge_of_group(at(num_groups), invalid_index);
+    std::vector<Index> edge_of_group;
+    detail::reserve_huge(edge_of_group, at(num_groups));
+    edge_of_group.assign(at(num_groups), invalid_index);
+    detail::reserve_huge(face_edge_signs_, face_vertices_.size());
     face_edge_signs_.resize(face_vertices_.size());
+    detail::reserve_huge(edge_vertices_, 2 * at(num_groups));
     edge_vertices_.resize(2 * at(num_groups));
+    detail::reserve_huge(edge_face_offsets_, at(num_groups) + 1);
     edge_face_offsets_.assign(at(num_groups) + 1, 0);
     Index num_numbered = 0;
     for (Index f = 0; f < num_faces(); ++f) {
@@ -157,8 +171,10 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
 
 void Topology::fill_edge_faces(std::vector<Index>* edge_face_corners) {
     std::partial_sum(edge_face_offsets_.begin(), edge_face_offsets_.end(), edge_face_offsets_.begin());
+    detail::reserve_huge(edge_faces_, face_vertices_.size());
     edge_faces_.resize(face_vertices_.size());
     if (edge_face_corners != nullptr) {
+        detail::reserve_huge(*edge_face_corners, face_vertices_.size());
         edge_face_corners->resize(face_vertices_.size());  // parallel to edge_faces_: where each enters
     }
     // Each edge lists the face traversing it lower -> higher first, then the other (at most two).
@@ -177,13 +193,17 @@ void Topology::fill_edge_faces(std::vector<Index>* edge_face_corners) {
 
 void Topology::allocate_one_rings() {
     std::partial_sum(vertex_face_offsets_.begin(), vertex_face_offsets_.end(), vertex_face_offsets_.begin());
+    detail::reserve_huge(vertex_edge_offsets_, at(num_vertices_) + 1);
     vertex_edge_offsets_.assign(at(num_vertices_) + 1, 0);
     for (Index v = 0; v < num_vertices_; ++v) {
         vertex_edge_offsets_[at(v) + 1] = vertex_edge_offsets_[at(v)] + vertex_face_offsets_[at(v) + 1] -
                                           vertex_face_offsets_[at(v)] + vertex_is_boundary_[at(v)];
     }
+    detail::reserve_huge(vertex_faces_, at(vertex_face_offsets_.back()));
     vertex_faces_.resize(at(vertex_face_offsets_.back()));
+    detail::reserve_huge(vertex_face_corners_, at(vertex_face_offsets_.back()));
     vertex_face_corners_.resize(at(vertex_face_offsets_.back()));
+    detail::reserve_huge(vertex_edges_, at(vertex_edge_offsets_.back()));
     vertex_edges_.resize(at(vertex_edge_offsets_.back()));
 }
 
@@ -208,8 +228,11 @@ bool Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // Per vertex: its number of corners, and the corner its walk starts at — the first corner in
     // face order, or for a boundary vertex the corner whose outgoing edge is its (single, the
     // vertex is manifold) outgoing boundary edge. No per-vertex corner lists are needed.
+    detail::reserve_huge(vertex_face_offsets_, at(num_vertices_) + 1);
     vertex_face_offsets_.assign(at(num_vertices_) + 1, 0);
-    std::vector<Index> start(at(num_vertices_), invalid_index);
+    std::vector<Index> start;
+    detail::reserve_huge(start, at(num_vertices_));
+    start.assign(at(num_vertices_), invalid_index);
     for (size_t c = 0; c < face_vertices_.size(); ++c) {
         const auto v = at(face_vertices_[c]);
         ++vertex_face_offsets_[v + 1];
@@ -334,11 +357,15 @@ std::span<const Index> Topology::boundary_loop(Index i) const {
 }
 
 void Topology::build_components() {
-    std::vector<Index> parent(at(num_faces()));
+    std::vector<Index> parent;
+    detail::reserve_huge(parent, at(num_faces()));
+    parent.resize(at(num_faces()));
     std::iota(parent.begin(), parent.end(), Index{0});
     // Union by size (the smaller tree goes under the larger): the trees stay logarithmically
     // shallow whatever the edge order, where linking one way round builds long chains on a grid.
-    std::vector<Index> size(at(num_faces()), 1);
+    std::vector<Index> size;
+    detail::reserve_huge(size, at(num_faces()));
+    size.assign(at(num_faces()), 1);
     for (Index e = 0; e < num_edges(); ++e) {
         const auto faces = edge_faces(e);
         if (faces.size() != 2) {
@@ -359,6 +386,7 @@ void Topology::build_components() {
     // table less to fault in).
     std::vector<Index>& number = size;
     std::fill(number.begin(), number.end(), invalid_index);
+    detail::reserve_huge(face_component_, at(num_faces()));
     face_component_.assign(at(num_faces()), 0);
     num_components_ = 0;
     for (Index f = 0; f < num_faces(); ++f) {

@@ -15,6 +15,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/core/magnitude.h"
 #include "limsurf/detail/connectivity.h"
+#include "limsurf/detail/huge_pages.h"
 
 namespace limsurf {
 
@@ -286,10 +287,13 @@ class ConnectivityChecker {
     void collect_half_edges() {
         // Counted one slot to the right, so that filling moves bucket[v + 1] from v's start to its
         // end, which is v + 1's start: afterwards bucket[v], bucket[v + 1] bound v's half-edges.
-        std::vector<Index> bucket(at(faces_.num_vertices) + 2, 0);
+        std::vector<Index> bucket;
+        reserve_huge(bucket, at(faces_.num_vertices) + 2);
+        bucket.assign(at(faces_.num_vertices) + 2, 0);
         for_each_good_corner(
             [&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 2]; });
         std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
+        reserve_huge(half_edges_, at(bucket.back()));
         half_edges_.resize(at(bucket.back()));
         for_each_good_corner([&](Index f, Index a, Index b, Index corner) {
             half_edges_[at(bucket[at(std::min(a, b)) + 1]++)] = {edge_key(a, b), f, corner};

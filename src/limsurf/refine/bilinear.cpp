@@ -5,10 +5,14 @@
 namespace limsurf {
 
 Level refine_bilinear(const Topology& parent) {
+    return detail::refine_bilinear_step(parent, nullptr);
+}
+
+Level detail::refine_bilinear_step(const Topology& parent, CarriedPoints* carried) {
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
-    detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E);
+    detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E, carried);
     detail::add_identity_rows(V, rows);
     for (Index f = 0; f < F; ++f) {
         const auto verts = parent.face_vertices(f);
@@ -24,7 +28,7 @@ Level refine_bilinear(const Topology& parent) {
     return detail::make_level(
         detail::quad_split_topology(parent,
                                     detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false)),
-        rows.finish(), detail::quad_split_provenance(parent));
+        rows.finish(), carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent));
 }
 
 }  // namespace limsurf

@@ -11,10 +11,14 @@
 namespace limsurf {
 
 Level refine_c2g0(const Topology& parent) {
+    return detail::refine_c2g0_step(parent, nullptr);
+}
+
+Level detail::refine_c2g0_step(const Topology& parent, CarriedPoints* carried) {
     require_c2g0_topology(parent);
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
-    detail::SparseRowBuilder rows(V + E, V, 7 * V + 10 * E);
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 10 * E, carried);
     detail::C2g0Row row;
     const auto emit = [&] {
         for (const auto& [v, w] : row) {
@@ -33,7 +37,7 @@ Level refine_c2g0(const Topology& parent) {
     }
 
     return detail::make_level(detail::tri_split_topology(parent, SharpnessTags{}), rows.finish(),
-                              detail::tri_split_provenance(parent));
+                              carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent));
 }
 
 }  // namespace limsurf

@@ -106,14 +106,15 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
 }
 
 Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOptions& options,
-                                          const TunedWeights& weights, const std::vector<bool>& forced) {
+                                          const TunedWeights& weights, const std::vector<bool>& forced,
+                                          CarriedPoints* carried) {
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, options.boundary);
 
     // Regular interior rows: 9 (vertex), 4 (face), 6 (edge) entries.
-    detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E);
+    detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E, carried);
 
     // The paper's convention (iga-tuned-catmull-clark-weights Fig. 1): α, β, γ are an
     // extraordinary vertex's own weights in its vertex rule, in the edge rule of its edges and in the
@@ -208,7 +209,7 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
 
     return detail::make_level(
         detail::quad_split_topology(parent, detail::child_sharpness(parent, effective, options.creasing, V + F, false)),
-        rows.finish(), detail::quad_split_provenance(parent));
+        rows.finish(), carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent));
 }
 
 }  // namespace limsurf

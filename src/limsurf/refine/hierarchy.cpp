@@ -7,6 +7,8 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/memory.h"
+#include "limsurf/detail/huge_pages.h"
+#include "limsurf/detail/refine_face_split.h"
 #include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/form_subdivision.h"
 
@@ -288,7 +290,11 @@ Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {
                   base_.num_vertices(), " vertices");
     Eigen::MatrixXd values = data;
     for (int l = 1; l <= level; ++l) {
-        values = step(l).S0 * values;
+        const SparseMatrix& S0 = step(l).S0;
+        Eigen::MatrixXd next(S0.rows(), values.cols());
+        detail::advise_huge_pages(next.data(), sizeof(double) * static_cast<std::size_t>(next.size()));
+        next.noalias() = S0 * values;  // Eigen's sums, as values = S0 * values would make them
+        values.swap(next);
     }
     return values;
 }
@@ -308,17 +314,29 @@ FinestLevel refine_finest(const Topology& base, const Points& control_points, co
     };
     FinestLevel out;
     out.counts.push_back(counts(base));
-    Points values = control_points;
+    // Each step carries the points as it builds its rows (detail::SparseRowBuilder): S0 is never
+    // stored, and the sums are those of S0 · points, bit for bit.
+    detail::CarriedPoints carried;
+    carried.parent = control_points;
     Topology level;  // the current finest, once refined
     for (int l = 0; l < options.levels; ++l) {
-        Level step = refine(l == 0 ? base : level, options.scheme, options.scheme_options, options.weights);
-        values = step.S0 * values;         // as Hierarchy::apply, step by step: the same sums
-        level = std::move(step.topology);  // the parent, its S0 and provenance go here
+        Topology child = detail::refine_carrying(l == 0 ? base : level, options.scheme, options.scheme_options,
+                                                 options.weights, carried);
+        level = std::move(child);  // the parent goes here
         out.counts.push_back(counts(level));
+        if (l + 1 < options.levels) {
+            carried.parent = carried.child;
+        }
     }
-    check_finite(control_points, values, options.levels);
-    out.topology = options.levels == 0 ? base : std::move(level);
-    out.positions = std::move(values);
+    // Not through ?: with the const base and control points, which would copy the child's.
+    if (options.levels == 0) {
+        out.topology = base;
+        out.positions = control_points;
+    } else {
+        out.topology = std::move(level);
+        out.positions = std::move(carried.child);
+    }
+    check_finite(control_points, out.positions, options.levels);
     return out;
 }
 

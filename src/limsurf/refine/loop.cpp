@@ -16,12 +16,16 @@ std::size_t at(Index i) {
 }  // namespace
 
 Level refine_loop(const Topology& parent, const SchemeOptions& options) {
+    return detail::refine_loop_step(parent, options, nullptr);
+}
+
+Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& options, CarriedPoints* carried) {
     detail::require_triangles(parent, "Loop");
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, options.boundary);
 
-    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E);
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E, carried);
 
     // Vertex points: Loop's weights, β = (5/8 − (3/8 + cos(2π/n)/4)²)/n per neighbour.
     const auto smooth = [](Index, detail::VertexMask& mask) {
@@ -67,7 +71,7 @@ Level refine_loop(const Topology& parent, const SchemeOptions& options) {
 
     return detail::make_level(
         detail::tri_split_topology(parent, detail::child_sharpness(parent, effective, options.creasing, V, true)),
-        rows.finish(), detail::tri_split_provenance(parent));
+        rows.finish(), carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent));
 }
 
 }  // namespace limsurf

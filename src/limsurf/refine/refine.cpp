@@ -1,5 +1,10 @@
 #include "limsurf/refine/refine.h"
 
+#include <utility>
+
+#include "limsurf/detail/refine_face_split.h"
+#include "limsurf/detail/tuned_copy.h"
+
 namespace limsurf {
 
 const char* to_string(SchemeKind kind) noexcept {
@@ -36,6 +41,28 @@ Level refine(const Topology& parent, SchemeKind kind, const SchemeOptions& optio
         return refine_c2g0(parent);
     }
     return refine_bilinear(parent);
+}
+
+Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
+                                 const TunedWeights& weights, CarriedPoints& carried) {
+    switch (kind) {
+    case SchemeKind::CatmullClark:
+        return std::move(refine_catmull_clark_forced(parent, options, weights, {}, &carried).topology);
+    case SchemeKind::Loop:
+        return std::move(refine_loop_step(parent, options, &carried).topology);
+    case SchemeKind::Bilinear:
+        return std::move(refine_bilinear_step(parent, &carried).topology);
+    case SchemeKind::Linear:
+        return std::move(refine_linear_step(parent, &carried).topology);
+    case SchemeKind::C2g0:
+        return std::move(refine_c2g0_step(parent, &carried).topology);
+    case SchemeKind::DooSabin:
+        break;
+    }
+    // Doo–Sabin collects its S0 as triplets: it is built and applied as Hierarchy::apply does.
+    Level step = refine(parent, kind, options, weights);
+    carried.child = step.S0 * Points(carried.parent);
+    return std::move(step.topology);
 }
 
 }  // namespace limsurf

@@ -2,6 +2,9 @@
 // against successive products, refusal before allocating.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -260,12 +263,13 @@ namespace limsurf {
 namespace {
 
 /// refine_finest keeps only the finest level: the same topology and positions, bit for bit, as the
-/// Hierarchy's level L, and the same counts per level.
-void expect_finest_equals_hierarchy(const test::BundledMesh& mesh, const RefineOptions& options) {
-    SCOPED_TRACE(mesh.name + " " + to_string(options.scheme));
-    const BuildResult built = read_mesh(mesh.path);
-    const Hierarchy hierarchy(built.mesh.topology(), options);
-    const FinestLevel finest = refine_finest(built.mesh.topology(), built.mesh.positions(), options);
+/// Hierarchy's level L, and the same counts per level. Its steps never store S0: they carry the
+/// points through each row as it is built, and must sum them as Eigen's S0 product does.
+void expect_finest_equals_hierarchy(const Topology& base, const Points& control_points, const RefineOptions& options,
+                                    const std::string& name) {
+    SCOPED_TRACE(name + " " + to_string(options.scheme) + " L = " + std::to_string(options.levels));
+    const Hierarchy hierarchy(base, options);
+    const FinestLevel finest = refine_finest(base, control_points, options);
     const Topology& expected = hierarchy.topology(options.levels);
     ASSERT_EQ(finest.topology.num_faces(), expected.num_faces());
     EXPECT_TRUE(std::equal(expected.face_offsets().begin(), expected.face_offsets().end(),
@@ -273,7 +277,7 @@ void expect_finest_equals_hierarchy(const test::BundledMesh& mesh, const RefineO
     EXPECT_TRUE(std::equal(expected.all_face_vertices().begin(), expected.all_face_vertices().end(),
                            finest.topology.all_face_vertices().begin()));
     EXPECT_EQ(finest.topology.sharpness_tags().creases.size(), expected.sharpness_tags().creases.size());
-    const Points positions = hierarchy.positions(options.levels, built.mesh.positions());
+    const Points positions = hierarchy.positions(options.levels, control_points);
     ASSERT_EQ(finest.positions.rows(), positions.rows());
     EXPECT_TRUE((finest.positions.array() == positions.array()).all()) << "positions differ";
     ASSERT_EQ(finest.counts.size(), static_cast<std::size_t>(options.levels) + 1);
@@ -282,6 +286,11 @@ void expect_finest_equals_hierarchy(const test::BundledMesh& mesh, const RefineO
         const std::array<Index, 3> counts{t.num_vertices(), t.num_edges(), t.num_faces()};
         EXPECT_EQ(finest.counts[static_cast<std::size_t>(l)], counts) << "level " << l;
     }
+}
+
+void expect_finest_equals_hierarchy(const test::BundledMesh& mesh, const RefineOptions& options) {
+    const BuildResult built = read_mesh(mesh.path);
+    expect_finest_equals_hierarchy(built.mesh.topology(), built.mesh.positions(), options, mesh.name);
 }
 
 TEST(RefineFinest, EqualsTheHierarchysFinestLevelBitForBit) {
@@ -294,12 +303,39 @@ TEST(RefineFinest, EqualsTheHierarchysFinestLevelBitForBit) {
         }
         if (mesh.triangles_only) {
             expect_finest_equals_hierarchy(mesh, options_for(SchemeKind::Loop, 2));
+            expect_finest_equals_hierarchy(mesh, options_for(SchemeKind::Linear, 2));
         }
+    }
+    for (const char* name : {"tetra_1", "tetra_2"}) {
+        expect_finest_equals_hierarchy(test::find_bundled(name), options_for(SchemeKind::C2g0, 2));
     }
     RefineOptions tuned = options_for(SchemeKind::CatmullClark, 2);
     tuned.weights = TunedWeights::preset("cup");
     expect_finest_equals_hierarchy(test::find_bundled("quad_valence_5"), tuned);
     expect_finest_equals_hierarchy(test::find_bundled("cube"), options_for(SchemeKind::CatmullClark, 0));
+    RefineOptions chaikin = options_for(SchemeKind::CatmullClark, 3);
+    chaikin.scheme_options.creasing = CreasingMethod::Chaikin;
+    expect_finest_equals_hierarchy(test::find_bundled("cube_creases"), chaikin);
+}
+
+/// A 40-gon's face point and its corners' vertex points have rows of more than 32 entries, which
+/// the row builder sorts and merges in one go instead of as they come: carried points must be
+/// summed in the merged order there too. Coordinates spread over many binades, so that a different
+/// order of the sums would show in the last bits.
+TEST(RefineFinest, LongRowsAreSummedAsTheProductSumsThem) {
+    constexpr Index n = 40;
+    std::vector<Index> face(n);
+    Points X(n, 3);
+    for (Index i = 0; i < n; ++i) {
+        face[static_cast<std::size_t>(i)] = i;
+        const double angle = 2.0 * 3.141592653589793 * static_cast<double>(i) / n;
+        X.row(i) << std::cos(angle) * (1.0 + 0.37 * i), std::sin(angle) / (1.0 + i),
+            std::ldexp(1.0 + 0.1 * i, i % 9 - 4);
+    }
+    const Topology polygon = Topology::from_polygons(n, {face});
+    for (const SchemeKind scheme : {SchemeKind::CatmullClark, SchemeKind::Bilinear, SchemeKind::DooSabin}) {
+        expect_finest_equals_hierarchy(polygon, X, options_for(scheme, 2), "40-gon");
+    }
 }
 
 TEST(RefineFinest, RefusesWhatTheHierarchyRefuses) {
