@@ -34,8 +34,8 @@ inline void advise_huge_pages([[maybe_unused]] void* data, [[maybe_unused]] std:
     const std::uintptr_t first = (begin + huge - 1) & ~(huge - 1);
     const std::uintptr_t last = (begin + bytes) & ~(huge - 1);
     if (first < last) {
-        (void)madvise(reinterpret_cast<void*>(first), last - first,
-                      MADV_HUGEPAGE);  // NOLINT(performance-no-int-to-ptr)
+        void* const start = reinterpret_cast<void*>(first);  // NOLINT(performance-no-int-to-ptr)
+        (void)madvise(start, last - first, MADV_HUGEPAGE);
     }
 #endif
 }
