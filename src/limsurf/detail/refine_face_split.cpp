@@ -170,28 +170,20 @@ SparseRowBuilder::SparseRowBuilder(Index rows, Index cols, Index nnz_hint, Carri
         advise_huge_pages(matrix_.innerIndexPtr(), sizeof(Index) * static_cast<std::size_t>(nnz_hint));
     }
     row_.reserve(64);
+    slot_of_column_.assign(static_cast<std::size_t>(cols), 0);
 }
 
 void SparseRowBuilder::sort_row() {
-    if (row_.size() > max_searched) {
-        // Stable: repeated columns are summed in the order they were added, as in add().
-        std::stable_sort(row_.begin(), row_.end(), [](const Entry& a, const Entry& b) { return a.col < b.col; });
-        std::size_t kept = 0;
-        for (std::size_t i = 0; i < row_.size(); ++i) {
-            if (kept > 0 && row_[kept - 1].col == row_[i].col) {
-                row_[kept - 1].weight += row_[i].weight;
-            } else {
-                row_[kept++] = row_[i];
-            }
-        }
-        row_.resize(kept);
+    const auto by_column = [](const Entry& a, const Entry& b) { return a.col < b.col; };
+    if (row_.size() > 32) {  // an n-gon's face point or a vertex of an n-gon
+        std::sort(row_.begin(), row_.end(), by_column);
         return;
     }
     // Insertion sort: rows hold a handful of entries.
     for (std::size_t i = 1; i < row_.size(); ++i) {
         const Entry entry = row_[i];
         std::size_t j = i;
-        while (j > 0 && row_[j - 1].col > entry.col) {
+        while (j > 0 && by_column(entry, row_[j - 1])) {
             row_[j] = row_[j - 1];
             --j;
         }

@@ -74,21 +74,20 @@ class SparseRowBuilder {
     /// @param carried when not null: carry its parent points into its child table (resized here)
     ///   and keep no matrix; @pre carried->parent has @p cols rows
     SparseRowBuilder(Index rows, Index cols, Index nnz_hint, CarriedPoints* carried = nullptr);
-    /// Adds @p weight to column @p col of the current row (exact zeros are skipped).
+    /// Adds @p weight to column @p col of the current row (exact zeros are skipped); a repeated
+    /// column's weights are summed in the order they come.
     void add(Index col, double weight) {
         if (weight == 0.0) {
             return;
         }
-        if (row_.size() > max_searched) {  // a long row (an n-gon's face point): merged in end_row
-            row_.push_back({col, weight});
+        // The column's slot in the current row, if it has one there: slots left by earlier rows
+        // are told apart by the column they hold.
+        const auto slot = static_cast<std::size_t>(slot_of_column_[static_cast<std::size_t>(col)]);
+        if (slot < row_.size() && row_[slot].col == col) {
+            row_[slot].weight += weight;
             return;
         }
-        for (auto& entry : row_) {
-            if (entry.col == col) {
-                entry.weight += weight;
-                return;
-            }
-        }
+        slot_of_column_[static_cast<std::size_t>(col)] = static_cast<Index>(row_.size());
         row_.push_back({col, weight});
     }
     /// Closes the current row and starts the next.
@@ -101,14 +100,14 @@ class SparseRowBuilder {
         Index col;
         double weight;
     };
-    /// Sorts the current row by column, merging repeated columns.
+    /// Sorts the current row (one entry per column) by column.
     void sort_row();
-    /// Rows up to this many entries merge repeated columns as they come (the usual case);
-    /// longer rows append and are sorted and merged once, so a row stays O(n log n).
-    static constexpr std::size_t max_searched = 32;
     SparseMatrix matrix_;
     CarriedPoints* carried_ = nullptr;
     std::vector<Entry> row_;
+    /// Per column, its index in row_ when the current row has it (otherwise anything): a repeated
+    /// column is found in O(1), also in an n-gon's long rows.
+    std::vector<Index> slot_of_column_;
     Index current_ = 0;
 };
 
