@@ -56,4 +56,13 @@ void reserve_huge(Vector& table, std::size_t n) {
     table.swap(fresh);
 }
 
+/// @brief @p table becomes @p n copies of @p value, in fresh memory advised for huge pages when it
+///   is large (reserve_huge; the assignment is the first touch). @pre the table's old elements are
+///   not needed.
+template <class Vector>
+void assign_huge(Vector& table, std::size_t n, const typename Vector::value_type& value = {}) {
+    reserve_huge(table, n);
+    table.assign(n, value);
+}
+
 }  // namespace limsurf::detail

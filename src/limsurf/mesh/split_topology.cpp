@@ -30,12 +30,9 @@ class EdgeNumbering {
   public:
     EdgeNumbering(Index num_keys, std::vector<Index>& edge_vertices, std::vector<Index>& edge_face_offsets)
         : edge_vertices_(edge_vertices), edge_face_offsets_(edge_face_offsets) {
-        reserve_huge(number_, at(num_keys));
-        number_.assign(at(num_keys), invalid_index);
-        reserve_huge(edge_vertices_, 2 * at(num_keys));
-        edge_vertices_.resize(2 * at(num_keys));
-        reserve_huge(edge_face_offsets_, at(num_keys) + 1);
-        edge_face_offsets_.assign(at(num_keys) + 1, 0);
+        assign_huge(number_, at(num_keys), invalid_index);
+        assign_huge(edge_vertices_, 2 * at(num_keys));
+        assign_huge(edge_face_offsets_, at(num_keys) + 1, 0);
     }
     /// The number of the child edge with @p key joining @p a and @p b, which has @p num_faces faces.
     Index operator()(Index key, Index a, Index b, Index num_faces) {
@@ -67,8 +64,7 @@ Index half_key(Index e, bool higher_end) {
 /// edge_faces(e) (the face running it lower -> higher first); the second is invalid_index on the boundary.
 std::vector<std::array<Index, 2>> edge_corners(const Topology& parent) {
     std::vector<std::array<Index, 2>> corners;
-    reserve_huge(corners, at(parent.num_edges()));
-    corners.assign(at(parent.num_edges()), {invalid_index, invalid_index});
+    assign_huge(corners, at(parent.num_edges()), {invalid_index, invalid_index});
     for (Index f = 0; f < parent.num_faces(); ++f) {
         const Index first = parent.face_offset(f);
         const auto face_edges = parent.face_edges(f);
@@ -132,8 +128,7 @@ void fill_parent_vertex_rings(const Topology& parent, const EdgeNumbering& numbe
 /// Child faces [first_child(f), first_child(f + 1)) lie in the component of parent face f.
 template <class FirstChild>
 void inherit_components(const Topology& parent, const FirstChild& first_child, std::vector<Index>& component) {
-    reserve_huge(component, at(first_child(parent.num_faces())));
-    component.resize(at(first_child(parent.num_faces())));
+    assign_huge(component, at(first_child(parent.num_faces())));
     for (Index f = 0; f < parent.num_faces(); ++f) {
         std::fill(component.begin() + first_child(f), component.begin() + first_child(f + 1), parent.face_component(f));
     }
@@ -170,17 +165,13 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
     // Faces: child c of parent corner c is [v_k, e_k, f, e_(k-1)] (refine/level.h). Edges, keyed:
     // halves of parent edges (2E keys), then spokes (2E + c: from the point of the edge leaving
     // corner c to its face point).
-    reserve_huge(child.face_offsets_, at(C) + 1);
-    child.face_offsets_.resize(at(C) + 1);
+    assign_huge(child.face_offsets_, at(C) + 1);
     for (std::size_t i = 0; i < child.face_offsets_.size(); ++i) {
         child.face_offsets_[i] = static_cast<Index>(4 * i);
     }
-    reserve_huge(child.face_vertices_, 4 * at(C));
-    child.face_vertices_.resize(4 * at(C));
-    reserve_huge(child.face_edges_, 4 * at(C));
-    child.face_edges_.resize(4 * at(C));
-    reserve_huge(child.face_edge_signs_, 4 * at(C));
-    child.face_edge_signs_.resize(4 * at(C));
+    assign_huge(child.face_vertices_, 4 * at(C));
+    assign_huge(child.face_edges_, 4 * at(C));
+    assign_huge(child.face_edge_signs_, 4 * at(C));
     EdgeNumbering number(2 * E + C, child.edge_vertices_, child.edge_face_offsets_);
     for (Index f = 0; f < F; ++f) {
         const Index first = parent.face_offsets_[at(f)];
@@ -213,10 +204,8 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
 
     // One-ring sizes: a parent vertex's child has its faces; a face point one face per corner of its
     // face; an edge point two per face of its edge, and it is on the boundary when the edge is.
-    reserve_huge(child.vertex_face_offsets_, at(child.num_vertices_) + 1);
-    child.vertex_face_offsets_.assign(at(child.num_vertices_) + 1, 0);
-    reserve_huge(child.vertex_is_boundary_, at(child.num_vertices_));
-    child.vertex_is_boundary_.assign(at(child.num_vertices_), 0);
+    assign_huge(child.vertex_face_offsets_, at(child.num_vertices_) + 1, 0);
+    assign_huge(child.vertex_is_boundary_, at(child.num_vertices_), 0);
     copy_parent_vertex_ring_sizes(parent, child.vertex_face_offsets_, child.vertex_is_boundary_);
     for (Index f = 0; f < F; ++f) {
         child.vertex_face_offsets_[at(face_point + f) + 1] = parent.face_degree(f);
@@ -304,17 +293,13 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
     // (refine/level.h). Edges, keyed: halves of parent edges (2E keys), then the inner edges of face
     // f (2E + 3f + k: between the points of e_k and e_(k-1)).
     const auto faces_count = 4 * at(F);
-    reserve_huge(child.face_offsets_, faces_count + 1);
-    child.face_offsets_.resize(faces_count + 1);
+    assign_huge(child.face_offsets_, faces_count + 1);
     for (std::size_t i = 0; i < child.face_offsets_.size(); ++i) {
         child.face_offsets_[i] = static_cast<Index>(3 * i);
     }
-    reserve_huge(child.face_vertices_, 3 * faces_count);
-    child.face_vertices_.resize(3 * faces_count);
-    reserve_huge(child.face_edges_, 3 * faces_count);
-    child.face_edges_.resize(3 * faces_count);
-    reserve_huge(child.face_edge_signs_, 3 * faces_count);
-    child.face_edge_signs_.resize(3 * faces_count);
+    assign_huge(child.face_vertices_, 3 * faces_count);
+    assign_huge(child.face_edges_, 3 * faces_count);
+    assign_huge(child.face_edge_signs_, 3 * faces_count);
     EdgeNumbering number(2 * E + 3 * F, child.edge_vertices_, child.edge_face_offsets_);
     const auto faces_of = [&](Index e) {
         return parent.edge_face_offsets_[at(e) + 1] - parent.edge_face_offsets_[at(e)];
@@ -354,10 +339,8 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
 
     // One-ring sizes: a parent vertex's child has its faces; an edge point three per face of its
     // edge, and it is on the boundary when the edge is.
-    reserve_huge(child.vertex_face_offsets_, at(child.num_vertices_) + 1);
-    child.vertex_face_offsets_.assign(at(child.num_vertices_) + 1, 0);
-    reserve_huge(child.vertex_is_boundary_, at(child.num_vertices_));
-    child.vertex_is_boundary_.assign(at(child.num_vertices_), 0);
+    assign_huge(child.vertex_face_offsets_, at(child.num_vertices_) + 1, 0);
+    assign_huge(child.vertex_is_boundary_, at(child.num_vertices_), 0);
     copy_parent_vertex_ring_sizes(parent, child.vertex_face_offsets_, child.vertex_is_boundary_);
     for (Index e = 0; e < E; ++e) {
         child.vertex_face_offsets_[at(edge_point + e) + 1] = 3 * faces_of(e);

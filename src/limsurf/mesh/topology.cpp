@@ -126,8 +126,7 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
     // half_edges is sorted by (edge key, face): each run of equal keys is one edge (a group). Each
     // corner's group goes into face_edges_ first, and is replaced by its edge below (no table of
     // its own: a million quads have 4M corners).
-    detail::reserve_huge(face_edges_, face_vertices_.size());
-    face_edges_.resize(face_vertices_.size());
+    detail::assign_huge(face_edges_, face_vertices_.size());
     Index num_groups = 0;
     for (size_t i = 0; i < half_edges.size(); ++i) {
         num_groups += i == 0 || half_edges[i].key != half_edges[i - 1].key ? 1 : 0;
@@ -138,14 +137,10 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
     // over the corners, which also counts each edge's faces (at most two: validated); then the
     // faces themselves in a second pass.
     std::vector<Index> edge_of_group;
-    detail::reserve_huge(edge_of_group, at(num_groups));
-    edge_of_group.assign(at(num_groups), invalid_index);
-    detail::reserve_huge(face_edge_signs_, face_vertices_.size());
-    face_edge_signs_.resize(face_vertices_.size());
-    detail::reserve_huge(edge_vertices_, 2 * at(num_groups));
-    edge_vertices_.resize(2 * at(num_groups));
-    detail::reserve_huge(edge_face_offsets_, at(num_groups) + 1);
-    edge_face_offsets_.assign(at(num_groups) + 1, 0);
+    detail::assign_huge(edge_of_group, at(num_groups), invalid_index);
+    detail::assign_huge(face_edge_signs_, face_vertices_.size());
+    detail::assign_huge(edge_vertices_, 2 * at(num_groups));
+    detail::assign_huge(edge_face_offsets_, at(num_groups) + 1, 0);
     Index num_numbered = 0;
     for (Index f = 0; f < num_faces(); ++f) {
         const Index first = face_offsets_[at(f)];
@@ -171,11 +166,9 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
 
 void Topology::fill_edge_faces(std::vector<Index>* edge_face_corners) {
     std::partial_sum(edge_face_offsets_.begin(), edge_face_offsets_.end(), edge_face_offsets_.begin());
-    detail::reserve_huge(edge_faces_, face_vertices_.size());
-    edge_faces_.resize(face_vertices_.size());
+    detail::assign_huge(edge_faces_, face_vertices_.size());
     if (edge_face_corners != nullptr) {
-        detail::reserve_huge(*edge_face_corners, face_vertices_.size());
-        edge_face_corners->resize(face_vertices_.size());  // parallel to edge_faces_: where each enters
+        detail::assign_huge(*edge_face_corners, face_vertices_.size());  // parallel to edge_faces_: where each enters
     }
     // Each edge lists the face traversing it lower -> higher first, then the other (at most two).
     for (Index f = 0; f < num_faces(); ++f) {
@@ -193,18 +186,14 @@ void Topology::fill_edge_faces(std::vector<Index>* edge_face_corners) {
 
 void Topology::allocate_one_rings() {
     std::partial_sum(vertex_face_offsets_.begin(), vertex_face_offsets_.end(), vertex_face_offsets_.begin());
-    detail::reserve_huge(vertex_edge_offsets_, at(num_vertices_) + 1);
-    vertex_edge_offsets_.assign(at(num_vertices_) + 1, 0);
+    detail::assign_huge(vertex_edge_offsets_, at(num_vertices_) + 1, 0);
     for (Index v = 0; v < num_vertices_; ++v) {
         vertex_edge_offsets_[at(v) + 1] = vertex_edge_offsets_[at(v)] + vertex_face_offsets_[at(v) + 1] -
                                           vertex_face_offsets_[at(v)] + vertex_is_boundary_[at(v)];
     }
-    detail::reserve_huge(vertex_faces_, at(vertex_face_offsets_.back()));
-    vertex_faces_.resize(at(vertex_face_offsets_.back()));
-    detail::reserve_huge(vertex_face_corners_, at(vertex_face_offsets_.back()));
-    vertex_face_corners_.resize(at(vertex_face_offsets_.back()));
-    detail::reserve_huge(vertex_edges_, at(vertex_edge_offsets_.back()));
-    vertex_edges_.resize(at(vertex_edge_offsets_.back()));
+    detail::assign_huge(vertex_faces_, at(vertex_face_offsets_.back()));
+    detail::assign_huge(vertex_face_corners_, at(vertex_face_offsets_.back()));
+    detail::assign_huge(vertex_edges_, at(vertex_edge_offsets_.back()));
 }
 
 std::span<const Index> Topology::edge_faces(Index e) const {
@@ -228,11 +217,9 @@ bool Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // Per vertex: its number of corners, and the corner its walk starts at — the first corner in
     // face order, or for a boundary vertex the corner whose outgoing edge is its (single, the
     // vertex is manifold) outgoing boundary edge. No per-vertex corner lists are needed.
-    detail::reserve_huge(vertex_face_offsets_, at(num_vertices_) + 1);
-    vertex_face_offsets_.assign(at(num_vertices_) + 1, 0);
+    detail::assign_huge(vertex_face_offsets_, at(num_vertices_) + 1, 0);
     std::vector<Index> start;
-    detail::reserve_huge(start, at(num_vertices_));
-    start.assign(at(num_vertices_), invalid_index);
+    detail::assign_huge(start, at(num_vertices_), invalid_index);
     for (size_t c = 0; c < face_vertices_.size(); ++c) {
         const auto v = at(face_vertices_[c]);
         ++vertex_face_offsets_[v + 1];
@@ -358,14 +345,12 @@ std::span<const Index> Topology::boundary_loop(Index i) const {
 
 void Topology::build_components() {
     std::vector<Index> parent;
-    detail::reserve_huge(parent, at(num_faces()));
-    parent.resize(at(num_faces()));
+    detail::assign_huge(parent, at(num_faces()));
     std::iota(parent.begin(), parent.end(), Index{0});
     // Union by size (the smaller tree goes under the larger): the trees stay logarithmically
     // shallow whatever the edge order, where linking one way round builds long chains on a grid.
     std::vector<Index> size;
-    detail::reserve_huge(size, at(num_faces()));
-    size.assign(at(num_faces()), 1);
+    detail::assign_huge(size, at(num_faces()), 1);
     for (Index e = 0; e < num_edges(); ++e) {
         const auto faces = edge_faces(e);
         if (faces.size() != 2) {
@@ -386,8 +371,7 @@ void Topology::build_components() {
     // table less to fault in).
     std::vector<Index>& number = size;
     std::fill(number.begin(), number.end(), invalid_index);
-    detail::reserve_huge(face_component_, at(num_faces()));
-    face_component_.assign(at(num_faces()), 0);
+    detail::assign_huge(face_component_, at(num_faces()), 0);
     num_components_ = 0;
     for (Index f = 0; f < num_faces(); ++f) {
         Index& n = number[at(find_root(parent, f))];

@@ -288,8 +288,7 @@ class ConnectivityChecker {
         // Counted one slot to the right, so that filling moves bucket[v + 1] from v's start to its
         // end, which is v + 1's start: afterwards bucket[v], bucket[v + 1] bound v's half-edges.
         std::vector<Index> bucket;
-        reserve_huge(bucket, at(faces_.num_vertices) + 2);
-        bucket.assign(at(faces_.num_vertices) + 2, 0);
+        assign_huge(bucket, at(faces_.num_vertices) + 2, 0);
         for_each_good_corner(
             [&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 2]; });
         std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());

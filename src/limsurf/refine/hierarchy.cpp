@@ -317,7 +317,9 @@ FinestLevel refine_finest(const Topology& base, const Points& control_points, co
     // Each step carries the points as it builds its rows (detail::SparseRowBuilder): S0 is never
     // stored, and the sums are those of S0 · points, bit for bit.
     detail::CarriedPoints carried;
-    carried.parent = control_points;
+    if (options.levels > 0) {
+        carried.parent = control_points;
+    }
     Topology level;  // the current finest, once refined
     for (int l = 0; l < options.levels; ++l) {
         Topology child = detail::refine_carrying(l == 0 ? base : level, options.scheme, options.scheme_options,
