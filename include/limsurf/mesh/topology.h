@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/sharpness.h"
 
@@ -171,23 +172,23 @@ class Topology {
 
     static std::size_t at(Index i) { return static_cast<std::size_t>(i); }
     template <class T>
-    std::span<const T> face_span(const std::vector<T>& table, Index f) const {
+    std::span<const T> face_span(const detail::HugeTable<T>& table, Index f) const {
         const auto begin = at(face_offsets_[at(f)]);
         const auto end = at(face_offsets_[at(f) + 1]);
         return std::span<const T>(table).subspan(begin, end - begin);
     }
     /// Returns, parallel to edge_faces_, the corner at which each of those faces enters the edge.
-    std::vector<Index> build_edges(std::span<const detail::HalfEdge> half_edges);
+    detail::HugeTable<Index> build_edges(std::span<const detail::HalfEdge> half_edges);
     /// From face_edges_, face_edge_signs_ and the face count of each edge in edge_face_offsets_[e + 1]:
     /// the offsets and edge_faces_; the corner at which each face enters the edge into
     /// @p edge_face_corners when it is not null.
-    void fill_edge_faces(std::vector<Index>* edge_face_corners);
+    void fill_edge_faces(detail::HugeTable<Index>* edge_face_corners);
     /// vertex_is_boundary_ and the one-ring offsets from each vertex's number of faces (in
     /// vertex_face_offsets_[v + 1]); sizes the one-ring tables.
     void allocate_one_rings();
     /// Walks around each vertex counter-clockwise. Returns false when a walk ends early: a vertex
     /// whose faces form several fans.
-    [[nodiscard]] bool build_one_rings(const std::vector<Index>& edge_face_corners);
+    [[nodiscard]] bool build_one_rings(const detail::HugeTable<Index>& edge_face_corners);
     void build_boundary_loops();
     void build_components();
     void apply_sharpness(const SharpnessTags& sharpness);
@@ -197,31 +198,31 @@ class Topology {
     }
 
     Index num_vertices_ = 0;
-    std::vector<Index> face_offsets_{0};
-    std::vector<Index> face_vertices_;
-    std::vector<Index> face_edges_;
-    std::vector<std::int8_t> face_edge_signs_;
+    detail::HugeTable<Index> face_offsets_{0};
+    detail::HugeTable<Index> face_vertices_;
+    detail::HugeTable<Index> face_edges_;
+    detail::HugeTable<std::int8_t> face_edge_signs_;
 
-    std::vector<Index> edge_vertices_;      // 2 per edge, lower first
-    std::vector<Index> edge_face_offsets_;  // #E+1
-    std::vector<Index> edge_faces_;
+    detail::HugeTable<Index> edge_vertices_;      // 2 per edge, lower first
+    detail::HugeTable<Index> edge_face_offsets_;  // #E+1
+    detail::HugeTable<Index> edge_faces_;
 
-    std::vector<Index> vertex_face_offsets_;  // #V+1
-    std::vector<Index> vertex_faces_;
-    std::vector<Index> vertex_face_corners_;
-    std::vector<Index> vertex_edge_offsets_;  // #V+1
-    std::vector<Index> vertex_edges_;
-    std::vector<std::uint8_t> vertex_is_boundary_;
+    detail::HugeTable<Index> vertex_face_offsets_;  // #V+1
+    detail::HugeTable<Index> vertex_faces_;
+    detail::HugeTable<Index> vertex_face_corners_;
+    detail::HugeTable<Index> vertex_edge_offsets_;  // #V+1
+    detail::HugeTable<Index> vertex_edges_;
+    detail::HugeTable<std::uint8_t> vertex_is_boundary_;
 
-    std::vector<Index> boundary_loop_offsets_{0};
-    std::vector<Index> boundary_loop_vertices_;
-    std::vector<Index> face_component_;
+    detail::HugeTable<Index> boundary_loop_offsets_{0};
+    detail::HugeTable<Index> boundary_loop_vertices_;
+    detail::HugeTable<Index> face_component_;
     Index num_components_ = 0;
     Index genus_ = 0;
 
-    std::vector<double> edge_sharpness_;    // empty when all smooth
-    std::vector<double> vertex_sharpness_;  // empty when all smooth
-    std::vector<std::uint8_t> holes_;       // empty when no holes
+    detail::HugeTable<double> edge_sharpness_;    // empty when all smooth
+    detail::HugeTable<double> vertex_sharpness_;  // empty when all smooth
+    detail::HugeTable<std::uint8_t> holes_;       // empty when no holes
 };
 
 }  // namespace limsurf

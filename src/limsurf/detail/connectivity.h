@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/core/types.h"
 #include "limsurf/mesh/polygon_soup.h"
 #include "limsurf/mesh/sharpness.h"
@@ -37,12 +38,11 @@ struct HalfEdge {
     [[nodiscard]] Index higher() const noexcept { return static_cast<Index>(key & 0xffffffffU); }
 };
 
-/// std::allocator, except that resize() leaves the new elements default-initialised (for a
-/// trivial type: unwritten) instead of zeroing them: the half-edge table, 64 MB for a million
-/// quads, is written in full right after it is sized, and zeroing it first cost 8 % of building
-/// the topology.
+/// HugePageAllocator (whole huge pages once large), except that resize() leaves the new elements default-initialised
+/// (for a trivial type: unwritten) instead of zeroing them: the half-edge table, 64 MB for a million quads, is written
+/// in full right after it is sized, and zeroing it first cost 8 % of building the topology.
 template <class T>
-struct DefaultInitAllocator : std::allocator<T> {
+struct DefaultInitAllocator : HugePageAllocator<T> {
     DefaultInitAllocator() noexcept = default;
     template <class U>
     DefaultInitAllocator(const DefaultInitAllocator<U>& /*other*/) noexcept {}

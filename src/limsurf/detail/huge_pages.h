@@ -1,44 +1,14 @@
-// Transparent huge pages for the large tables of a mesh level (private: mesh and refine layers).
-//
-// A million-face level is a few hundred MB of tables written once, right after they are sized.
-// Each 4 KiB page costs a page fault on its first touch — measured ~10 µs on the project's VM,
-// ~60 % of refining 100k faces by two levels (docs/BENCHMARKS.md "Uniform refinement"). Marked for
-// transparent huge pages before that first touch, a table faults in 2 MiB at a time: 512 times
-// fewer faults. Linux's THP settings decide: with "always" the kernel does this anyway, with
-// "madvise" (this VM, Ubuntu) only for marked memory, with "never" not at all; the advice never
-// changes a result.
+// Huge pages for tables that are not HugeTables (std::vector with the default allocator, Eigen
+// arrays): their 2 MiB-aligned interior is advised; head and tail stay on small pages
+// (limsurf/core/huge_page_allocator.h says why and what the kernel's settings do). Private: mesh
+// and refine layers.
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "limsurf/core/huge_page_allocator.h"
 
 namespace limsurf::detail {
-
-/// Tables smaller than this are left alone: few faults, and little of them 2 MiB-aligned.
-inline constexpr std::size_t huge_page_minimum_bytes = std::size_t{4} << 20U;
-
-/// @brief Marks the 2 MiB-aligned interior of [@p data, @p data + @p bytes) for transparent huge
-///   pages (madvise(MADV_HUGEPAGE)); call it before the memory is first written. Advice only: it
-///   does nothing below huge_page_minimum_bytes, off Linux, or when the kernel refuses.
-inline void advise_huge_pages([[maybe_unused]] void* data, [[maybe_unused]] std::size_t bytes) noexcept {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (data == nullptr || bytes < huge_page_minimum_bytes) {
-        return;
-    }
-    constexpr std::uintptr_t huge = std::uintptr_t{2} << 20U;
-    const auto begin = reinterpret_cast<std::uintptr_t>(data);
-    const std::uintptr_t first = (begin + huge - 1) & ~(huge - 1);
-    const std::uintptr_t last = (begin + bytes) & ~(huge - 1);
-    if (first < last) {
-        void* const start = reinterpret_cast<void*>(first);  // NOLINT(performance-no-int-to-ptr)
-        (void)madvise(start, last - first, MADV_HUGEPAGE);
-    }
-#endif
-}
 
 /// @brief Gives @p table room for @p n elements in fresh memory advised for huge pages, keeping its
 ///   elements, so that the resize() or assign() that follows is the first touch. Does nothing when

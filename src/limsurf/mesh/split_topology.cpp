@@ -28,7 +28,7 @@ std::size_t at(Index i) {
 /// edge, or an edge inside a parent face) and gets the next number the first time its key is seen.
 class EdgeNumbering {
   public:
-    EdgeNumbering(Index num_keys, std::vector<Index>& edge_vertices, std::vector<Index>& edge_face_offsets)
+    EdgeNumbering(Index num_keys, HugeTable<Index>& edge_vertices, HugeTable<Index>& edge_face_offsets)
         : edge_vertices_(edge_vertices), edge_face_offsets_(edge_face_offsets) {
         assign_huge(number_, at(num_keys), invalid_index);
         assign_huge(edge_vertices_, 2 * at(num_keys));
@@ -49,10 +49,10 @@ class EdgeNumbering {
     [[nodiscard]] Index of(Index key) const { return number_[at(key)]; }
 
   private:
-    std::vector<Index> number_;
+    HugeTable<Index> number_;
     Index next_ = 0;
-    std::vector<Index>& edge_vertices_;
-    std::vector<Index>& edge_face_offsets_;
+    HugeTable<Index>& edge_vertices_;
+    HugeTable<Index>& edge_face_offsets_;
 };
 
 /// Key of the half of parent edge @p e at its lower (@p higher_end false) or higher end.
@@ -62,8 +62,8 @@ Index half_key(Index e, bool higher_end) {
 
 /// For every parent edge, the corner at which each of its faces enters it, in the order of
 /// edge_faces(e) (the face running it lower -> higher first); the second is invalid_index on the boundary.
-std::vector<std::array<Index, 2>> edge_corners(const Topology& parent) {
-    std::vector<std::array<Index, 2>> corners;
+HugeTable<std::array<Index, 2>> edge_corners(const Topology& parent) {
+    HugeTable<std::array<Index, 2>> corners;
     assign_huge(corners, at(parent.num_edges()), {invalid_index, invalid_index});
     for (Index f = 0; f < parent.num_faces(); ++f) {
         const Index first = parent.face_offset(f);
@@ -95,8 +95,8 @@ void write_interior_ring(const std::array<Index, N>& faces, const std::array<Ind
 
 /// The first V child vertices are the parent vertices' children: their one-ring sizes and boundary
 /// flags are the parent's. @pre @p face_counts has #V_child + 1 entries, @p boundary #V_child
-void copy_parent_vertex_ring_sizes(const Topology& parent, std::vector<Index>& face_counts,
-                                   std::vector<std::uint8_t>& boundary) {
+void copy_parent_vertex_ring_sizes(const Topology& parent, HugeTable<Index>& face_counts,
+                                   HugeTable<std::uint8_t>& boundary) {
     for (Index v = 0; v < parent.num_vertices(); ++v) {
         face_counts[at(v) + 1] = static_cast<Index>(parent.vertex_faces(v).size());
         boundary[at(v)] = parent.is_boundary_vertex(v) ? 1 : 0;
@@ -109,7 +109,7 @@ void copy_parent_vertex_ring_sizes(const Topology& parent, std::vector<Index>& f
 /// same sizes). @p child_face(f, k) is the child of parent face f at its corner k.
 template <class ChildFace>
 void fill_parent_vertex_rings(const Topology& parent, const EdgeNumbering& number, const ChildFace& child_face,
-                              std::vector<Index>& faces, std::vector<Index>& corners, std::vector<Index>& edges) {
+                              HugeTable<Index>& faces, HugeTable<Index>& corners, HugeTable<Index>& edges) {
     Index face_slot = 0;
     Index edge_slot = 0;
     for (Index v = 0; v < parent.num_vertices(); ++v) {
@@ -127,7 +127,7 @@ void fill_parent_vertex_rings(const Topology& parent, const EdgeNumbering& numbe
 
 /// Child faces [first_child(f), first_child(f + 1)) lie in the component of parent face f.
 template <class FirstChild>
-void inherit_components(const Topology& parent, const FirstChild& first_child, std::vector<Index>& component) {
+void inherit_components(const Topology& parent, const FirstChild& first_child, HugeTable<Index>& component) {
     assign_huge(component, at(first_child(parent.num_faces())));
     for (Index f = 0; f < parent.num_faces(); ++f) {
         std::fill(component.begin() + first_child(f), component.begin() + first_child(f + 1), parent.face_component(f));

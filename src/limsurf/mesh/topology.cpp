@@ -40,7 +40,7 @@ void throw_if_unusable(const ValidationReport& report) {
 }
 
 /// Component roots with path halving.
-Index find_root(std::vector<Index>& parent, Index x) {
+Index find_root(detail::HugeTable<Index>& parent, Index x) {
     while (parent[at(x)] != x) {
         parent[at(x)] = parent[at(parent[at(x)])];
         x = parent[at(x)];
@@ -92,7 +92,7 @@ void Topology::copy_face_list(std::span<const Index> face_offsets, std::span<con
 }
 
 bool Topology::build(std::span<const detail::HalfEdge> half_edges, const SharpnessTags& sharpness) {
-    const std::vector<Index> edge_face_corners = build_edges(half_edges);
+    const detail::HugeTable<Index> edge_face_corners = build_edges(half_edges);
     if (!build_one_rings(edge_face_corners)) {
         return false;
     }
@@ -122,7 +122,7 @@ Topology Topology::from_polygons(Index num_vertices, const std::vector<std::vect
     return Topology(num_vertices, offsets, corners, sharpness);
 }
 
-std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_edges) {
+detail::HugeTable<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_edges) {
     // half_edges is sorted by (edge key, face): each run of equal keys is one edge (a group). Each
     // corner's group goes into face_edges_ first, and is replaced by its edge below (no table of
     // its own: a million quads have 4M corners).
@@ -136,7 +136,7 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
     // Edges numbered in order of first appearance in the face list (locality, like Vtr), in one pass
     // over the corners, which also counts each edge's faces (at most two: validated); then the
     // faces themselves in a second pass.
-    std::vector<Index> edge_of_group;
+    detail::HugeTable<Index> edge_of_group;
     detail::assign_huge(edge_of_group, at(num_groups), invalid_index);
     detail::assign_huge(face_edge_signs_, face_vertices_.size());
     detail::assign_huge(edge_vertices_, 2 * at(num_groups));
@@ -159,12 +159,12 @@ std::vector<Index> Topology::build_edges(std::span<const detail::HalfEdge> half_
             face_edge_signs_[at(c)] = a < b ? 1 : -1;
         }
     }
-    std::vector<Index> edge_face_corners;
+    detail::HugeTable<Index> edge_face_corners;
     fill_edge_faces(&edge_face_corners);
     return edge_face_corners;
 }
 
-void Topology::fill_edge_faces(std::vector<Index>* edge_face_corners) {
+void Topology::fill_edge_faces(detail::HugeTable<Index>* edge_face_corners) {
     std::partial_sum(edge_face_offsets_.begin(), edge_face_offsets_.end(), edge_face_offsets_.begin());
     detail::assign_huge(edge_faces_, face_vertices_.size());
     if (edge_face_corners != nullptr) {
@@ -213,12 +213,12 @@ Index Topology::find_edge(Index a, Index b) const {
     return invalid_index;
 }
 
-bool Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
+bool Topology::build_one_rings(const detail::HugeTable<Index>& edge_face_corners) {
     // Per vertex: its number of corners, and the corner its walk starts at — the first corner in
     // face order, or for a boundary vertex the corner whose outgoing edge is its (single, the
     // vertex is manifold) outgoing boundary edge. No per-vertex corner lists are needed.
     detail::assign_huge(vertex_face_offsets_, at(num_vertices_) + 1, 0);
-    std::vector<Index> start;
+    detail::HugeTable<Index> start;
     detail::assign_huge(start, at(num_vertices_), invalid_index);
     for (size_t c = 0; c < face_vertices_.size(); ++c) {
         const auto v = at(face_vertices_[c]);
@@ -238,7 +238,7 @@ bool Topology::build_one_rings(const std::vector<Index>& edge_face_corners) {
     // boundary), so the vertices are walked in order of their first corner in the face list: the
     // faces and edges a walk visits were numbered near each other, and memory is read nearly in order.
     allocate_one_rings();
-    const std::vector<Index>& offsets = vertex_face_offsets_;
+    const detail::HugeTable<Index>& offsets = vertex_face_offsets_;
     std::vector<std::uint8_t> walked(at(num_vertices_), 0);
     bool every_walk_complete = true;
 
@@ -344,12 +344,12 @@ std::span<const Index> Topology::boundary_loop(Index i) const {
 }
 
 void Topology::build_components() {
-    std::vector<Index> parent;
+    detail::HugeTable<Index> parent;
     detail::assign_huge(parent, at(num_faces()));
     std::iota(parent.begin(), parent.end(), Index{0});
     // Union by size (the smaller tree goes under the larger): the trees stay logarithmically
     // shallow whatever the edge order, where linking one way round builds long chains on a grid.
-    std::vector<Index> size;
+    detail::HugeTable<Index> size;
     detail::assign_huge(size, at(num_faces()), 1);
     for (Index e = 0; e < num_edges(); ++e) {
         const auto faces = edge_faces(e);
@@ -369,7 +369,7 @@ void Topology::build_components() {
     }
     // Number components in order of their first face (in the sizes' table, no longer needed: a
     // table less to fault in).
-    std::vector<Index>& number = size;
+    detail::HugeTable<Index>& number = size;
     std::fill(number.begin(), number.end(), invalid_index);
     detail::assign_huge(face_component_, at(num_faces()), 0);
     num_components_ = 0;

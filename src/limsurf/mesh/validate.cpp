@@ -287,7 +287,7 @@ class ConnectivityChecker {
     void collect_half_edges() {
         // Counted one slot to the right, so that filling moves bucket[v + 1] from v's start to its
         // end, which is v + 1's start: afterwards bucket[v], bucket[v + 1] bound v's half-edges.
-        std::vector<Index> bucket;
+        HugeTable<Index> bucket;
         assign_huge(bucket, at(faces_.num_vertices) + 2, 0);
         for_each_good_corner(
             [&](Index /*f*/, Index a, Index b, Index /*corner*/) { ++bucket[at(std::min(a, b)) + 2]; });
