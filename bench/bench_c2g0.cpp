@@ -67,6 +67,7 @@ void refine_two_levels(benchmark::State& state, SchemeKind scheme) {
     limsurf::RefineOptions options;
     options.scheme = scheme;
     options.levels = 2;
+    options.num_threads = 1;  // single-threaded, as every row of docs/BENCHMARKS.md unless it says
     for (auto _ : state) {
         const limsurf::Hierarchy hierarchy(m.topology, options);
         const Points x = hierarchy.positions(2, m.positions);

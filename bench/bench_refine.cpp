@@ -3,7 +3,8 @@
 // products; and refine_finest: the same, keeping only the finest level) against OpenSubdiv Far
 // (TopologyRefiner::RefineUniform + PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's uniform
 // subdividers, each in the same binary and run. CGAL and OpenMesh refine in place, so each iteration starts from a copy
-// made outside the timer.
+// made outside the timer. limsurf's rows take the thread count as argument (/1: single-threaded, as the peers; /2: two
+// threads).
 #include <vector>
 
 #include <CGAL/Simple_cartesian.h>
@@ -81,10 +82,12 @@ void report(benchmark::State& state, const Mesh& mesh, double output_faces) {
 // --- limsurf -----------------------------------------------------------------
 
 void limsurf_refine(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    // The benchmark's argument: threads (RefineOptions::num_threads; 1 is the single-threaded row).
     const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
     limsurf::RefineOptions options;
     options.scheme = scheme;
     options.levels = levels;
+    options.num_threads = static_cast<int>(state.range(0));
     double faces = 0;
     for (auto _ : state) {
         const limsurf::Hierarchy hierarchy(base, options);
@@ -97,10 +100,12 @@ void limsurf_refine(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKi
 
 /// refine_finest: the same topology and positions, only the finest level kept (as `limsurf subdivide`).
 void limsurf_refine_finest(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    // The benchmark's argument: threads (RefineOptions::num_threads; 1 is the single-threaded row).
     const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
     limsurf::RefineOptions options;
     options.scheme = scheme;
     options.levels = levels;
+    options.num_threads = static_cast<int>(state.range(0));
     double faces = 0;
     for (auto _ : state) {
         const limsurf::FinestLevel finest = limsurf::refine_finest(base, mesh.positions, options);
@@ -293,19 +298,19 @@ void BM_OpenMesh_Loop(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_limsurf_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_limsurf_finest_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_finest_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_full_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_limsurf_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_limsurf_finest_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_finest_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_full_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_limsurf_DooSabin)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_DooSabin)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_DooSabin)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -13,6 +13,7 @@
 
 #include "commands/commands.h"
 #include "commands/ply_encoding_option.h"
+#include "commands/threads_option.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/refine/hierarchy.h"
 #include "output.h"
@@ -34,6 +35,7 @@ struct SubdivideOptions {
     std::string format;
     std::string ply_encoding = "ascii";
     bool json = false;
+    int threads = 0;
 };
 
 const std::map<std::string, SchemeKind> schemes{
@@ -63,6 +65,7 @@ RefineOptions refine_options(const SubdivideOptions& options, const SchemeHints&
     refine.levels = options.levels;
     refine.max_faces = options.max_faces;
     refine.max_memory = memory_budget(options.max_memory);
+    refine.num_threads = options.threads;
     const SchemeOptions defaults;
     refine.scheme_options.boundary = choose(options.boundary, boundaries, hints.boundary, defaults.boundary);
     refine.scheme_options.creasing = choose(options.creasing, creasings, hints.creasing, defaults.creasing);
@@ -159,6 +162,7 @@ void add_subdivide_command(CLI::App& app, CommandStatus& status) {
         ->check(CLI::PositiveNumber);
     add_memory_option(cmd, options->max_memory);
     add_ply_encoding_option(cmd, options->ply_encoding);
+    add_threads_option(cmd, options->threads);
     cmd->add_flag("--json", options->json, "Print a JSON summary");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_subdivide(*options); }); });
 }

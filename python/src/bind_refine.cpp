@@ -13,8 +13,9 @@ namespace {
 using namespace pybind11::literals;
 
 py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bool operators, bool forms,
-                     const RuleNames& rules) {
+                     const RuleNames& rules, int threads) {
     RefineOptions options;
+    options.num_threads = threads;
     options.scheme = scheme_from(scheme);
     options.levels = levels;
     options.scheme_options = rules_for(mesh.mesh, rules);
@@ -26,9 +27,9 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
                 const py::gil_scoped_release release;
                 refined = refine_finest(mesh.mesh.topology(), mesh.mesh.positions(), options);
             }
-            return py::cast(Mesh{ControlMesh(std::move(refined.topology), std::move(refined.positions),
-                                             mesh.mesh.hints()),
-                                 SourceMap{}, ValidationReport{}});
+            return py::cast(
+                Mesh{ControlMesh(std::move(refined.topology), std::move(refined.positions), mesh.mesh.hints()),
+                     SourceMap{}, ValidationReport{}});
         }
         std::optional<Hierarchy> hierarchy;
         Points positions;
@@ -37,9 +38,9 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
             hierarchy.emplace(mesh.mesh.topology(), options);
             positions = hierarchy->positions(levels, mesh.mesh.positions());
         }
-        py::object finest = py::cast(Mesh{ControlMesh(hierarchy->topology(levels), std::move(positions),
-                                                      mesh.mesh.hints()),
-                                          SourceMap{}, ValidationReport{}});
+        py::object finest =
+            py::cast(Mesh{ControlMesh(hierarchy->topology(levels), std::move(positions), mesh.mesh.hints()),
+                          SourceMap{}, ValidationReport{}});
         py::dict ops;
         ops["S0"] = to_scipy(hierarchy->accumulated(levels));
         if (forms) {
@@ -68,11 +69,11 @@ void bind_refine(py::module_& m) {
         "subdivide",
         [](const Mesh& mesh, const std::string& scheme, int levels, bool operators, bool forms,
            std::optional<std::string> boundary, std::optional<std::string> creasing,
-           std::optional<std::string> triangles) {
-            return subdivide(mesh, scheme, levels, operators, forms, RuleNames{boundary, creasing, triangles});
+           std::optional<std::string> triangles, int threads) {
+            return subdivide(mesh, scheme, levels, operators, forms, RuleNames{boundary, creasing, triangles}, threads);
         },
         "mesh"_a, "scheme"_a, "levels"_a = 1, py::kw_only(), "operators"_a = false, "forms"_a = false,
-        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(), "threads"_a = 0,
         R"(Refines the mesh `levels` times (0..16) by `scheme` ("catmull-clark", "loop", "doo-sabin", "c2g0",
 "bilinear", "linear"). Rules: the keyword arguments, else the mesh's hints, else limsurf's defaults
 (boundary "edge-and-corner", creasing "uniform", triangles "catmull-clark"), as the CLI.
@@ -81,6 +82,8 @@ Returns the finest Mesh; with operators=True (or forms=True) a pair (mesh, ops) 
 the accumulated vertex operator A (#V_L × #V_0, scipy CSR: mesh.V == A @ V0), ops["steps"] the
 per-step matrices, and with forms=True also ops["S1"] (#E_L × #E_0) and ops["S2"] (#F_L × #F_0),
 the 1- and 2-form subdivision of SEC that commutes with d (Loop and Catmull–Clark).
+`threads` (0: all cores): each step builds the child topology on a second thread while the first
+builds the rows; the result does not depend on it.
 Raises InputError beyond the memory budget (checked before any work), UnsupportedError for a
 scheme that cannot refine the mesh (Loop on a quad).)");
 }

@@ -9,7 +9,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -104,6 +106,7 @@ const std::vector<std::vector<std::string>>& threaded_commands() {
         {"elasticity", mesh("rve_block")},
         {"membrane", mesh("cube"), "--scheme", "catmull-clark", "--evaluate-only"},
         {"eval", mesh("cube"), "--scheme", "catmull-clark", "--grid", "2"},
+        {"subdivide", mesh("cube"), "--scheme", "catmull-clark", "-o", (temp_dir() / "refused.obj").string()},
     };
     return commands;
 }
@@ -131,6 +134,25 @@ TEST(CliThreads, NegativeOrNonNumericCountIsAUsageError) {
         }
     }
     EXPECT_FALSE(fs::exists(temp_dir() / "refused.png"));
+    EXPECT_FALSE(fs::exists(temp_dir() / "refused.obj"));
+}
+
+/// Each step from 1024 faces on builds the child topology on a second thread: the file written is
+/// the same, byte for byte, for one thread and for four.
+TEST(CliThreads, SubdivideWritesTheSameFileForAnyThreadCount) {
+    for (const auto& [name, scheme] : {std::pair{"cube_creases", "catmull-clark"}, std::pair{"icosahedron", "loop"}}) {
+        std::vector<std::string> written;
+        for (const char* threads : {"1", "4"}) {
+            const fs::path out = temp_dir() / (std::string(name) + "_threads" + threads + ".ply");
+            const CliRun run = limsurf({"subdivide", mesh(name), "--scheme", scheme, "--levels", "6", "--ply-encoding",
+                                        "binary-le", "--threads", threads, "-o", out.string()});
+            ASSERT_EQ(run.exit_code, 0) << run.err;
+            std::ifstream file(out, std::ios::binary);
+            written.emplace_back(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+        }
+        EXPECT_GT(written[0].size(), 100000U) << name;
+        EXPECT_TRUE(written[0] == written[1]) << name << ": --threads 1 and --threads 4 wrote different files";
+    }
 }
 
 TEST(CliThreads, GeodesicIsTheSameForAnyThreadCount) {

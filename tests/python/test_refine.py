@@ -40,6 +40,20 @@ def test_subdivide_from_arrays():
     assert np.array_equal(fine.V, limsurf.subdivide(limsurf.Mesh(V, F), "loop", levels=2).V)
 
 
+def test_threads_give_the_same_mesh_and_operators(mesh_path):
+    # From 1024 faces on, each step builds the child topology on a second thread.
+    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
+    one = limsurf.subdivide(mesh, "loop", 5, threads=1)
+    two = limsurf.subdivide(mesh, "loop", 5, threads=2)
+    assert one.num_faces == 20 * 4**5
+    assert np.array_equal(one.V, two.V) and np.array_equal(one.face_vertices, two.face_vertices)
+    _, ops_one = limsurf.subdivide(mesh, "loop", 5, operators=True, threads=1)
+    _, ops_two = limsurf.subdivide(mesh, "loop", 5, operators=True, threads=2)
+    assert (ops_one["S0"] != ops_two["S0"]).nnz == 0
+    with pytest.raises(limsurf.InputError, match="num_threads must be >= 0"):
+        limsurf.subdivide(mesh, "loop", 1, threads=-1)
+
+
 def test_refusals_are_python_exceptions(mesh_path):
     cube = limsurf.read_mesh(mesh_path("cube"))
     with pytest.raises(limsurf.UnsupportedError, match="face"):

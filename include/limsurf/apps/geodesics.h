@@ -105,7 +105,7 @@ struct HeatGeodesicsOptions {
     /// t itself, overriding time_factor (> 0): the reference takes the t of the method it checks.
     std::optional<double> time_step;
     SchemeOptions scheme_options;
-    int num_threads = 0;  ///< threads for assembling the SEC inner products (0: hardware concurrency)
+    int num_threads = 0;  ///< threads for the refinement and the SEC inner products (0: hardware concurrency)
 };
 
 /// One set-up of the heat method: the inner products and the factorisations of M0 + t L (and its

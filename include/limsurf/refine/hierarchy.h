@@ -42,6 +42,11 @@ struct RefineOptions {
     /// Also build the form operators S1, S2 of every step (form_subdivision.h; Loop and
     /// Catmull–Clark): off by default, so plain subdivision pays nothing for them.
     bool forms = false;
+    /// Threads for each step (0: hardware concurrency): with two or more, a step of a face-split
+    /// scheme (not Doo–Sabin, not with forms) builds the child topology on a second thread while
+    /// the first builds S0 or carries the points, once the parent has 1024 faces. The result does
+    /// not depend on it.
+    int num_threads = 0;
 };
 
 /// Element counts of one level, predicted before refining.
@@ -80,7 +85,7 @@ struct LevelSize {
 class Hierarchy {
   public:
     /// @brief Refines @p base options.levels times.
-    /// @throws InputError when levels is out of range or the finest level would
+    /// @throws InputError when levels is out of range, num_threads negative, or the finest level would
     ///   exceed options.max_faces or 32-bit indices, or the estimated peak memory
     ///   options.max_memory (all checked before any work; the message names the largest face
     ///   when dense masks over it dominate)

@@ -73,7 +73,7 @@ struct InnerProductOptions {
     InnerProductMethod method = InnerProductMethod::Sec;
     int level = 3;        ///< L for Sec and SecSnap (0 <= L <= 8)
     bool lumped = false;  ///< replace M0 and M2 by diag(M 1) (SEC §3.5); M1 is kept
-    int num_threads = 0;  ///< threads for Sec and SecSnap (0: hardware concurrency)
+    int num_threads = 0;  ///< threads for Sec and SecSnap and their refinement (0: hardware concurrency)
     SecAssembly assembly = SecAssembly::Auto;
 };
 

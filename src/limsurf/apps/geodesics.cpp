@@ -213,6 +213,7 @@ GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind s
     refine.scheme = scheme;
     refine.levels = gradient_level;
     refine.scheme_options = options.scheme_options;
+    refine.num_threads = options.num_threads;
     const Hierarchy h(t, refine);
     const Topology& fine = h.topology(gradient_level);
     const Points XL =

@@ -89,6 +89,7 @@ SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const P
     refine.scheme = scheme;
     refine.levels = options.level;
     refine.scheme_options = options.scheme_options;
+    refine.num_threads = options.num_threads;
     const Hierarchy h(t, refine);
     const SparseMatrix A2 = block_diagonal(h.accumulated(options.level));
     const SparseMatrix AL = boundary_area_form(h.topology(options.level));
@@ -419,6 +420,7 @@ ReferenceComparison circle_reference(const ControlMesh& mesh, SchemeKind scheme,
     refine.scheme = scheme;
     refine.levels = *options.reference_level;
     refine.scheme_options = options.scheme_options;
+    refine.num_threads = options.num_threads;
     refine.max_memory = options.max_memory;
     const Hierarchy h(mesh.topology(), refine);
     const int K = *options.reference_level;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <utility>
 
+#include "limsurf/core/parallel.h"
 #include "limsurf/detail/huge_pages.h"
 
 namespace limsurf::detail {
@@ -278,7 +279,16 @@ bool edge_child_is_crease(const Topology& parent, const EffectiveSharpness& effe
     return true;
 }
 
-Level make_level(Topology child, SparseMatrix S0, Provenance provenance) {
+int step_threads(int requested, const Topology& parent) {
+    // A thread starts in tens of microseconds; a step of 1024 faces takes about a millisecond.
+    constexpr Index smallest_parallel_step = 1024;
+    if (parent.num_faces() < smallest_parallel_step) {
+        return 1;
+    }
+    return std::min(2, thread_count(requested, parent.num_faces()));
+}
+
+Level make_level(Topology child, SparseMatrix&& S0, Provenance provenance) {
     return Level{std::move(child), std::move(S0), std::move(provenance)};
 }
 

@@ -4,7 +4,10 @@
 // crease-aware vertex mask (docs/schemes.md).
 #pragma once
 
+#include <future>
 #include <span>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -63,6 +66,27 @@ struct CarriedPoints {
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> parent;  ///< #V_parent × 3
     Points child;                                                      ///< #V_child × 3, written by the step
 };
+
+/// How one step of a face-split scheme runs.
+struct StepRun {
+    /// When not null: its points are carried through the step (SparseRowBuilder), and the Level has
+    /// an S0 without entries and no provenance.
+    CarriedPoints* carried = nullptr;
+    /// 2 or more: the child topology is built on a second thread while the calling thread builds the
+    /// rows (the two read the parent only; the result does not depend on it). 1: one after the other.
+    int threads = 1;
+};
+
+/// @brief Threads for one step of refinement: 2 when @p requested (0: hardware concurrency) allows
+///   two and @p parent is large enough (1024 faces) for a second thread to pay for its start; else 1.
+[[nodiscard]] int step_threads(int requested, const Topology& parent);
+
+/// @brief Runs @p task on a thread of its own when @p threads > 1, otherwise when its result is
+///   asked for (std::async's deferred launch); get() gives the result or rethrows.
+template <class Task>
+[[nodiscard]] std::future<std::invoke_result_t<Task>> concurrently(int threads, Task&& task) {
+    return std::async(threads > 1 ? std::launch::async : std::launch::deferred, std::forward<Task>(task));
+}
 
 /// Builds a row-major sparse matrix row by row, in order, without triplets:
 /// duplicates within a row are merged and the row is sorted before it is appended.
@@ -211,22 +235,28 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
                                         CreasingMethod method, Index e, std::vector<double>& scratch);
 
 /// @brief One step of each face-split scheme (refine_loop, refine_bilinear, refine_linear,
-///   refine_c2g0; Catmull–Clark: refine_catmull_clark_forced in tuned_copy.h). With @p carried its
-///   points are carried through the step (SparseRowBuilder) and the Level has an S0 without entries
-///   and no provenance; with nullptr, the scheme's public function.
-[[nodiscard]] Level refine_loop_step(const Topology& parent, const SchemeOptions& options, CarriedPoints* carried);
-[[nodiscard]] Level refine_bilinear_step(const Topology& parent, CarriedPoints* carried);
-[[nodiscard]] Level refine_linear_step(const Topology& parent, CarriedPoints* carried);
-[[nodiscard]] Level refine_c2g0_step(const Topology& parent, CarriedPoints* carried);
+///   refine_c2g0; Catmull–Clark: refine_catmull_clark_forced in tuned_copy.h), run as @p run says;
+///   with StepRun{}, the scheme's public function.
+[[nodiscard]] Level refine_loop_step(const Topology& parent, const SchemeOptions& options, const StepRun& run);
+[[nodiscard]] Level refine_bilinear_step(const Topology& parent, const StepRun& run);
+[[nodiscard]] Level refine_linear_step(const Topology& parent, const StepRun& run);
+[[nodiscard]] Level refine_c2g0_step(const Topology& parent, const StepRun& run);
+
+/// @brief refine(parent, kind, options, weights) on @p threads threads (StepRun::threads; the
+///   result does not depend on it).
+[[nodiscard]] Level refine_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
+                                const TunedWeights& weights, int threads);
 
 /// @brief refine(parent, kind, options, weights)'s child topology, with @p carried's points carried to
 ///   it: S0 · parent, bit for bit, without storing S0 where the scheme builds its rows in order (the
-///   face-split schemes; Doo–Sabin builds its S0 and multiplies).
+///   face-split schemes; Doo–Sabin builds its S0 and multiplies). @p threads as in StepRun.
 [[nodiscard]] Topology refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                                       const TunedWeights& weights, CarriedPoints& carried);
+                                       const TunedWeights& weights, CarriedPoints& carried, int threads);
 
 /// @brief Assembles the Level from the child topology (detail::quad_split_topology or
 ///   detail::tri_split_topology, mesh/topology.h), S0 and the provenance.
-[[nodiscard]] Level make_level(Topology child, SparseMatrix S0, Provenance provenance);
+/// @p S0 is taken over (swapped), not copied: Eigen 3.4's SparseMatrix has no move constructor,
+/// so passing it by value from a named matrix would copy it.
+[[nodiscard]] Level make_level(Topology child, SparseMatrix&& S0, Provenance provenance);
 
 }  // namespace limsurf::detail

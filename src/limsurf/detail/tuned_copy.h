@@ -18,11 +18,10 @@ namespace limsurf::detail {
 
 /// refine_catmull_clark(parent, options, weights), with the own β and γ of every vertex v with
 /// forced[v] acting in its edges' and faces' rules whatever its rule in @p parent.
-/// With @p carried, its points are carried through the step instead of building S0 (the Level's S0
-/// then has no entries and its provenance is empty; SparseRowBuilder).
+/// Run as @p run says (carried points, threads; refine_face_split.h).
 /// @pre forced is empty or has one entry per vertex of @p parent
 [[nodiscard]] Level refine_catmull_clark_forced(const Topology& parent, const SchemeOptions& options,
                                                 const TunedWeights& weights, const std::vector<bool>& forced,
-                                                CarriedPoints* carried = nullptr);
+                                                const StepRun& run = {});
 
 }  // namespace limsurf::detail

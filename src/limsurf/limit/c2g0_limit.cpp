@@ -664,7 +664,7 @@ C2g0Limit::C2g0Limit(const Topology& topology, LimitEvaluation evaluation) : imp
                          " from another one, still closer than 4 after one refinement");
         (void)refined_vertex;
         m.refined = true;
-        m.S = std::move(level.S0);
+        m.S.swap(level.S0);  // Eigen 3.4: assigning a std::move-d SparseMatrix copies it
         m.mesh = std::move(level.topology);
     } else {
         m.mesh = topology;

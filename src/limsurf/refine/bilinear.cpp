@@ -5,14 +5,20 @@
 namespace limsurf {
 
 Level refine_bilinear(const Topology& parent) {
-    return detail::refine_bilinear_step(parent, nullptr);
+    return detail::refine_bilinear_step(parent, {});
 }
 
-Level detail::refine_bilinear_step(const Topology& parent, CarriedPoints* carried) {
+Level detail::refine_bilinear_step(const Topology& parent, const StepRun& run) {
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
-    detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E, carried);
+    // Sharpness is carried with uniform decay so that a later smooth scheme sees it.
+    const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
+    auto child = detail::concurrently(run.threads, [&] {
+        return detail::quad_split_topology(
+            parent, detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false));
+    });
+    detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E, run.carried);
     detail::add_identity_rows(V, rows);
     for (Index f = 0; f < F; ++f) {
         const auto verts = parent.face_vertices(f);
@@ -23,12 +29,9 @@ Level detail::refine_bilinear_step(const Topology& parent, CarriedPoints* carrie
         rows.end_row();
     }
     detail::add_midpoint_rows(parent, rows);
-    // Sharpness is carried with uniform decay so that a later smooth scheme sees it.
-    const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
-    return detail::make_level(
-        detail::quad_split_topology(parent,
-                                    detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false)),
-        rows.finish(), carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent));
+    SparseMatrix S0 = rows.finish();
+    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent);
+    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
 }
 
 }  // namespace limsurf

@@ -11,14 +11,15 @@
 namespace limsurf {
 
 Level refine_c2g0(const Topology& parent) {
-    return detail::refine_c2g0_step(parent, nullptr);
+    return detail::refine_c2g0_step(parent, {});
 }
 
-Level detail::refine_c2g0_step(const Topology& parent, CarriedPoints* carried) {
+Level detail::refine_c2g0_step(const Topology& parent, const StepRun& run) {
     require_c2g0_topology(parent);
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
-    detail::SparseRowBuilder rows(V + E, V, 7 * V + 10 * E, carried);
+    auto child = detail::concurrently(run.threads, [&] { return detail::tri_split_topology(parent, SharpnessTags{}); });
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 10 * E, run.carried);
     detail::C2g0Row row;
     const auto emit = [&] {
         for (const auto& [v, w] : row) {
@@ -36,8 +37,9 @@ Level detail::refine_c2g0_step(const Topology& parent, CarriedPoints* carried) {
         emit();
     }
 
-    return detail::make_level(detail::tri_split_topology(parent, SharpnessTags{}), rows.finish(),
-                              carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent));
+    SparseMatrix S0 = rows.finish();
+    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent);
+    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
 }
 
 }  // namespace limsurf

@@ -107,14 +107,18 @@ Level refine_catmull_clark(const Topology& parent, const SchemeOptions& options,
 
 Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOptions& options,
                                           const TunedWeights& weights, const std::vector<bool>& forced,
-                                          CarriedPoints* carried) {
+                                          const StepRun& run) {
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, options.boundary);
+    auto child = detail::concurrently(run.threads, [&] {
+        return detail::quad_split_topology(parent,
+                                           detail::child_sharpness(parent, effective, options.creasing, V + F, false));
+    });
 
     // Regular interior rows: 9 (vertex), 4 (face), 6 (edge) entries.
-    detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E, carried);
+    detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E, run.carried);
 
     // The paper's convention (iga-tuned-catmull-clark-weights Fig. 1): α, β, γ are an
     // extraordinary vertex's own weights in its vertex rule, in the edge rule of its edges and in the
@@ -207,9 +211,9 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
         rows.end_row();
     }
 
-    return detail::make_level(
-        detail::quad_split_topology(parent, detail::child_sharpness(parent, effective, options.creasing, V + F, false)),
-        rows.finish(), carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent));
+    SparseMatrix S0 = rows.finish();
+    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent);
+    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
 }
 
 }  // namespace limsurf

@@ -146,6 +146,8 @@ void check_refinement(const Topology& base, const RefineOptions& options) {
     LIMSURF_CHECK(options.levels >= 0 && options.levels <= max_levels, InputError, "levels must be in [0, ", max_levels,
                   "], got ", options.levels);
     LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
+    LIMSURF_CHECK(options.num_threads >= 0, InputError, "num_threads must be >= 0 (0: all cores), got ",
+                  options.num_threads);
     const std::vector<LevelSize> sizes = predict_sizes(base, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
     const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme) + options.reserved_bytes;
@@ -231,7 +233,8 @@ Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(opt
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;
         steps_.push_back(options.forms
                              ? refine_with_forms(parent, options.scheme, options.scheme_options, options.weights)
-                             : refine(parent, options.scheme, options.scheme_options, options.weights));
+                             : detail::refine_step(parent, options.scheme, options.scheme_options, options.weights,
+                                                   detail::step_threads(options.num_threads, parent)));
     }
     for (auto& cache : accumulated_) {
         cache.resize(steps_.size() + 1);
@@ -322,8 +325,9 @@ FinestLevel refine_finest(const Topology& base, const Points& control_points, co
     }
     Topology level;  // the current finest, once refined
     for (int l = 0; l < options.levels; ++l) {
-        Topology child = detail::refine_carrying(l == 0 ? base : level, options.scheme, options.scheme_options,
-                                                 options.weights, carried);
+        const Topology& parent = l == 0 ? base : level;
+        Topology child = detail::refine_carrying(parent, options.scheme, options.scheme_options, options.weights,
+                                                 carried, detail::step_threads(options.num_threads, parent));
         level = std::move(child);  // the parent goes here
         out.counts.push_back(counts(level));
         if (l + 1 < options.levels) {

@@ -5,20 +5,24 @@
 namespace limsurf {
 
 Level refine_linear(const Topology& parent) {
-    return detail::refine_linear_step(parent, nullptr);
+    return detail::refine_linear_step(parent, {});
 }
 
-Level detail::refine_linear_step(const Topology& parent, CarriedPoints* carried) {
+Level detail::refine_linear_step(const Topology& parent, const StepRun& run) {
     detail::require_triangles(parent, "linear subdivision");
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
-    detail::SparseRowBuilder rows(V + E, V, V + 2 * E, carried);
+    const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
+    auto child = detail::concurrently(run.threads, [&] {
+        return detail::tri_split_topology(parent,
+                                          detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true));
+    });
+    detail::SparseRowBuilder rows(V + E, V, V + 2 * E, run.carried);
     detail::add_identity_rows(V, rows);
     detail::add_midpoint_rows(parent, rows);
-    const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
-    return detail::make_level(detail::tri_split_topology(
-                                  parent, detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true)),
-                              rows.finish(), carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent));
+    SparseMatrix S0 = rows.finish();
+    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent);
+    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
 }
 
 }  // namespace limsurf

@@ -16,16 +16,20 @@ std::size_t at(Index i) {
 }  // namespace
 
 Level refine_loop(const Topology& parent, const SchemeOptions& options) {
-    return detail::refine_loop_step(parent, options, nullptr);
+    return detail::refine_loop_step(parent, options, {});
 }
 
-Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& options, CarriedPoints* carried) {
+Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& options, const StepRun& run) {
     detail::require_triangles(parent, "Loop");
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, options.boundary);
+    auto child = detail::concurrently(run.threads, [&] {
+        return detail::tri_split_topology(parent,
+                                          detail::child_sharpness(parent, effective, options.creasing, V, true));
+    });
 
-    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E, carried);
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E, run.carried);
 
     // Vertex points: Loop's weights, β = (5/8 − (3/8 + cos(2π/n)/4)²)/n per neighbour.
     const auto smooth = [](Index, detail::VertexMask& mask) {
@@ -69,9 +73,9 @@ Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& opti
         rows.end_row();
     }
 
-    return detail::make_level(
-        detail::tri_split_topology(parent, detail::child_sharpness(parent, effective, options.creasing, V, true)),
-        rows.finish(), carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent));
+    SparseMatrix S0 = rows.finish();
+    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent);
+    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
 }
 
 }  // namespace limsurf

@@ -43,21 +43,41 @@ Level refine(const Topology& parent, SchemeKind kind, const SchemeOptions& optio
     return refine_bilinear(parent);
 }
 
-Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                                 const TunedWeights& weights, CarriedPoints& carried) {
+namespace {
+
+/// One step of a face-split scheme run as @p run says; Doo–Sabin (not a face split) by its public
+/// function, on one thread.
+Level run_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options, const TunedWeights& weights,
+               const detail::StepRun& run) {
     switch (kind) {
     case SchemeKind::CatmullClark:
-        return std::move(refine_catmull_clark_forced(parent, options, weights, {}, &carried).topology);
+        return detail::refine_catmull_clark_forced(parent, options, weights, {}, run);
     case SchemeKind::Loop:
-        return std::move(refine_loop_step(parent, options, &carried).topology);
+        return detail::refine_loop_step(parent, options, run);
     case SchemeKind::Bilinear:
-        return std::move(refine_bilinear_step(parent, &carried).topology);
+        return detail::refine_bilinear_step(parent, run);
     case SchemeKind::Linear:
-        return std::move(refine_linear_step(parent, &carried).topology);
+        return detail::refine_linear_step(parent, run);
     case SchemeKind::C2g0:
-        return std::move(refine_c2g0_step(parent, &carried).topology);
+        return detail::refine_c2g0_step(parent, run);
     case SchemeKind::DooSabin:
         break;
+    }
+    return refine_doo_sabin(parent, options);
+}
+
+}  // namespace
+
+Level detail::refine_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
+                          const TunedWeights& weights, int threads) {
+    return run_step(parent, kind, options, weights, StepRun{.carried = nullptr, .threads = threads});
+}
+
+Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
+                                 const TunedWeights& weights, CarriedPoints& carried, int threads) {
+    if (kind != SchemeKind::DooSabin) {
+        return std::move(
+            run_step(parent, kind, options, weights, StepRun{.carried = &carried, .threads = threads}).topology);
     }
     // Doo–Sabin collects its S0 as triplets: it is built and applied as Hierarchy::apply does.
     Level step = refine(parent, kind, options, weights);

@@ -95,6 +95,7 @@ Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKi
     refine.scheme = scheme;
     refine.levels = level;
     refine.scheme_options = scheme_options;
+    refine.num_threads = options.num_threads;
     const Hierarchy h(topology, refine);
     const Points XL =
         evaluation_positions(h.topology(level), h.positions(level, X0), options.method, scheme, scheme_options);

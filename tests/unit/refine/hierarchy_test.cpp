@@ -338,6 +338,81 @@ TEST(RefineFinest, LongRowsAreSummedAsTheProductSumsThem) {
     }
 }
 
+template <class Span>
+std::vector<typename Span::value_type> list(const Span& s) {
+    return {s.begin(), s.end()};
+}
+
+void expect_same_topology(const Topology& a, const Topology& b) {
+    ASSERT_EQ(a.num_vertices(), b.num_vertices());
+    ASSERT_EQ(a.num_edges(), b.num_edges());
+    ASSERT_EQ(a.num_faces(), b.num_faces());
+    EXPECT_EQ(list(a.face_offsets()), list(b.face_offsets()));
+    EXPECT_EQ(list(a.all_face_vertices()), list(b.all_face_vertices()));
+    for (Index e = 0; e < a.num_edges(); ++e) {
+        ASSERT_EQ(a.edge_vertices(e), b.edge_vertices(e)) << "edge " << e;
+        ASSERT_EQ(list(a.edge_faces(e)), list(b.edge_faces(e))) << "edge " << e;
+        ASSERT_EQ(a.edge_sharpness(e), b.edge_sharpness(e)) << "edge " << e;
+    }
+    for (Index v = 0; v < a.num_vertices(); ++v) {
+        ASSERT_EQ(list(a.vertex_faces(v)), list(b.vertex_faces(v))) << "vertex " << v;
+        ASSERT_EQ(list(a.vertex_edges(v)), list(b.vertex_edges(v))) << "vertex " << v;
+        ASSERT_EQ(a.vertex_sharpness(v), b.vertex_sharpness(v)) << "vertex " << v;
+    }
+    for (Index f = 0; f < a.num_faces(); ++f) {
+        ASSERT_EQ(list(a.face_edges(f)), list(b.face_edges(f))) << "face " << f;
+        ASSERT_EQ(a.is_hole(f), b.is_hole(f)) << "face " << f;
+    }
+}
+
+void expect_same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
+    ASSERT_EQ(a.rows(), b.rows());
+    ASSERT_EQ(a.cols(), b.cols());
+    ASSERT_EQ(a.nonZeros(), b.nonZeros());
+    const auto nnz = static_cast<std::size_t>(a.nonZeros());
+    EXPECT_TRUE(std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()));
+    EXPECT_TRUE(std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()));
+    EXPECT_TRUE(std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr()));
+}
+
+/// With two threads each step builds the child topology on a second thread while the first builds
+/// S0 or carries the points (RefineOptions::num_threads): every level, every S0 and the positions
+/// must be those of one thread, bit for bit. The meshes are refined until a step's parent has at
+/// least 1024 faces, from where a step takes the second thread (detail::step_threads).
+TEST(RefineThreads, TwoThreadsGiveWhatOneGivesBitForBit) {
+    struct Case {
+        const char* mesh;
+        SchemeKind scheme;
+        int levels;
+    };
+    for (const Case& c : {Case{"cube_creases", SchemeKind::CatmullClark, 5},
+                          Case{"annulus", SchemeKind::CatmullClark, 4}, Case{"icosahedron", SchemeKind::Loop, 5},
+                          Case{"quad_torus", SchemeKind::Bilinear, 4}, Case{"tri_grid", SchemeKind::Linear, 4},
+                          Case{"tetra_1", SchemeKind::C2g0, 5}, Case{"cube", SchemeKind::DooSabin, 5}}) {
+        SCOPED_TRACE(std::string(c.mesh) + " " + to_string(c.scheme));
+        const BuildResult built = read_mesh(test::find_bundled(c.mesh).path);
+        RefineOptions one = options_for(c.scheme, c.levels);
+        one.num_threads = 1;
+        RefineOptions two = one;
+        two.num_threads = 2;
+        const Hierarchy serial(built.mesh.topology(), one);
+        const Hierarchy parallel(built.mesh.topology(), two);
+        ASSERT_GE(serial.topology(c.levels - 1).num_faces(), 1024) << "the last step would not take a second thread";
+        for (int l = 1; l <= c.levels; ++l) {
+            SCOPED_TRACE("level " + std::to_string(l));
+            expect_same_topology(serial.topology(l), parallel.topology(l));
+            expect_same_matrix(serial.step(l).S0, parallel.step(l).S0);
+        }
+        const FinestLevel finest_one = refine_finest(built.mesh.topology(), built.mesh.positions(), one);
+        const FinestLevel finest_two = refine_finest(built.mesh.topology(), built.mesh.positions(), two);
+        expect_same_topology(finest_one.topology, finest_two.topology);
+        EXPECT_TRUE((finest_one.positions.array() == finest_two.positions.array()).all()) << "positions differ";
+    }
+    RefineOptions negative = options_for(SchemeKind::CatmullClark, 1);
+    negative.num_threads = -1;
+    EXPECT_THROW(Hierarchy(read_mesh(test::find_bundled("cube").path).mesh.topology(), negative), InputError);
+}
+
 TEST(RefineFinest, RefusesWhatTheHierarchyRefuses) {
     const BuildResult built = read_mesh(test::find_bundled("quad_torus").path);
     EXPECT_THROW(
