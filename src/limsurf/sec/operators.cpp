@@ -10,9 +10,9 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/magnitude.h"
+#include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
-#include "limsurf/detail/sparse_cholesky.h"
 
 namespace limsurf {
 
