@@ -288,8 +288,11 @@ int step_threads(int requested, const Topology& parent) {
     return std::min(2, thread_count(requested, parent.num_faces()));
 }
 
-Level make_level(Topology child, SparseMatrix&& S0, Provenance provenance) {
-    return Level{std::move(child), std::move(S0), std::move(provenance)};
+Level finish_step(const Topology& parent, std::future<Topology>& child, SparseRowBuilder& rows, const StepRun& run,
+                  Provenance (*provenance_of)(const Topology&)) {
+    SparseMatrix S0 = rows.finish();
+    Provenance provenance = run.carried != nullptr ? Provenance{} : provenance_of(parent);
+    return Level{child.get(), std::move(S0), std::move(provenance)};
 }
 
 }  // namespace limsurf::detail

@@ -253,10 +253,10 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 [[nodiscard]] Topology refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
                                        const TunedWeights& weights, CarriedPoints& carried, int threads);
 
-/// @brief Assembles the Level from the child topology (detail::quad_split_topology or
-///   detail::tri_split_topology, mesh/topology.h), S0 and the provenance.
-/// @p S0 is taken over (swapped), not copied: Eigen 3.4's SparseMatrix has no move constructor,
-/// so passing it by value from a named matrix would copy it.
-[[nodiscard]] Level make_level(Topology child, SparseMatrix&& S0, Provenance provenance);
+/// @brief The end of every face-split step: the Level of the child topology (detail::quad_split_topology
+///   or detail::tri_split_topology, waited for), the S0 of @p rows (taken over, not copied: Eigen 3.4's
+///   SparseMatrix has no move constructor) and @p provenance_of(@p parent) unless @p run carried points.
+[[nodiscard]] Level finish_step(const Topology& parent, std::future<Topology>& child, SparseRowBuilder& rows,
+                                const StepRun& run, Provenance (*provenance_of)(const Topology&));
 
 }  // namespace limsurf::detail

@@ -29,9 +29,7 @@ Level detail::refine_bilinear_step(const Topology& parent, const StepRun& run) {
         rows.end_row();
     }
     detail::add_midpoint_rows(parent, rows);
-    SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent);
-    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
+    return detail::finish_step(parent, child, rows, run, detail::quad_split_provenance);
 }
 
 }  // namespace limsurf

@@ -37,9 +37,7 @@ Level detail::refine_c2g0_step(const Topology& parent, const StepRun& run) {
         emit();
     }
 
-    SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent);
-    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
+    return detail::finish_step(parent, child, rows, run, detail::tri_split_provenance);
 }
 
 }  // namespace limsurf

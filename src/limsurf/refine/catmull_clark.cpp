@@ -211,9 +211,7 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
         rows.end_row();
     }
 
-    SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::quad_split_provenance(parent);
-    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
+    return detail::finish_step(parent, child, rows, run, detail::quad_split_provenance);
 }
 
 }  // namespace limsurf

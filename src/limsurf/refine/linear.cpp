@@ -20,9 +20,7 @@ Level detail::refine_linear_step(const Topology& parent, const StepRun& run) {
     detail::SparseRowBuilder rows(V + E, V, V + 2 * E, run.carried);
     detail::add_identity_rows(V, rows);
     detail::add_midpoint_rows(parent, rows);
-    SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent);
-    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
+    return detail::finish_step(parent, child, rows, run, detail::tri_split_provenance);
 }
 
 }  // namespace limsurf

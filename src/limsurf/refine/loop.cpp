@@ -73,9 +73,7 @@ Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& opti
         rows.end_row();
     }
 
-    SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried != nullptr ? Provenance{} : detail::tri_split_provenance(parent);
-    return detail::make_level(child.get(), std::move(S0), std::move(provenance));
+    return detail::finish_step(parent, child, rows, run, detail::tri_split_provenance);
 }
 
 }  // namespace limsurf
