@@ -115,6 +115,24 @@ void limsurf_refine_finest(benchmark::State& state, const Mesh& mesh, limsurf::S
     report(state, mesh, faces);
 }
 
+/// refine_finest_faces: the same positions, the finest level's face list without its Topology (what
+/// `limsurf subdivide` runs and writes; Far's default rows, without fullTopologyInLastLevel, likewise).
+void limsurf_refine_faces(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    // The benchmark's argument: threads (RefineOptions::num_threads; 1 is the single-threaded row).
+    const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
+    limsurf::RefineOptions options;
+    options.scheme = scheme;
+    options.levels = levels;
+    options.num_threads = static_cast<int>(state.range(0));
+    double faces = 0;
+    for (auto _ : state) {
+        const limsurf::FinestFaces finest = limsurf::refine_finest_faces(base, mesh.positions, options);
+        benchmark::DoNotOptimize(finest.mesh.positions.data());
+        faces = finest.mesh.num_faces();
+    }
+    report(state, mesh, faces);
+}
+
 void BM_limsurf_CatmullClark(benchmark::State& state) {
     limsurf_refine(state, quads(), limsurf::SchemeKind::CatmullClark);
 }
@@ -126,6 +144,12 @@ void BM_limsurf_finest_CatmullClark(benchmark::State& state) {
 }
 void BM_limsurf_finest_Loop(benchmark::State& state) {
     limsurf_refine_finest(state, triangles(), limsurf::SchemeKind::Loop);
+}
+void BM_limsurf_faces_CatmullClark(benchmark::State& state) {
+    limsurf_refine_faces(state, quads(), limsurf::SchemeKind::CatmullClark);
+}
+void BM_limsurf_faces_Loop(benchmark::State& state) {
+    limsurf_refine_faces(state, triangles(), limsurf::SchemeKind::Loop);
 }
 void BM_limsurf_DooSabin(benchmark::State& state) {
     limsurf_refine(state, quads(), limsurf::SchemeKind::DooSabin);
@@ -300,12 +324,14 @@ void BM_OpenMesh_Loop(benchmark::State& state) {
 
 BENCHMARK(BM_limsurf_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_faces_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_full_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_faces_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_full_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -91,19 +91,18 @@ int run_subdivide(const SubdivideOptions& options) {
     print_warnings(built.report);
     RefineOptions refine = refine_options(options, built.mesh.hints());
     return naming_file(built.source, {options.output, options.weights}, [&] {
-        // Only the finest level is kept (each step's S0 and parent are dropped once used); the
-        // budget is checked against the peak of keeping every level, an upper bound of it.
+        // Only the finest level is kept (each step's S0 and parent are dropped once used), and of it
+        // only the face list (no edges or one-rings): it is written, not computed on.
         const std::vector<LevelSize> sizes = predict_sizes(built.mesh.topology(), refine.scheme, refine.levels);
         const auto start = std::chrono::steady_clock::now();
-        FinestLevel refined = refine_finest(built.mesh.topology(), built.mesh.positions(), refine);
+        FinestFaces refined = refine_finest_faces(built.mesh.topology(), built.mesh.positions(), refine);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-        SchemeHints hints;  // record the rules used, so that the output refines the same way
-        hints.boundary = refine.scheme_options.boundary;
-        hints.creasing = refine.scheme_options.creasing;
-        hints.triangles = refine.scheme_options.triangles;
-        const ControlMesh finest(std::move(refined.topology), std::move(refined.positions), hints);
-        print_warnings(write_mesh(options.output, finest,
+        // Record the rules used, so that the output refines the same way.
+        refined.mesh.hints.boundary = refine.scheme_options.boundary;
+        refined.mesh.hints.creasing = refine.scheme_options.creasing;
+        refined.mesh.hints.triangles = refine.scheme_options.triangles;
+        print_warnings(write_mesh(options.output, refined.mesh,
                                   {.ply_encoding = ply_encoding_from(options.ply_encoding), .format = format}));
 
         if (options.json) {
@@ -118,10 +117,10 @@ int run_subdivide(const SubdivideOptions& options) {
                         {"triangles", to_string(refine.scheme_options.triangles)},
                         {"tuned_weights", !refine.weights.is_catmull_clark()},
                         {"input", size_json(built.mesh.topology())},
-                        {"output", size_json(finest.topology())},
+                        {"output", levels.back()},
                         {"per_level", levels},
                         {"output_file", options.output},
-                        {"estimated_peak_bytes", estimated_peak_bytes(sizes, refine.scheme)},
+                        {"estimated_peak_bytes", estimated_finest_peak_bytes(sizes, refine.scheme, true)},
                         {"seconds", seconds}});
         }
         return exit_ok;

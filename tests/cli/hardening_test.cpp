@@ -440,9 +440,12 @@ TEST(CliHardening, TunedWeightsOfAnySizeGiveFiniteRules) {
 
 TEST(CliHardening, WorkBeyondTheMemoryBudgetIsRefusedBeforeAllocating) {
     const fs::path out = temp_dir() / "never_big.obj";
-    const auto [run, seconds] =
-        timed({"subdivide", bundled("cube"), "--scheme", "catmull-clark", "--levels", "12", "-o", out.string()});
-    expect_one_error(run, bundled("cube") + ": catmull-clark with 12 levels needs about ");
+    // 14 levels: 1.6 G faces, past the face limit (raised here) and ~200 GB at the peak, past the budget of
+    // any machine this runs on. (`subdivide` keeps two levels and the finest only as a face list, so 12
+    // levels, 100 M faces, need ~11 GB: on a large machine they would be refined, not refused.)
+    const auto [run, seconds] = timed({"subdivide", bundled("cube"), "--scheme", "catmull-clark", "--levels", "14",
+                                       "--max-faces", "4000000000", "-o", out.string()});
+    expect_one_error(run, bundled("cube") + ": catmull-clark with 14 levels needs about ");
     EXPECT_NE(run.err.find("more than the memory budget of"), std::string::npos) << run.err;
     EXPECT_LT(seconds, 1.0 * test::time_scale);
     EXPECT_FALSE(fs::exists(out));

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "limsurf/core/types.h"
+#include "limsurf/mesh/polygon_soup.h"
 #include "limsurf/mesh/topology.h"
 #include "limsurf/refine/level.h"
 #include "limsurf/refine/refine.h"
@@ -33,8 +34,9 @@ struct RefineOptions {
     SchemeOptions scheme_options;                    ///< boundary, creasing, triangle rule
     TunedWeights weights;                            ///< Catmull–Clark only; default = Catmull–Clark's own
     std::int64_t max_faces = std::int64_t{1} << 27;  ///< refuse when the finest level would exceed this
-    /// Refuse (before allocating) when estimated_peak_bytes() exceeds this; empty: the default
-    /// budget, 3/4 of the machine's memory (default_memory_budget(), core/memory.h).
+    /// Refuse (before allocating) when the estimated peak exceeds this (estimated_peak_bytes() for a
+    /// Hierarchy, estimated_finest_peak_bytes() for refine_finest and refine_finest_faces); empty: the
+    /// default budget, 3/4 of the machine's memory (default_memory_budget(), core/memory.h).
     std::optional<std::int64_t> max_memory = std::nullopt;
     /// Memory the caller will hold next to the hierarchy (e.g. a copy of the finest level to
     /// write it), counted into the peak that max_memory limits.
@@ -81,6 +83,15 @@ struct LevelSize {
 ///   topology, S0 and positions (all are kept) and the transient tables of building the largest
 ///   step. Calibrated on the bundled meshes (measured peaks 0.8–0.95 of it; docs/io.md "Limits").
 [[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme);
+
+/// @brief Peak memory (bytes) of refine_finest() (@p face_list false) or refine_finest_faces() (true)
+///   over @p sizes: the base, and the largest step's parent (topology and points), child (topology —
+///   for refine_finest_faces' last step only its face list — and points) and transient tables, each
+///   table rounded up to whole huge pages; the first step's S0 counts as if stored (its masks, dense
+///   over a face, cost time with the square of its degree). An upper bound: measured peaks are
+///   0.65–0.87 of it (docs/io.md "Memory").
+[[nodiscard]] std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme,
+                                                       bool face_list);
 
 class Hierarchy {
   public:
@@ -154,5 +165,23 @@ struct FinestLevel {
 /// @throws as Hierarchy's constructor and Hierarchy::positions (the same checks, before any work)
 [[nodiscard]] FinestLevel refine_finest(const Topology& base, const Points& control_points,
                                         const RefineOptions& options);
+
+/// The finest level of a refinement as a face list, without its Topology.
+struct FinestFaces {
+    /// Level L's positions, face list and sharpness tags: to_polygon_soup() of refine_finest()'s
+    /// result, tag for tag (no hints, groups or source lines).
+    PolygonSoup mesh;
+    /// {#V, #E, #F} of every level 0..L, as refine_finest() reports them.
+    std::vector<std::array<Index, 3>> counts;
+};
+
+/// @brief refine_finest() without the finest level's Topology (its edges, one-rings and boundary
+///   loops): the last step writes only the child's face list and sharpness tags, as OpenSubdiv's
+///   uniform refinement does without fullTopologyInLastLevel. For users who write the refined mesh
+///   or hand it on as arrays (`limsurf subdivide`): at 1.6 M quads the Topology is ~240 MiB, the face
+///   list ~30 MiB. Doo–Sabin's last step builds its Topology in any case and drops it after.
+/// @throws as refine_finest()
+[[nodiscard]] FinestFaces refine_finest_faces(const Topology& base, const Points& control_points,
+                                              const RefineOptions& options);
 
 }  // namespace limsurf

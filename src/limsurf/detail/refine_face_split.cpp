@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <utility>
 
 #include "limsurf/core/parallel.h"
@@ -137,6 +138,85 @@ SharpnessTags child_sharpness(const Topology& parent, const EffectiveSharpness& 
         first_child_face += count;
     }
     return tags;
+}
+
+namespace {
+
+/// Where the child edge of crease @p tag (a half of a parent edge: {parent end, edge point}) first
+/// appears in the child face list, as slot × face size + edge: the child Topology numbers its edges in
+/// that order. The half at v of edge e lies in the child at v's corner of each face of e, as its
+/// first edge (e leaves that corner) or its last (e enters it).
+Index first_appearance(const Topology& parent, Split split, Index first_edge_vertex, const CreaseTag& tag) {
+    const Index e = tag.v1 - first_edge_vertex;
+    const Index v = tag.v0;
+    const Index size = split == Split::Quads ? 4 : 3;
+    Index first = std::numeric_limits<Index>::max();
+    for (const Index g : parent.edge_faces(e)) {
+        const auto verts = parent.face_vertices(g);
+        const auto k = static_cast<Index>(std::find(verts.begin(), verts.end(), v) - verts.begin());
+        const Index child = split == Split::Quads ? parent.face_offset(g) + k : 4 * g + k;
+        const Index edge = parent.face_edges(g)[at(k)] == e ? 0 : size - 1;
+        first = std::min(first, size * child + edge);
+    }
+    return first;
+}
+
+}  // namespace
+
+void write_split_faces(const Topology& parent, Split split, SharpnessTags tags, PolygonSoup& out) {
+    const Index V = parent.num_vertices();
+    const Index F = parent.num_faces();
+    const Index first_edge_vertex = split == Split::Quads ? V + F : V;
+    const std::size_t num_faces = split == Split::Quads ? at(parent.num_corners()) : 4 * at(F);
+    const Index size = split == Split::Quads ? 4 : 3;
+    reserve_huge(out.face_offsets, num_faces + 1);
+    out.face_offsets.resize(num_faces + 1);
+    for (std::size_t i = 0; i <= num_faces; ++i) {
+        out.face_offsets[i] = static_cast<Index>(size * static_cast<Index>(i));
+    }
+    reserve_huge(out.face_vertices, num_faces * at(size));
+    out.face_vertices.clear();
+    for (Index f = 0; f < F; ++f) {
+        const auto verts = parent.face_vertices(f);
+        const auto edges = parent.face_edges(f);
+        const std::size_t n = verts.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const Index next = first_edge_vertex + edges[k];
+            const Index previous = first_edge_vertex + edges[(k + n - 1) % n];
+            if (split == Split::Quads) {  // [v_k, e_k, f, e_(k-1)]
+                out.face_vertices.insert(out.face_vertices.end(), {verts[k], next, V + f, previous});
+            } else {  // [v_k, e_k, e_(k-1)]
+                out.face_vertices.insert(out.face_vertices.end(), {verts[k], next, previous});
+            }
+        }
+        if (split == Split::Triangles) {  // the middle [e_0, e_1, e_2]
+            for (const Index e : edges) {
+                out.face_vertices.push_back(first_edge_vertex + e);
+            }
+        }
+    }
+
+    std::vector<std::pair<Index, std::size_t>> order;
+    order.reserve(tags.creases.size());
+    for (std::size_t i = 0; i < tags.creases.size(); ++i) {
+        order.emplace_back(first_appearance(parent, split, first_edge_vertex, tags.creases[i]), i);
+    }
+    std::sort(order.begin(), order.end());
+    out.sharpness.creases.clear();
+    for (const auto& [position, i] : order) {
+        out.sharpness.creases.push_back(tags.creases[i]);
+    }
+    // child_sharpness() gives corners in vertex and holes in face order already.
+    out.sharpness.corners = std::move(tags.corners);
+    out.sharpness.holes = std::move(tags.holes);
+}
+
+void write_faces(const Topology& topology, PolygonSoup& out) {
+    reserve_huge(out.face_offsets, topology.face_offsets().size());
+    out.face_offsets.assign(topology.face_offsets().begin(), topology.face_offsets().end());
+    reserve_huge(out.face_vertices, topology.all_face_vertices().size());
+    out.face_vertices.assign(topology.all_face_vertices().begin(), topology.all_face_vertices().end());
+    out.sharpness = topology.sharpness_tags();
 }
 
 Index opposite_vertex(const Topology& parent, Index f, Index e) {

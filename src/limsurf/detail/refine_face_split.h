@@ -14,6 +14,7 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/types.h"
+#include "limsurf/mesh/polygon_soup.h"
 #include "limsurf/mesh/sharpness.h"
 #include "limsurf/mesh/topology.h"
 #include "limsurf/refine/level.h"
@@ -75,7 +76,27 @@ struct StepRun {
     /// 2 or more: the child topology is built on a second thread while the calling thread builds the
     /// rows (the two read the parent only; the result does not depend on it). 1: one after the other.
     int threads = 1;
+    /// When not null: the step writes the child's face list and sharpness tags here (face_offsets,
+    /// face_vertices and sharpness, as to_polygon_soup() of the child Topology would, tag for tag)
+    /// and builds no Topology (the Level's is empty): the last step of refine_finest_faces().
+    PolygonSoup* faces = nullptr;
 };
+
+/// The two ways a face-split scheme cuts its faces (refine/level.h gives the child order).
+enum class Split {
+    Quads,      ///< a quad per corner (Catmull–Clark, bilinear)
+    Triangles,  ///< four triangles per triangle (Loop, linear, C2g0)
+};
+
+/// @brief Writes the face list of @p parent's child under @p split, and @p tags (the child's sharpness,
+///   as child_sharpness() gives it) ordered as the child Topology's sharpness_tags() would order them
+///   (creases by child edge, corners by vertex, holes by face), into @p out's face_offsets,
+///   face_vertices and sharpness. The same faces as quad_split_topology / tri_split_topology, without
+///   their edges and one-rings. @pre Split::Triangles: all faces are triangles
+void write_split_faces(const Topology& parent, Split split, SharpnessTags tags, PolygonSoup& out);
+
+/// @brief Writes @p topology's face list and sharpness tags into @p out (as to_polygon_soup()).
+void write_faces(const Topology& topology, PolygonSoup& out);
 
 /// @brief Threads for one step of refinement: 2 when @p requested (0: hardware concurrency) allows
 ///   two and @p parent is large enough (1024 faces) for a second thread to pay for its start; else 1.
@@ -86,6 +107,20 @@ struct StepRun {
 template <class Task>
 [[nodiscard]] std::future<std::invoke_result_t<Task>> concurrently(int threads, Task&& task) {
     return std::async(threads > 1 ? std::launch::async : std::launch::deferred, std::forward<Task>(task));
+}
+
+/// @brief The child of @p parent under @p split as @p run asks, on a second thread when it has two:
+///   its Topology (quad_split_topology / tri_split_topology), or with StepRun::faces its face list,
+///   written there, and an empty Topology. @p tags() gives the child's sharpness tags (on that thread).
+template <class Tags>
+[[nodiscard]] std::future<Topology> split_child(const Topology& parent, Split split, const StepRun& run, Tags tags) {
+    return concurrently(run.threads, [&parent, split, &run, tags] {
+        if (run.faces != nullptr) {
+            write_split_faces(parent, split, tags(), *run.faces);
+            return Topology{};
+        }
+        return split == Split::Quads ? quad_split_topology(parent, tags()) : tri_split_topology(parent, tags());
+    });
 }
 
 /// Builds a row-major sparse matrix row by row, in order, without triplets:
@@ -250,8 +285,11 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 /// @brief refine(parent, kind, options, weights)'s child topology, with @p carried's points carried to
 ///   it: S0 · parent, bit for bit, without storing S0 where the scheme builds its rows in order (the
 ///   face-split schemes; Doo–Sabin builds its S0 and multiplies). @p threads as in StepRun.
+/// @param[out] faces when not null: the child's face list and sharpness tags are written here
+///   (StepRun::faces), and the Topology returned is empty, except Doo–Sabin's (built in any case)
 [[nodiscard]] Topology refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                                       const TunedWeights& weights, CarriedPoints& carried, int threads);
+                                       const TunedWeights& weights, CarriedPoints& carried, int threads,
+                                       PolygonSoup* faces = nullptr);
 
 /// @brief The end of every face-split step: the Level of the child topology (detail::quad_split_topology
 ///   or detail::tri_split_topology, waited for), the S0 of @p rows (taken over, not copied: Eigen 3.4's

@@ -14,9 +14,8 @@ Level detail::refine_bilinear_step(const Topology& parent, const StepRun& run) {
     const Index E = parent.num_edges();
     // Sharpness is carried with uniform decay so that a later smooth scheme sees it.
     const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
-    auto child = detail::concurrently(run.threads, [&] {
-        return detail::quad_split_topology(
-            parent, detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false));
+    auto child = detail::split_child(parent, detail::Split::Quads, run, [&] {
+        return detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false);
     });
     detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E, run.carried);
     detail::add_identity_rows(V, rows);

@@ -112,9 +112,8 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, options.boundary);
-    auto child = detail::concurrently(run.threads, [&] {
-        return detail::quad_split_topology(parent,
-                                           detail::child_sharpness(parent, effective, options.creasing, V + F, false));
+    auto child = detail::split_child(parent, detail::Split::Quads, run, [&] {
+        return detail::child_sharpness(parent, effective, options.creasing, V + F, false);
     });
 
     // Regular interior rows: 9 (vertex), 4 (face), 6 (edge) entries.

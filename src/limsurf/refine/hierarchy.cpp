@@ -141,8 +141,15 @@ void check_memory(const Topology& base, const std::vector<LevelSize>& sizes, std
                        ": use fewer levels, or a larger budget (limsurf --max-memory) if the machine has the memory"));
 }
 
+/// What a refinement keeps, which decides its peak.
+enum class Keeping {
+    EveryLevel,   ///< Hierarchy: estimated_peak_bytes()
+    FinestLevel,  ///< refine_finest(): estimated_finest_peak_bytes(…, false)
+    FinestFaces,  ///< refine_finest_faces(): estimated_finest_peak_bytes(…, true)
+};
+
 /// Everything Hierarchy and refine_finest refuse before any work: levels, sizes, memory, weights.
-void check_refinement(const Topology& base, const RefineOptions& options) {
+void check_refinement(const Topology& base, const RefineOptions& options, Keeping keeping) {
     LIMSURF_CHECK(options.levels >= 0 && options.levels <= max_levels, InputError, "levels must be in [0, ", max_levels,
                   "], got ", options.levels);
     LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
@@ -150,7 +157,11 @@ void check_refinement(const Topology& base, const RefineOptions& options) {
                   options.num_threads);
     const std::vector<LevelSize> sizes = predict_sizes(base, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
-    const std::int64_t peak = estimated_peak_bytes(sizes, options.scheme) + options.reserved_bytes;
+    const std::int64_t peak =
+        (keeping == Keeping::EveryLevel
+             ? estimated_peak_bytes(sizes, options.scheme)
+             : estimated_finest_peak_bytes(sizes, options.scheme, keeping == Keeping::FinestFaces)) +
+        options.reserved_bytes;
     LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
                   " levels would make ", finest.faces, " faces at level ", options.levels, " (about ",
                   format_bytes(peak), "); the limit is ", options.max_faces, " faces (max_faces): use fewer levels");
@@ -226,8 +237,39 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKin
     return kept + transient;
 }
 
+std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme, bool face_list) {
+    // Tables of 4 MiB and more take whole 2 MiB huge pages (core/huge_page_allocator.h): each of a
+    // level's ~17 rounds up by less than 2 MiB, and by less than half itself.
+    const auto rounded = [](std::int64_t bytes) { return bytes + std::min(bytes / 2, std::int64_t{34} << 20); };
+    const auto last = sizes.size() - 1;
+    std::int64_t largest_step = 0;
+    for (std::size_t l = 1; l <= last; ++l) {
+        const LevelSize& parent = sizes[l - 1];
+        const LevelSize& child = sizes[l];
+        // The parent's points again, row-major, as the rows read them; the base's topology and
+        // points are the caller's, counted once below.
+        const std::int64_t parent_bytes = 24 * parent.vertices + (l == 1 ? 0 : rounded(estimated_bytes(parent)));
+        const bool faces_only = face_list && l == last && scheme != SchemeKind::DooSabin;
+        const std::int64_t child_bytes = faces_only ? rounded(24 * child.vertices + 4 * (child.corners + child.faces))
+                                                    : rounded(estimated_bytes(child));
+        // Doo–Sabin builds its S0 from triplets and its child from the face list; a face split numbers
+        // the child's edges (4 bytes each), pairs the parent's edges with their corners (8) and
+        // sharpness (8 per edge and vertex), and keeps a slot per parent column in the row builder.
+        // The first step's S0 counts as if it were stored (12 bytes per non-zero, exact at level 0):
+        // its rows are built whole, so masks dense over a large face cost time with the square of its
+        // degree, and such a mesh is refused naming the face, as by the Hierarchy (check_memory).
+        const std::int64_t nonzeros = parent.step_nonzeros;
+        const std::int64_t transient = scheme == SchemeKind::DooSabin
+                                           ? transient_bytes(child, nonzeros, scheme) + 12 * nonzeros
+                                           : 4 * child.edges + 16 * parent.edges + 12 * parent.vertices +
+                                                 4 * child.vertices + (l == 1 ? 12 * nonzeros : 0);
+        largest_step = std::max(largest_step, parent_bytes + child_bytes + transient);
+    }
+    return estimated_bytes(sizes[0]) + largest_step;
+}
+
 Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(options), base_(std::move(base)) {
-    check_refinement(base_, options);
+    check_refinement(base_, options, Keeping::EveryLevel);
     steps_.reserve(static_cast<std::size_t>(options.levels));
     for (int l = 0; l < options.levels; ++l) {
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;
@@ -308,8 +350,13 @@ Points Hierarchy::positions(int level, const Points& control_points) const {
     return out;
 }
 
-FinestLevel refine_finest(const Topology& base, const Points& control_points, const RefineOptions& options) {
-    check_refinement(base, options);
+namespace {
+
+/// refine_finest(), and with @p faces the last step writes only the child's face list and tags there
+/// (the FinestLevel's topology is then empty; its counts are complete).
+FinestLevel refine_to_finest(const Topology& base, const Points& control_points, const RefineOptions& options,
+                             PolygonSoup* faces) {
+    check_refinement(base, options, faces != nullptr ? Keeping::FinestFaces : Keeping::FinestLevel);
     LIMSURF_CHECK(control_points.rows() == base.num_vertices(), InputError, "data has ", control_points.rows(),
                   " rows but level 0 has ", base.num_vertices(), " vertices");
     const auto counts = [](const Topology& t) {
@@ -326,23 +373,56 @@ FinestLevel refine_finest(const Topology& base, const Points& control_points, co
     Topology level;  // the current finest, once refined
     for (int l = 0; l < options.levels; ++l) {
         const Topology& parent = l == 0 ? base : level;
-        Topology child = detail::refine_carrying(parent, options.scheme, options.scheme_options, options.weights,
-                                                 carried, detail::step_threads(options.num_threads, parent));
+        const bool last = l + 1 == options.levels;
+        PolygonSoup* last_faces = last ? faces : nullptr;
+        Topology child =
+            detail::refine_carrying(parent, options.scheme, options.scheme_options, options.weights, carried,
+                                    detail::step_threads(options.num_threads, parent), last_faces);
+        if (last_faces != nullptr && options.scheme != SchemeKind::DooSabin) {
+            // The face splits' counts follow from the parent's (next_size is exact for them).
+            const LevelSize size = next_size(
+                {parent.num_vertices(), parent.num_edges(), parent.num_faces(), parent.num_corners(), 0, 0, 0},
+                options.scheme, parent.is_closed());
+            out.counts.push_back(
+                {static_cast<Index>(size.vertices), static_cast<Index>(size.edges), static_cast<Index>(size.faces)});
+        } else {
+            out.counts.push_back(counts(child));
+        }
         level = std::move(child);  // the parent goes here
-        out.counts.push_back(counts(level));
-        if (l + 1 < options.levels) {
+        if (!last) {
             carried.parent = carried.child;
         }
     }
+    if (faces != nullptr) {
+        level = Topology{};  // Doo–Sabin's, built in any case
+    }
     // Not through ?: with the const base and control points, which would copy the child's.
     if (options.levels == 0) {
-        out.topology = base;
+        if (faces != nullptr) {
+            detail::write_faces(base, *faces);
+        } else {
+            out.topology = base;
+        }
         out.positions = control_points;
     } else {
         out.topology = std::move(level);
         out.positions = std::move(carried.child);
     }
     check_finite(control_points, out.positions, options.levels);
+    return out;
+}
+
+}  // namespace
+
+FinestLevel refine_finest(const Topology& base, const Points& control_points, const RefineOptions& options) {
+    return refine_to_finest(base, control_points, options, nullptr);
+}
+
+FinestFaces refine_finest_faces(const Topology& base, const Points& control_points, const RefineOptions& options) {
+    FinestFaces out;
+    FinestLevel finest = refine_to_finest(base, control_points, options, &out.mesh);
+    out.mesh.positions = std::move(finest.positions);
+    out.counts = std::move(finest.counts);
     return out;
 }
 

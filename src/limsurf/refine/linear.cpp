@@ -13,9 +13,8 @@ Level detail::refine_linear_step(const Topology& parent, const StepRun& run) {
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
-    auto child = detail::concurrently(run.threads, [&] {
-        return detail::tri_split_topology(parent,
-                                          detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true));
+    auto child = detail::split_child(parent, detail::Split::Triangles, run, [&] {
+        return detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true);
     });
     detail::SparseRowBuilder rows(V + E, V, V + 2 * E, run.carried);
     detail::add_identity_rows(V, rows);

@@ -24,9 +24,8 @@ Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& opti
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
     const auto effective = detail::effective_sharpness(parent, options.boundary);
-    auto child = detail::concurrently(run.threads, [&] {
-        return detail::tri_split_topology(parent,
-                                          detail::child_sharpness(parent, effective, options.creasing, V, true));
+    auto child = detail::split_child(parent, detail::Split::Triangles, run, [&] {
+        return detail::child_sharpness(parent, effective, options.creasing, V, true);
     });
 
     detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E, run.carried);

@@ -74,14 +74,18 @@ Level detail::refine_step(const Topology& parent, SchemeKind kind, const SchemeO
 }
 
 Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                                 const TunedWeights& weights, CarriedPoints& carried, int threads) {
+                                 const TunedWeights& weights, CarriedPoints& carried, int threads, PolygonSoup* faces) {
     if (kind != SchemeKind::DooSabin) {
         return std::move(
-            run_step(parent, kind, options, weights, StepRun{.carried = &carried, .threads = threads}).topology);
+            run_step(parent, kind, options, weights, StepRun{.carried = &carried, .threads = threads, .faces = faces})
+                .topology);
     }
     // Doo–Sabin collects its S0 as triplets: it is built and applied as Hierarchy::apply does.
     Level step = refine(parent, kind, options, weights);
     carried.child = step.S0 * Points(carried.parent);
+    if (faces != nullptr) {
+        write_faces(step.topology, *faces);
+    }
     return std::move(step.topology);
 }
 

@@ -320,7 +320,11 @@ std::pair<std::vector<Index>, SparseMatrix> check_refines_to(const ControlMesh& 
                          vertex_element(a), "vertex ", a, " has sharpness ", t.vertex_sharpness(a),
                          " but the recovered coarse mesh refines to ", child.vertex_sharpness(v));
     }
-    return {perm, std::move(level.S0)};
+    // Swapped in, not moved: Eigen 3.4's SparseMatrix has no move constructor, so the pair's would copy it.
+    std::pair<std::vector<Index>, SparseMatrix> out;
+    out.first = perm;
+    out.second.swap(level.S0);
+    return out;
 }
 
 /// min ‖S0 X − P‖ by iterated Tikhonov on the normal equations, started at (and, in the kernel of

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,7 @@
 
 #include "limsurf/core/memory.h"
 #include "limsurf/io/mesh_io.h"
+#include "limsurf/mesh/control_mesh.h"
 #include "limsurf/refine/hierarchy.h"
 #include "support/mesh_zoo.h"
 
@@ -265,6 +268,34 @@ namespace {
 /// refine_finest keeps only the finest level: the same topology and positions, bit for bit, as the
 /// Hierarchy's level L, and the same counts per level. Its steps never store S0: they carry the
 /// points through each row as it is built, and must sum them as Eigen's S0 product does.
+/// refine_finest_faces writes what a writer gets from refine_finest's result (to_polygon_soup of
+/// its ControlMesh): the same positions, face list and tags in the same order, field for field.
+void expect_faces_equal_finest(const FinestFaces& faces, const FinestLevel& finest) {
+    const PolygonSoup expected = to_polygon_soup(ControlMesh(finest.topology, finest.positions));
+    EXPECT_EQ(faces.counts, finest.counts);
+    ASSERT_EQ(faces.mesh.positions.rows(), expected.positions.rows());
+    EXPECT_TRUE((faces.mesh.positions.array() == expected.positions.array()).all()) << "positions differ";
+    EXPECT_EQ(faces.mesh.face_offsets, expected.face_offsets);
+    EXPECT_EQ(faces.mesh.face_vertices, expected.face_vertices);
+    const SharpnessTags& got = faces.mesh.sharpness;
+    const SharpnessTags& want = expected.sharpness;
+    ASSERT_EQ(got.creases.size(), want.creases.size());
+    for (std::size_t i = 0; i < want.creases.size(); ++i) {
+        EXPECT_EQ(got.creases[i].v0, want.creases[i].v0) << "crease " << i;
+        EXPECT_EQ(got.creases[i].v1, want.creases[i].v1) << "crease " << i;
+        EXPECT_EQ(got.creases[i].sharpness, want.creases[i].sharpness) << "crease " << i;
+    }
+    ASSERT_EQ(got.corners.size(), want.corners.size());
+    for (std::size_t i = 0; i < want.corners.size(); ++i) {
+        EXPECT_EQ(got.corners[i].vertex, want.corners[i].vertex) << "corner " << i;
+        EXPECT_EQ(got.corners[i].sharpness, want.corners[i].sharpness) << "corner " << i;
+    }
+    ASSERT_EQ(got.holes.size(), want.holes.size());
+    for (std::size_t i = 0; i < want.holes.size(); ++i) {
+        EXPECT_EQ(got.holes[i].face, want.holes[i].face) << "hole " << i;
+    }
+}
+
 void expect_finest_equals_hierarchy(const Topology& base, const Points& control_points, const RefineOptions& options,
                                     const std::string& name) {
     SCOPED_TRACE(name + " " + to_string(options.scheme) + " L = " + std::to_string(options.levels));
@@ -286,6 +317,7 @@ void expect_finest_equals_hierarchy(const Topology& base, const Points& control_
         const std::array<Index, 3> counts{t.num_vertices(), t.num_edges(), t.num_faces()};
         EXPECT_EQ(finest.counts[static_cast<std::size_t>(l)], counts) << "level " << l;
     }
+    expect_faces_equal_finest(refine_finest_faces(base, control_points, options), finest);
 }
 
 void expect_finest_equals_hierarchy(const test::BundledMesh& mesh, const RefineOptions& options) {
@@ -316,6 +348,75 @@ TEST(RefineFinest, EqualsTheHierarchysFinestLevelBitForBit) {
     RefineOptions chaikin = options_for(SchemeKind::CatmullClark, 3);
     chaikin.scheme_options.creasing = CreasingMethod::Chaikin;
     expect_finest_equals_hierarchy(test::find_bundled("cube_creases"), chaikin);
+}
+
+/// Creases (semi-sharp and infinite, inside and on the boundary, under both creasing methods),
+/// corners and holes: refine_finest_faces orders the child's tags as the child Topology does (creases
+/// by edge number, which is not the order the step makes them in), for the quad and the triangle split.
+TEST(RefineFinest, FacesOnlyKeepTheTagsInTheTopologysOrder) {
+    const auto grid = [](Index n, bool triangles) {
+        const auto id = [n](Index i, Index j) { return j * (n + 1) + i; };
+        std::vector<std::vector<Index>> faces;
+        for (Index j = 0; j < n; ++j) {
+            for (Index i = 0; i < n; ++i) {
+                const std::array<Index, 4> q{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+                if (triangles) {
+                    faces.push_back({q[0], q[1], q[2]});
+                    faces.push_back({q[0], q[2], q[3]});
+                } else {
+                    faces.push_back({q.begin(), q.end()});
+                }
+            }
+        }
+        // Faces in a scrambled order, each from another corner: the parent's edge order (in which
+        // the step makes the child's crease tags) is then far from the child's.
+        std::vector<Index> offsets{0};
+        std::vector<Index> corners;
+        const std::size_t m = faces.size();
+        for (std::size_t k = 0; k < m; ++k) {
+            const std::vector<Index>& face = faces[(k * 7 + 3) % m];
+            std::rotate_copy(face.begin(), face.begin() + static_cast<std::ptrdiff_t>(k % face.size()), face.end(),
+                             std::back_inserter(corners));
+            offsets.push_back(static_cast<Index>(corners.size()));
+        }
+        Points X((n + 1) * (n + 1), 3);
+        for (Index j = 0; j <= n; ++j) {
+            for (Index i = 0; i <= n; ++i) {
+                X.row(id(i, j)) << i, j, std::sin(0.7 * i) * std::cos(0.4 * j);
+            }
+        }
+        SharpnessTags tags;
+        // A crease across the middle row of vertices (semi-sharp, rising), one from the boundary
+        // inwards, a boundary edge tagged, a corner and a hole.
+        for (Index i = 0; i < n; ++i) {
+            tags.creases.push_back({id(i, n / 2), id(i + 1, n / 2), 0.5 + 0.75 * i, 0});
+        }
+        tags.creases.push_back({id(1, 0), id(1, 1), infinite_sharpness, 0});
+        tags.creases.push_back({id(2, 0), id(3, 0), 2.0, 0});
+        tags.corners.push_back({id(n - 1, n - 1), 1.5, 0});
+        tags.holes.push_back({static_cast<Index>((offsets.size() - 1) / 2), 0});
+        return std::pair{Topology(X.rows(), offsets, corners, tags), X};
+    };
+    for (const CreasingMethod creasing : {CreasingMethod::Uniform, CreasingMethod::Chaikin}) {
+        for (const bool triangles : {false, true}) {
+            const auto [topology, X] = grid(6, triangles);  // 36 or 72 faces: 7 is prime to both
+            ASSERT_FALSE(topology.sharpness_tags().holes.empty());
+            for (const SchemeKind scheme :
+                 triangles ? std::vector{SchemeKind::Loop, SchemeKind::Linear, SchemeKind::CatmullClark}
+                           : std::vector{SchemeKind::CatmullClark, SchemeKind::Bilinear}) {
+                for (const int levels : {1, 3}) {  // a last step from the scrambled mesh, and from a split's
+                    RefineOptions options = options_for(scheme, levels);
+                    options.scheme_options.creasing = creasing;
+                    const FinestLevel finest = refine_finest(topology, X, options);
+                    ASSERT_FALSE(finest.topology.sharpness_tags().creases.empty());
+                    ASSERT_FALSE(finest.topology.sharpness_tags().holes.empty());
+                    SCOPED_TRACE(std::string(to_string(scheme)) + (triangles ? " triangles " : " quads ") +
+                                 to_string(creasing) + " L = " + std::to_string(levels));
+                    expect_faces_equal_finest(refine_finest_faces(topology, X, options), finest);
+                }
+            }
+        }
+    }
 }
 
 /// A 40-gon's face point and its corners' vertex points have rows of more than 32 entries, which
@@ -407,10 +508,43 @@ TEST(RefineThreads, TwoThreadsGiveWhatOneGivesBitForBit) {
         const FinestLevel finest_two = refine_finest(built.mesh.topology(), built.mesh.positions(), two);
         expect_same_topology(finest_one.topology, finest_two.topology);
         EXPECT_TRUE((finest_one.positions.array() == finest_two.positions.array()).all()) << "positions differ";
+        expect_faces_equal_finest(refine_finest_faces(built.mesh.topology(), built.mesh.positions(), two), finest_one);
     }
     RefineOptions negative = options_for(SchemeKind::CatmullClark, 1);
     negative.num_threads = -1;
     EXPECT_THROW(Hierarchy(read_mesh(test::find_bundled("cube").path).mesh.topology(), negative), InputError);
+}
+
+/// refine_finest and refine_finest_faces keep two levels at a time, and the latter only the finest
+/// level's face list: they are held to their own estimates, which lie below the Hierarchy's.
+TEST(RefineFinest, IsHeldToItsOwnMemoryEstimate) {
+    const BuildResult built = read_mesh(test::find_bundled("cube").path);
+    const Topology& base = built.mesh.topology();
+    RefineOptions options = options_for(SchemeKind::CatmullClark, 6);
+    const auto sizes = predict_sizes(base, options.scheme, options.levels);
+    const std::int64_t every_level = estimated_peak_bytes(sizes, options.scheme);
+    const std::int64_t finest = estimated_finest_peak_bytes(sizes, options.scheme, false);
+    const std::int64_t faces = estimated_finest_peak_bytes(sizes, options.scheme, true);
+    EXPECT_LT(faces, finest);
+    EXPECT_LT(finest, every_level);
+    // At least what is returned: the finest positions and face list, or its topology.
+    EXPECT_GE(faces, 24 * sizes.back().vertices + 4 * sizes.back().corners);
+    EXPECT_GE(finest, estimated_bytes(sizes.back()));
+    options.max_memory = faces - 1;
+    try {
+        (void)refine_finest_faces(base, built.mesh.positions(), options);
+        FAIL() << "expected a refusal";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("needs about " + format_bytes(faces) + " at its peak"),
+                  std::string::npos)
+            << error.what();
+    }
+    options.max_memory = faces;
+    EXPECT_NO_THROW((void)refine_finest_faces(base, built.mesh.positions(), options));
+    EXPECT_THROW((void)refine_finest(base, built.mesh.positions(), options), InputError);
+    options.max_memory = finest;
+    EXPECT_NO_THROW((void)refine_finest(base, built.mesh.positions(), options));
+    EXPECT_THROW(Hierarchy(base, options), InputError);
 }
 
 TEST(RefineFinest, RefusesWhatTheHierarchyRefuses) {
