@@ -1,6 +1,7 @@
 // Uniform refinement, 2 levels, topology + positions, on ~100k-face meshes:
 // limsurf (Hierarchy: every level's child topology, S0, provenance, then S0
-// products; and refine_finest: the same, keeping only the finest level) against OpenSubdiv Far
+// products; refine_finest: the same, keeping only the finest level; refine_finest_faces: of the finest level
+// only its face list, as `limsurf subdivide` and Far's default rows) against OpenSubdiv Far
 // (TopologyRefiner::RefineUniform + PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's uniform
 // subdividers, each in the same binary and run. CGAL and OpenMesh refine in place, so each iteration starts from a copy
 // made outside the timer. limsurf's rows take the thread count as argument (/1: single-threaded, as the peers; /2: two
@@ -81,56 +82,55 @@ void report(benchmark::State& state, const Mesh& mesh, double output_faces) {
 
 // --- limsurf -----------------------------------------------------------------
 
-void limsurf_refine(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
-    // The benchmark's argument: threads (RefineOptions::num_threads; 1 is the single-threaded row).
-    const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
+/// @p scheme by `levels` steps; the benchmark's argument is the thread count
+/// (RefineOptions::num_threads; 1 is the single-threaded row).
+limsurf::RefineOptions limsurf_options(const benchmark::State& state, limsurf::SchemeKind scheme) {
     limsurf::RefineOptions options;
     options.scheme = scheme;
     options.levels = levels;
     options.num_threads = static_cast<int>(state.range(0));
+    return options;
+}
+
+/// Times @p refine(base, options), which returns the number of faces of the finest level.
+template <class Refine>
+void limsurf_run(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme, const Refine& refine) {
+    const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
+    const limsurf::RefineOptions options = limsurf_options(state, scheme);
     double faces = 0;
     for (auto _ : state) {
-        const limsurf::Hierarchy hierarchy(base, options);
-        const limsurf::Points x = hierarchy.positions(levels, mesh.positions);
-        benchmark::DoNotOptimize(x.data());
-        faces = hierarchy.topology(levels).num_faces();
+        faces = refine(base, options);
     }
     report(state, mesh, faces);
 }
 
-/// refine_finest: the same topology and positions, only the finest level kept (as `limsurf subdivide`).
+/// The Hierarchy: every level's topology, S0 and provenance, then the positions as S0 products.
+void limsurf_refine(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, const limsurf::RefineOptions& options) {
+        const limsurf::Hierarchy hierarchy(base, options);
+        const limsurf::Points x = hierarchy.positions(levels, mesh.positions);
+        benchmark::DoNotOptimize(x.data());
+        return hierarchy.topology(levels).num_faces();
+    });
+}
+
+/// refine_finest: the same topology and positions, only the finest level kept.
 void limsurf_refine_finest(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
-    // The benchmark's argument: threads (RefineOptions::num_threads; 1 is the single-threaded row).
-    const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
-    limsurf::RefineOptions options;
-    options.scheme = scheme;
-    options.levels = levels;
-    options.num_threads = static_cast<int>(state.range(0));
-    double faces = 0;
-    for (auto _ : state) {
+    limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, const limsurf::RefineOptions& options) {
         const limsurf::FinestLevel finest = limsurf::refine_finest(base, mesh.positions, options);
         benchmark::DoNotOptimize(finest.positions.data());
-        faces = finest.topology.num_faces();
-    }
-    report(state, mesh, faces);
+        return finest.topology.num_faces();
+    });
 }
 
 /// refine_finest_faces: the same positions, the finest level's face list without its Topology (what
 /// `limsurf subdivide` runs and writes; Far's default rows, without fullTopologyInLastLevel, likewise).
 void limsurf_refine_faces(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
-    // The benchmark's argument: threads (RefineOptions::num_threads; 1 is the single-threaded row).
-    const limsurf::Topology base(static_cast<Index>(mesh.positions.rows()), mesh.offsets, mesh.corners);
-    limsurf::RefineOptions options;
-    options.scheme = scheme;
-    options.levels = levels;
-    options.num_threads = static_cast<int>(state.range(0));
-    double faces = 0;
-    for (auto _ : state) {
+    limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, const limsurf::RefineOptions& options) {
         const limsurf::FinestFaces finest = limsurf::refine_finest_faces(base, mesh.positions, options);
         benchmark::DoNotOptimize(finest.mesh.positions.data());
-        faces = finest.mesh.num_faces();
-    }
-    report(state, mesh, faces);
+        return finest.mesh.num_faces();
+    });
 }
 
 void BM_limsurf_CatmullClark(benchmark::State& state) {
