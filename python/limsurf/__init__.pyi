@@ -80,16 +80,22 @@ class SubdivisionOperators(TypedDict, total=False):
 @overload
 def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: Literal[False] = False,
               forms: Literal[False] = False, boundary: Boundary | None = None, creasing: Creasing | None = None,
-              triangles: Triangles | None = None, threads: int = 0) -> Mesh: ...
+              triangles: Triangles | None = None, threads: int = 0, topology: Literal[True] = True) -> Mesh: ...
+@overload
+def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: Literal[False] = False,
+              forms: Literal[False] = False, boundary: Boundary | None = None, creasing: Creasing | None = None,
+              triangles: Triangles | None = None, threads: int = 0,
+              topology: Literal[False]) -> tuple[FloatArray, IndexArray | list[IndexArray]]: ...
 @overload
 def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: bool = False, forms: bool = False,
               boundary: Boundary | None = None, creasing: Creasing | None = None,
-              triangles: Triangles | None = None, threads: int = 0) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
+              triangles: Triangles | None = None, threads: int = 0,
+              topology: bool = True) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
 @overload
 def subdivide(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Scheme, levels: int = 1, *,
               operators: bool = False, forms: bool = False, boundary: Boundary | None = None,
               creasing: Creasing | None = None, triangles: Triangles | None = None,
-              threads: int = 0) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
+              threads: int = 0, topology: bool = True) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
 
 class LimitEvaluation(TypedDict, total=False):
     position: FloatArray

@@ -1,6 +1,8 @@
 #include "arrays.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "limsurf/core/error.h"
@@ -31,8 +33,8 @@ std::string shape_of(const py::array& a) {
 
 void require_real(const py::array& a, const std::string& name) {
     const char kind = dtype_kind(a);
-    LIMSURF_CHECK(kind == 'f' || kind == 'i' || kind == 'u', InputError, name,
-                  ": expected real numbers, got dtype ", std::string(py::str(a.dtype())));
+    LIMSURF_CHECK(kind == 'f' || kind == 'i' || kind == 'u', InputError, name, ": expected real numbers, got dtype ",
+                  std::string(py::str(a.dtype())));
 }
 
 }  // namespace
@@ -58,8 +60,7 @@ Points points_from(const py::handle& array, const std::string& name) {
     for (py::ssize_t i = 0; i < view.shape(0); ++i) {
         for (py::ssize_t j = 0; j < 3; ++j) {
             const double x = view(i, j);
-            LIMSURF_CHECK(std::isfinite(x), InputError, name, "[", i, ", ", j, "] = ", x,
-                          ": positions must be finite");
+            LIMSURF_CHECK(std::isfinite(x), InputError, name, "[", i, ", ", j, "] = ", x, ": positions must be finite");
             out(i, j) = x;
         }
     }
@@ -69,8 +70,8 @@ Points points_from(const py::handle& array, const std::string& name) {
 Eigen::VectorXd vector_from(const py::handle& array, const std::string& name, Index expected) {
     const py::array a = as_array(array, name);
     require_real(a, name);
-    LIMSURF_CHECK(a.ndim() == 1 || (a.ndim() == 2 && a.shape(1) == 1), InputError, name,
-                  ": expected a vector of ", expected, " values, got ", a.ndim(), " dimensions");
+    LIMSURF_CHECK(a.ndim() == 1 || (a.ndim() == 2 && a.shape(1) == 1), InputError, name, ": expected a vector of ",
+                  expected, " values, got ", a.ndim(), " dimensions");
     LIMSURF_CHECK(a.shape(0) == expected, InputError, name, ": expected ", expected, " values, got ", a.shape(0));
     const auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
     const double* data = c.data();
@@ -155,8 +156,8 @@ std::vector<Index> indices_from(const py::handle& array, const std::string& name
     std::vector<Index> out(static_cast<std::size_t>(c.size()));
     for (py::ssize_t i = 0; i < c.size(); ++i) {
         const long long value = c.data()[i];
-        LIMSURF_CHECK(value >= 0 && value < limit, InputError, name, "[", i, "] = ", value, ": out of range [0, ", limit,
-                      ")");
+        LIMSURF_CHECK(value >= 0 && value < limit, InputError, name, "[", i, "] = ", value, ": out of range [0, ",
+                      limit, ")");
         out[static_cast<std::size_t>(i)] = static_cast<Index>(value);
     }
     return out;
@@ -211,6 +212,30 @@ py::object to_scipy(const SparseMatrix& matrix) {
     std::copy(compressed.outerIndexPtr(), compressed.outerIndexPtr() + compressed.rows() + 1, indptr.mutable_data());
     const py::object csr = py::module_::import("scipy.sparse").attr("csr_matrix");
     return csr(py::make_tuple(data, indices, indptr), py::arg("shape") = py::make_tuple(matrix.rows(), matrix.cols()));
+}
+
+py::object faces_array(std::span<const Index> offsets, std::span<const Index> vertices) {
+    const auto n = static_cast<py::ssize_t>(offsets.size()) - 1;
+    const Index degree = n > 0 ? offsets[1] - offsets[0] : 3;
+    bool uniform = true;
+    for (py::ssize_t f = 0; f < n && uniform; ++f) {
+        uniform = offsets[static_cast<std::size_t>(f) + 1] - offsets[static_cast<std::size_t>(f)] == degree;
+    }
+    if (uniform) {
+        py::array_t<Index> out({n, static_cast<py::ssize_t>(degree)});
+        std::copy(vertices.begin(), vertices.end(), out.mutable_data());
+        return py::object(std::move(out));
+    }
+    py::list out(static_cast<std::size_t>(n));
+    for (py::ssize_t f = 0; f < n; ++f) {
+        const auto begin = static_cast<std::size_t>(offsets[static_cast<std::size_t>(f)]);
+        const auto end = static_cast<std::size_t>(offsets[static_cast<std::size_t>(f) + 1]);
+        py::array_t<Index> face(static_cast<py::ssize_t>(end - begin));
+        std::copy(vertices.begin() + static_cast<std::ptrdiff_t>(begin),
+                  vertices.begin() + static_cast<std::ptrdiff_t>(end), face.mutable_data());
+        out[static_cast<std::size_t>(f)] = std::move(face);
+    }
+    return py::object(std::move(out));
 }
 
 }  // namespace limsurf::python

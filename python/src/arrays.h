@@ -2,6 +2,7 @@
 // arrays into Python exceptions naming the array, the row and the problem (never a crash).
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,10 @@ void faces_into(const py::handle& faces, const std::string& name, Index num_vert
 [[nodiscard]] py::array_t<double> to_numpy(const Points& points);
 /// A C-ordered numpy copy of a dense matrix.
 [[nodiscard]] py::array_t<double> to_numpy(const Eigen::MatrixXd& matrix);
+
+/// @brief F of a face list (face f is @p vertices[@p offsets[f], @p offsets[f + 1])): one int32 array
+///   (#F × k) when every face has degree k, else a list of int32 arrays; copies.
+[[nodiscard]] py::object faces_array(std::span<const Index> offsets, std::span<const Index> vertices);
 
 /// @brief scipy.sparse.csr_matrix of @p matrix (its arrays copied once, no Python loop).
 [[nodiscard]] py::object to_scipy(const SparseMatrix& matrix);

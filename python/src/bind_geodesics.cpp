@@ -66,22 +66,20 @@ py::dict report(const Mesh& mesh, const std::string& scheme, const HeatGeodesics
         iga ? py::object(py::dict("degree"_a = options.iga_quadrature.degree,
                                   "tiles"_a = options.iga_quadrature.subdivide_near_extraordinary))
             : py::object(py::none());
-    py::dict out("scheme"_a = scheme, "method"_a = to_string(options.method),
-                 "level"_a = has_level(options.method) ? options.level : 0, "quadrature"_a = quadrature,
-                 "gradient"_a = r.gradient,
-                 "gradient_level"_a =
-                     r.gradient_level ? py::object(py::int_(*r.gradient_level)) : py::object(py::none()),
-                 "vertices"_a = mesh.mesh.num_vertices(),
-                 "closed"_a = mesh.mesh.topology().is_closed(), "sources"_a = sources,
-                 "time_factor"_a = options.time_factor,
-                 "t"_a = r.time_step, "mean_edge_length"_a = r.mean_edge_length,
-                 "max_edge_length"_a = r.max_edge_length, "distance_min"_a = r.distance.minCoeff(),
-                 "distance_max"_a = r.distance.maxCoeff(), "limit_distance_min"_a = r.limit_distance.minCoeff(),
-                 "limit_distance_max"_a = r.limit_distance.maxCoeff(),
-                 "source_values"_a = std::vector<double>(r.source_values.begin(), r.source_values.end()),
-                 "seconds"_a = py::dict("setup"_a = r.setup_seconds, "factorisation"_a = r.factorisation_seconds,
-                                        "solve"_a = r.solve_seconds),
-                 "distance"_a = to_numpy(r.distance), "limit_distance"_a = to_numpy(r.limit_distance));
+    py::dict out(
+        "scheme"_a = scheme, "method"_a = to_string(options.method),
+        "level"_a = has_level(options.method) ? options.level : 0, "quadrature"_a = quadrature,
+        "gradient"_a = r.gradient,
+        "gradient_level"_a = r.gradient_level ? py::object(py::int_(*r.gradient_level)) : py::object(py::none()),
+        "vertices"_a = mesh.mesh.num_vertices(), "closed"_a = mesh.mesh.topology().is_closed(), "sources"_a = sources,
+        "time_factor"_a = options.time_factor, "t"_a = r.time_step, "mean_edge_length"_a = r.mean_edge_length,
+        "max_edge_length"_a = r.max_edge_length, "distance_min"_a = r.distance.minCoeff(),
+        "distance_max"_a = r.distance.maxCoeff(), "limit_distance_min"_a = r.limit_distance.minCoeff(),
+        "limit_distance_max"_a = r.limit_distance.maxCoeff(),
+        "source_values"_a = std::vector<double>(r.source_values.begin(), r.source_values.end()),
+        "seconds"_a = py::dict("setup"_a = r.setup_seconds, "factorisation"_a = r.factorisation_seconds,
+                               "solve"_a = r.solve_seconds),
+        "distance"_a = to_numpy(r.distance), "limit_distance"_a = to_numpy(r.limit_distance));
     if (r.reference) {
         out["reference"] = reference_dict(*r.reference);
     }
@@ -95,9 +93,9 @@ void bind_geodesics(py::module_& m) {
         "geodesic_distance",
         [](const Mesh& mesh, const std::string& scheme, const py::handle& sources, const std::string& method, int level,
            int degree, int tiles, const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
-           double time_factor, std::optional<int> reference_level,
-           std::optional<std::int64_t> max_memory, std::optional<std::string> boundary,
-           std::optional<std::string> creasing, std::optional<std::string> triangles) {
+           double time_factor, std::optional<int> reference_level, std::optional<std::int64_t> max_memory,
+           std::optional<std::string> boundary, std::optional<std::string> creasing,
+           std::optional<std::string> triangles) {
             return naming_source(mesh, [&] {
                 GeodesicOptions options;
                 options.heat = heat_options(mesh, MethodChoice{method, level, degree, tiles},
@@ -117,8 +115,7 @@ void bind_geodesics(py::module_& m) {
         },
         "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "degree"_a = 8,
         "tiles"_a = 6, "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2,
-        "time_factor"_a = 1.0,
-        "reference_level"_a = py::none(), "max_memory"_a = py::none(), "boundary"_a = py::none(),
+        "time_factor"_a = 1.0, "reference_level"_a = py::none(), "max_memory"_a = py::none(), "boundary"_a = py::none(),
         "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Geodesic distance on the limit surface from `sources` (a control vertex or a list of them) by the
 heat method (Crane et al. 2013) with the operators of `method` ('dec', 'decsnap', 'sec', 'secsnap';
@@ -139,23 +136,22 @@ Raises limsurf.InputError for a source out of range, no source, or a disconnecte
 HeatGeodesics(mesh, scheme, method='sec', level=3, degree=8, tiles=6, gradient='auto', gradient_level=None,
 gradient_degree=2, time_factor=1.0).distance(sources)
 costs two back-substitutions (three on open meshes) and one divergence per call.)")
-        .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
-                         int degree, int tiles, const std::string& gradient, std::optional<int> gradient_level,
-                         int gradient_degree, double time_factor, std::optional<std::string> boundary,
-                         std::optional<std::string> creasing, std::optional<std::string> triangles) {
+        .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method, int level, int degree,
+                         int tiles, const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
+                         double time_factor, std::optional<std::string> boundary, std::optional<std::string> creasing,
+                         std::optional<std::string> triangles) {
                  return naming_source(mesh, [&] {
-                     const HeatGeodesicsOptions options = heat_options(
-                         mesh, MethodChoice{method, level, degree, tiles},
-                         GradientChoice{gradient, gradient_level, gradient_degree}, time_factor,
-                         RuleNames{boundary, creasing, triangles});
+                     const HeatGeodesicsOptions options =
+                         heat_options(mesh, MethodChoice{method, level, degree, tiles},
+                                      GradientChoice{gradient, gradient_level, gradient_degree}, time_factor,
+                                      RuleNames{boundary, creasing, triangles});
                      const SchemeKind kind = scheme_from(scheme);
                      const py::gil_scoped_release release;
                      return HeatGeodesics(mesh.mesh, kind, options);
                  });
              }),
              "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "degree"_a = 8, "tiles"_a = 6,
-             "gradient"_a = "auto",
-             "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
+             "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
              "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
         .def(
             "distance",

@@ -3,9 +3,9 @@
 #include <limits>
 #include <mutex>
 #include <sstream>
+#include <string>
 #include <type_traits>
 #include <utility>
-#include <string>
 
 #include <Eigen/Geometry>
 #include <pybind11/numpy.h>
@@ -29,7 +29,6 @@ struct Basis {
     Mesh mesh;
 };
 
-
 /// The point arrays of evaluate(), read in place (no copy when faces is int64 and u, v float64,
 /// C-contiguous): each point is checked as `limsurf eval --points` checks a line when it is evaluated.
 class PointArrays {
@@ -44,8 +43,8 @@ class PointArrays {
         u_ = real_vector(u, "u");
         v_ = real_vector(v, "v");
         for (const auto& [name, a] : {std::pair{"u", &u_}, std::pair{"v", &v_}}) {
-            LIMSURF_CHECK(a->size() == faces_.size(), InputError, name, ": expected ", faces_.size(),
-                          " values, got ", a->size());
+            LIMSURF_CHECK(a->size() == faces_.size(), InputError, name, ": expected ", faces_.size(), " values, got ",
+                          a->size());
         }
     }
     [[nodiscard]] Index size() const { return static_cast<Index>(faces_.size()); }
@@ -80,7 +79,7 @@ class PointArrays {
 
   private:
     static py::array_t<double, py::array::c_style | py::array::forcecast> real_vector(const py::handle& h,
-                                                                                        const char* name) {
+                                                                                      const char* name) {
         const py::array a = py::array::ensure(h);
         const char kind = a ? a.dtype().kind() : '?';
         LIMSURF_CHECK(kind == 'f' || kind == 'i' || kind == 'u', InputError, name, ": expected real numbers, got ",
@@ -150,7 +149,9 @@ class ControlPoints {
     const Points* points_ = nullptr;
 };
 
-Points control_points(const Basis& b, const py::handle& X) { return ControlPoints(b, X).get(); }
+Points control_points(const Basis& b, const py::handle& X) {
+    return ControlPoints(b, X).get();
+}
 
 constexpr const char* row_names[] = {"position", "du", "dv", "duu", "duv", "dvv"};
 constexpr const char* frame_names[] = {"normal", "mean_curvature", "gaussian_curvature", "k1", "k2"};
@@ -166,7 +167,8 @@ py::array_t<T> output_array(const py::dict& out, const char* key, py::ssize_t n,
     LIMSURF_CHECK(py::isinstance<py::array_t<T>>(given), InputError, "out['", key, "']: expected a ",
                   std::is_same_v<T, bool> ? "bool" : "float64", " numpy array");
     auto a = py::reinterpret_borrow<py::array_t<T>>(given);
-    const bool shape = cols == 0 ? a.ndim() == 1 && a.shape(0) == n : a.ndim() == 2 && a.shape(0) == n && a.shape(1) == cols;
+    const bool shape =
+        cols == 0 ? a.ndim() == 1 && a.shape(0) == n : a.ndim() == 2 && a.shape(0) == n && a.shape(1) == cols;
     LIMSURF_CHECK(shape, InputError, "out['", key, "']: expected shape (", n, cols == 0 ? "" : ", ",
                   cols == 0 ? std::string() : std::to_string(cols), "), got ", std::string(py::str(a.attr("shape"))));
     LIMSURF_CHECK((a.flags() & py::array::c_style) && a.writeable(), InputError, "out['", key,
@@ -238,8 +240,8 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
                     continue;
                 }
                 const bool frame = has_tangent_plane(d);
-                const Eigen::Vector3d nrm = frame ? Eigen::Vector3d(d.row(Du).cross(d.row(Dv)).normalized())
-                                                  : Eigen::Vector3d::Constant(nan);
+                const Eigen::Vector3d nrm =
+                    frame ? Eigen::Vector3d(d.row(Du).cross(d.row(Dv)).normalized()) : Eigen::Vector3d::Constant(nan);
                 for (int c = 0; c < 3; ++c) {
                     frame_out[0][3 * i + c] = nrm(c);
                 }
@@ -280,14 +282,16 @@ py::dict weights(const Basis& b, const py::handle& faces, const py::handle& u, c
             }
             for (int r = 0; r < rows; ++r) {
                 for (Index k = 0; k < w.size(); ++k) {
-                    triplets[static_cast<std::size_t>(r)].emplace_back(i, w.vertices[static_cast<std::size_t>(k)], w.w(r, k));
+                    triplets[static_cast<std::size_t>(r)].emplace_back(i, w.vertices[static_cast<std::size_t>(k)],
+                                                                       w.w(r, k));
                 }
             }
         }
         failure.rethrow();
         for (int r = 0; r < rows; ++r) {
             SparseMatrix A(points.size(), num_vertices);
-            A.setFromTriplets(triplets[static_cast<std::size_t>(r)].begin(), triplets[static_cast<std::size_t>(r)].end());
+            A.setFromTriplets(triplets[static_cast<std::size_t>(r)].begin(),
+                              triplets[static_cast<std::size_t>(r)].end());
             matrices.push_back(std::move(A));
         }
     }
@@ -323,10 +327,10 @@ boundaries, creases and corners (docs/limit_evaluation.md).)")
         .def_property_readonly("num_vertices", [](const Basis& b) { return b.basis.topology().num_vertices(); })
         .def_property_readonly("scheme", [](const Basis& b) { return std::string(to_string(b.basis.scheme())); })
         .def_property_readonly(
-            "domain",
-            [](const Basis& b) { return b.basis.domain() == ParameterDomain::Quad ? "quad" : "triangle"; },
+            "domain", [](const Basis& b) { return b.basis.domain() == ParameterDomain::Quad ? "quad" : "triangle"; },
             "'quad' (unit square) or 'triangle' (u, v >= 0, u + v <= 1).")
-        .def_property_readonly("mesh", [](const Basis& b) { return b.mesh; }, "The mesh the basis was built from.")
+        .def_property_readonly(
+            "mesh", [](const Basis& b) { return b.mesh; }, "The mesh the basis was built from.")
         .def(
             "ptex_face",
             [](const Basis& b, Index p) {

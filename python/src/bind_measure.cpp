@@ -36,14 +36,12 @@ py::dict measure(const Mesh& mesh, const std::string& scheme, int degree, int ti
                         "volume"_a = closed_only(py::float_(r.error.volume)),
                         "centroid"_a = closed_only(py::float_(r.error.centroid)),
                         "inertia"_a = closed_only(py::float_(r.error.inertia)));
-        return py::dict("closed"_a = r.closed, "area"_a = r.value.area,
-                        "surface_centroid"_a = vec(r.value.surface_centroid), "error_estimate"_a = errors,
-                        "degree"_a = degree, "tiles"_a = tiles,
-                        "reference"_a = py::dict("degree"_a = r.finer.degree,
-                                                 "tiles"_a = r.finer.subdivide_near_extraordinary),
-                        "volume"_a = closed_only(py::float_(r.value.volume)),
-                        "centroid"_a = closed_only(vec(r.value.centroid)),
-                        "inertia"_a = closed_only(matrix3(r.value.inertia)));
+        return py::dict(
+            "closed"_a = r.closed, "area"_a = r.value.area, "surface_centroid"_a = vec(r.value.surface_centroid),
+            "error_estimate"_a = errors, "degree"_a = degree, "tiles"_a = tiles,
+            "reference"_a = py::dict("degree"_a = r.finer.degree, "tiles"_a = r.finer.subdivide_near_extraordinary),
+            "volume"_a = closed_only(py::float_(r.value.volume)), "centroid"_a = closed_only(vec(r.value.centroid)),
+            "inertia"_a = closed_only(matrix3(r.value.inertia)));
     });
 }
 

@@ -93,19 +93,7 @@ py::array_t<Index> index_array(std::span<const Index> values) {
 
 /// F as one (faces × degree) array when every face has one degree, else a list of arrays.
 py::object faces_of(const Topology& t) {
-    const Index n = t.num_faces();
-    const Index degree = n > 0 ? t.face_degree(0) : 3;
-    if (t.all_faces_have_degree(degree)) {
-        py::array_t<Index> out({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(degree)});
-        const std::span<const Index> corners = t.all_face_vertices();
-        std::copy(corners.begin(), corners.end(), out.mutable_data());
-        return py::object(std::move(out));
-    }
-    py::list out(static_cast<std::size_t>(n));
-    for (Index f = 0; f < n; ++f) {
-        out[static_cast<std::size_t>(f)] = index_array(t.face_vertices(f));
-    }
-    return py::object(std::move(out));
+    return faces_array(t.face_offsets(), t.all_face_vertices());
 }
 
 py::array_t<Index> edges_of(const Topology& t) {

@@ -68,8 +68,10 @@ Eigen::VectorXd field_values(const py::handle& field, const LimitTessellation& t
     }
     if (py::isinstance<py::str>(field)) {
         name = field.cast<std::string>();
-        LIMSURF_CHECK(name == "mean-curvature" || name == "gaussian-curvature", InputError, "field: expected "
-                      "'mean-curvature', 'gaussian-curvature' or #V values at the control vertices, got '", name, "'");
+        LIMSURF_CHECK(name == "mean-curvature" || name == "gaussian-curvature", InputError,
+                      "field: expected "
+                      "'mean-curvature', 'gaussian-curvature' or #V values at the control vertices, got '",
+                      name, "'");
         name = name == "mean-curvature" ? "mean_curvature" : "gaussian_curvature";
         return name == "mean_curvature" ? t.mean_curvature : t.gaussian_curvature;
     }
@@ -116,12 +118,14 @@ py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& f
         std::string name;
         const Eigen::VectorXd values = field_values(field, t, mesh.mesh.num_vertices(), name);
         const bool glb = output && output->extension() == ".glb";
-        py::dict out("resolution"_a = t.resolution, "points"_a = t.num_points(), "triangles"_a = t.num_triangles(),
-                     "field"_a = values.size() > 0 ? py::object(py::str(name)) : py::object(py::none()),
-                     "field_min"_a = values.size() > 0 ? py::object(py::float_(values.minCoeff())) : py::object(py::none()),
-                     "field_max"_a = values.size() > 0 ? py::object(py::float_(values.maxCoeff())) : py::object(py::none()));
+        py::dict out(
+            "resolution"_a = t.resolution, "points"_a = t.num_points(), "triangles"_a = t.num_triangles(),
+            "field"_a = values.size() > 0 ? py::object(py::str(name)) : py::object(py::none()),
+            "field_min"_a = values.size() > 0 ? py::object(py::float_(values.minCoeff())) : py::object(py::none()),
+            "field_max"_a = values.size() > 0 ? py::object(py::float_(values.maxCoeff())) : py::object(py::none()));
         if (glb) {
-            write_glb(*output, triangle_surface(t, values, name.empty() ? "field" : name, options.colormap, options.range));
+            write_glb(*output,
+                      triangle_surface(t, values, name.empty() ? "field" : name, options.colormap, options.range));
             return out;
         }
         const ControlPolygon overlay =
@@ -138,8 +142,8 @@ py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& f
         std::copy(picture.image.pixels.begin(), picture.image.pixels.end(), image.mutable_data());
         out["image"] = image;
         out["coverage"] = picture.coverage;
-        out["range"] = picture.has_field ? py::object(py::make_tuple(picture.range[0], picture.range[1]))
-                                         : py::object(py::none());
+        out["range"] =
+            picture.has_field ? py::object(py::make_tuple(picture.range[0], picture.range[1])) : py::object(py::none());
         return out;
     });
 }
@@ -155,7 +159,7 @@ void write_glb_arrays(const std::filesystem::path& path, const py::handle& posit
     LIMSURF_CHECK(soup.face_vertices.size() == 3 * static_cast<std::size_t>(soup.num_faces()), InputError,
                   "triangles: expected shape (t, 3)");
     s.triangles = Eigen::Map<const Eigen::Matrix<Index, Eigen::Dynamic, 3, Eigen::RowMajor>>(soup.face_vertices.data(),
-                                                                                           soup.num_faces(), 3);
+                                                                                             soup.num_faces(), 3);
     if (!normals.is_none()) {
         s.normals = points_from(normals, "normals");
     }
@@ -211,8 +215,8 @@ field u has the limit values W @ u) and 'resolution'.)");
         },
         "mesh"_a, "scheme"_a, "field"_a = py::none(), py::kw_only(), "control_mesh"_a = false, "isolines"_a = 0,
         "view"_a = "iso", "size"_a = py::make_tuple(1200, 900), "resolution"_a = 0, "range"_a = py::none(),
-        "colormap"_a = "viridis", "supersampling"_a = 2, "color_bar"_a = true, "output"_a = py::none(),
-        "threads"_a = 0, "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "colormap"_a = "viridis", "supersampling"_a = 2, "color_bar"_a = true, "output"_a = py::none(), "threads"_a = 0,
+        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(A picture of the limit surface: the pixels `limsurf render` writes, with the same options.
 
 field: None, 'mean-curvature', 'gaussian-curvature', or #V values at the control vertices (carried to

@@ -54,6 +54,28 @@ def test_threads_give_the_same_mesh_and_operators(mesh_path):
         limsurf.subdivide(mesh, "loop", 1, threads=-1)
 
 
+def test_topology_false_gives_the_meshs_arrays(mesh_path):
+    # The finest level as (V, F) without its Topology: the same arrays as the Mesh's, for every kind
+    # of face list (quads, triangles, Doo-Sabin's polygons, which come as a list).
+    for name, scheme, levels in (("cube_creases", "catmull-clark", 3), ("icosahedron", "loop", 3),
+                                 ("annulus", "catmull-clark", 2), ("cube", "doo-sabin", 2),
+                                 ("tetra_1", "c2g0", 2)):
+        mesh = limsurf.read_mesh(mesh_path(name))
+        finest = limsurf.subdivide(mesh, scheme, levels, threads=1)
+        V, F = limsurf.subdivide(mesh, scheme, levels, topology=False)
+        assert V.dtype == np.float64 and V.shape == (finest.num_vertices, 3)
+        assert np.array_equal(V, finest.V), name
+        if isinstance(finest.F, list):
+            assert isinstance(F, list) and len(F) == finest.num_faces
+            assert all(np.array_equal(a, b) for a, b in zip(F, finest.F)), name
+        else:
+            assert F.dtype == np.int32 and np.array_equal(F, finest.F), name
+    V, F = limsurf.subdivide(np.eye(3), [[0, 1, 2]], "loop", 1, topology=False)
+    assert V.shape == (6, 3) and F.shape == (4, 3)
+    with pytest.raises(limsurf.InputError, match="topology=False returns the finest"):
+        limsurf.subdivide(limsurf.read_mesh(mesh_path("cube")), "catmull-clark", 1, operators=True, topology=False)
+
+
 def test_refusals_are_python_exceptions(mesh_path):
     cube = limsurf.read_mesh(mesh_path("cube"))
     with pytest.raises(limsurf.UnsupportedError, match="face"):
