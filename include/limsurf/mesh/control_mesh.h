@@ -74,4 +74,8 @@ struct BuildResult {
 /// no face groups: set soup.groups from BuildResult::groups to write them.
 [[nodiscard]] PolygonSoup to_polygon_soup(const ControlMesh& mesh);
 
+/// @brief Writes @p topology's face list and sharpness tags into @p soup's face_offsets,
+///   face_vertices and sharpness (to_polygon_soup's, without positions and hints).
+void write_faces(const Topology& topology, PolygonSoup& soup);
+
 }  // namespace limsurf

@@ -211,14 +211,6 @@ void write_split_faces(const Topology& parent, Split split, SharpnessTags tags, 
     out.sharpness.holes = std::move(tags.holes);
 }
 
-void write_faces(const Topology& topology, PolygonSoup& out) {
-    reserve_huge(out.face_offsets, topology.face_offsets().size());
-    out.face_offsets.assign(topology.face_offsets().begin(), topology.face_offsets().end());
-    reserve_huge(out.face_vertices, topology.all_face_vertices().size());
-    out.face_vertices.assign(topology.all_face_vertices().begin(), topology.all_face_vertices().end());
-    out.sharpness = topology.sharpness_tags();
-}
-
 Index opposite_vertex(const Topology& parent, Index f, Index e) {
     const auto edges = parent.face_edges(f);
     const auto verts = parent.face_vertices(f);

@@ -95,9 +95,6 @@ enum class Split {
 ///   their edges and one-rings. @pre Split::Triangles: all faces are triangles
 void write_split_faces(const Topology& parent, Split split, SharpnessTags tags, PolygonSoup& out);
 
-/// @brief Writes @p topology's face list and sharpness tags into @p out (as to_polygon_soup()).
-void write_faces(const Topology& topology, PolygonSoup& out);
-
 /// @brief Threads for one step of refinement: 2 when @p requested (0: hardware concurrency) allows
 ///   two and @p parent is large enough (1024 faces) for a second thread to pay for its start; else 1.
 [[nodiscard]] int step_threads(int requested, const Topology& parent);

@@ -109,13 +109,17 @@ PolygonSoup to_polygon_soup(const ControlMesh& mesh) {
     soup.positions.resize(mesh.positions().rows(), 3);
     detail::advise_huge_pages(soup.positions.data(), sizeof(double) * static_cast<std::size_t>(soup.positions.size()));
     soup.positions = mesh.positions();
+    write_faces(topology, soup);
+    soup.hints = mesh.hints();
+    return soup;
+}
+
+void write_faces(const Topology& topology, PolygonSoup& soup) {
     detail::reserve_huge(soup.face_offsets, topology.face_offsets().size());
     soup.face_offsets.assign(topology.face_offsets().begin(), topology.face_offsets().end());
     detail::reserve_huge(soup.face_vertices, topology.all_face_vertices().size());
     soup.face_vertices.assign(topology.all_face_vertices().begin(), topology.all_face_vertices().end());
     soup.sharpness = topology.sharpness_tags();
-    soup.hints = mesh.hints();
-    return soup;
 }
 
 }  // namespace limsurf

@@ -9,6 +9,7 @@
 #include "limsurf/core/memory.h"
 #include "limsurf/detail/huge_pages.h"
 #include "limsurf/detail/refine_face_split.h"
+#include "limsurf/mesh/control_mesh.h"
 #include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/form_subdivision.h"
 
@@ -399,7 +400,7 @@ FinestLevel refine_to_finest(const Topology& base, const Points& control_points,
     // Not through ?: with the const base and control points, which would copy the child's.
     if (options.levels == 0) {
         if (faces != nullptr) {
-            detail::write_faces(base, *faces);
+            write_faces(base, *faces);
         } else {
             out.topology = base;
         }

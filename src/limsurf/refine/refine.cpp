@@ -4,6 +4,7 @@
 
 #include "limsurf/detail/refine_face_split.h"
 #include "limsurf/detail/tuned_copy.h"
+#include "limsurf/mesh/control_mesh.h"
 
 namespace limsurf {
 
