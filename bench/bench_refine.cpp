@@ -154,6 +154,12 @@ void BM_limsurf_faces_Loop(benchmark::State& state) {
 void BM_limsurf_DooSabin(benchmark::State& state) {
     limsurf_refine(state, quads(), limsurf::SchemeKind::DooSabin);
 }
+void BM_limsurf_finest_DooSabin(benchmark::State& state) {
+    limsurf_refine_finest(state, quads(), limsurf::SchemeKind::DooSabin);
+}
+void BM_limsurf_faces_DooSabin(benchmark::State& state) {
+    limsurf_refine_faces(state, quads(), limsurf::SchemeKind::DooSabin);
+}
 
 // --- OpenSubdiv Far ----------------------------------------------------------------
 
@@ -336,7 +342,9 @@ BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_full_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_limsurf_DooSabin)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_finest_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_faces_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_DooSabin)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -55,7 +55,7 @@ std::vector<PolyhedralLevel> polyhedral_levels(const ControlMesh& mesh, SchemeKi
     for (int l = 1; l <= levels; ++l) {
         // Only the last level is kept: the next step's own estimate decides.
         const std::vector<LevelSize> next = predict_sizes(t, scheme, 1);
-        if (next.back().faces > max_polyhedral_faces || estimated_peak_bytes(next, scheme) > default_memory_budget()) {
+        if (next.back().faces > max_polyhedral_faces || estimated_peak_bytes(next) > default_memory_budget()) {
             break;
         }
         Level level = refine(t, scheme);

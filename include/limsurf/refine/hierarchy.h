@@ -44,10 +44,9 @@ struct RefineOptions {
     /// Also build the form operators S1, S2 of every step (form_subdivision.h; Loop and
     /// Catmull–Clark): off by default, so plain subdivision pays nothing for them.
     bool forms = false;
-    /// Threads for each step (0: hardware concurrency): with two or more, a step of a face-split
-    /// scheme (not Doo–Sabin, not with forms) builds the child topology on a second thread while
-    /// the first builds S0 or carries the points, once the parent has 1024 faces. The result does
-    /// not depend on it.
+    /// Threads for each step (0: hardware concurrency): with two or more, a step (not with forms)
+    /// builds the child topology on a second thread while the first builds S0 or carries the
+    /// points, once the parent has 1024 faces. The result does not depend on it.
     int num_threads = 0;
 };
 
@@ -82,14 +81,14 @@ struct LevelSize {
 /// @brief Peak memory (bytes) of a Hierarchy over @p sizes (predict_sizes()): every level's
 ///   topology, S0 and positions (all are kept) and the transient tables of building the largest
 ///   step. Calibrated on the bundled meshes (measured peaks 0.8–0.95 of it; docs/io.md "Limits").
-[[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme);
+[[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes);
 
 /// @brief Peak memory (bytes) of refine_finest() (@p face_list false) or refine_finest_faces() (true)
 ///   over @p sizes: the base, and the largest step's parent (topology and points), child (topology —
 ///   for refine_finest_faces' last step only its face list — and points) and transient tables, each
 ///   table rounded up to whole huge pages; the first step's S0 counts as if stored (its masks, dense
 ///   over a face, cost time with the square of its degree). An upper bound: measured peaks are
-///   0.65–0.87 of it (docs/io.md "Memory").
+///   0.65–0.88 of it (docs/io.md "Memory").
 [[nodiscard]] std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme,
                                                        bool face_list);
 
@@ -156,11 +155,10 @@ struct FinestLevel {
 };
 
 /// @brief Refines @p base options.levels times and keeps only the finest level (for users who
-///   only want the refined mesh: `limsurf subdivide`). No step stores its S0: the face-split
-///   schemes write each row's product with the points as they build the row, summed as S0 · X
-///   sums (Doo–Sabin builds its S0 and drops it after the product); each parent level is dropped
-///   once its child exists, so the peak holds two topologies and the points. Topology and
-///   positions are those of Hierarchy(base, options).topology(L) and .positions(L,
+///   only want the refined mesh: `limsurf subdivide`). No step stores its S0: each step writes
+///   each row's product with the points as it builds the row, summed as S0 · X sums; each parent
+///   level is dropped once its child exists, so the peak holds two topologies and the points.
+///   Topology and positions are those of Hierarchy(base, options).topology(L) and .positions(L,
 ///   control_points), bit for bit. options.forms is ignored.
 /// @throws as Hierarchy's constructor and Hierarchy::positions (the same checks, before any work)
 [[nodiscard]] FinestLevel refine_finest(const Topology& base, const Points& control_points,
@@ -179,7 +177,7 @@ struct FinestFaces {
 ///   loops): the last step writes only the child's face list and sharpness tags, as OpenSubdiv's
 ///   uniform refinement does without fullTopologyInLastLevel. For users who write the refined mesh
 ///   or hand it on as arrays (`limsurf subdivide`): at 1.6 M quads the Topology is ~240 MiB, the face
-///   list ~30 MiB. Doo–Sabin's last step builds its Topology in any case and drops it after.
+///   list ~30 MiB.
 /// @throws as refine_finest()
 [[nodiscard]] FinestFaces refine_finest_faces(const Topology& base, const Points& control_points,
                                               const RefineOptions& options);

@@ -1,9 +1,10 @@
 // Private machinery shared by the face-split schemes (Catmull–Clark, Loop,
 // bilinear, linear; the child topology of the quad and triangle splits is
 // mesh/split_topology.cpp's): the provenance, sharpness propagation, the sequential sparse-row builder and the
-// crease-aware vertex mask (docs/schemes.md).
+// crease-aware vertex mask (docs/schemes.md). Doo–Sabin's step runs the same way (StepRun, rows in order).
 #pragma once
 
+#include <array>
 #include <future>
 #include <span>
 #include <type_traits>
@@ -273,6 +274,12 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 [[nodiscard]] Level refine_bilinear_step(const Topology& parent, const StepRun& run);
 [[nodiscard]] Level refine_linear_step(const Topology& parent, const StepRun& run);
 [[nodiscard]] Level refine_c2g0_step(const Topology& parent, const StepRun& run);
+/// @brief One step of refine_doo_sabin, run as @p run says (not a face split, but run the same way:
+///   rows in order, the child on a second thread; StepRun::faces gets an empty sharpness).
+[[nodiscard]] Level refine_doo_sabin_step(const Topology& parent, const SchemeOptions& options, const StepRun& run);
+/// @brief The vertices, edges and faces of refine_doo_sabin(@p parent, @p options)'s child, counted
+///   from the parent (exact, also with boundaries: for a faces-only last step, which builds no Topology).
+[[nodiscard]] std::array<Index, 3> doo_sabin_child_counts(const Topology& parent, const SchemeOptions& options);
 
 /// @brief refine(parent, kind, options, weights) on @p threads threads (StepRun::threads; the
 ///   result does not depend on it).
@@ -280,10 +287,10 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
                                 const TunedWeights& weights, int threads);
 
 /// @brief refine(parent, kind, options, weights)'s child topology, with @p carried's points carried to
-///   it: S0 · parent, bit for bit, without storing S0 where the scheme builds its rows in order (the
-///   face-split schemes; Doo–Sabin builds its S0 and multiplies). @p threads as in StepRun.
+///   it: S0 · parent, bit for bit, without storing S0 (every scheme builds its rows in order).
+///   @p threads as in StepRun.
 /// @param[out] faces when not null: the child's face list and sharpness tags are written here
-///   (StepRun::faces), and the Topology returned is empty, except Doo–Sabin's (built in any case)
+///   (StepRun::faces), and the Topology returned is empty
 [[nodiscard]] Topology refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
                                        const TunedWeights& weights, CarriedPoints& carried, int threads,
                                        PolygonSoup* faces = nullptr);

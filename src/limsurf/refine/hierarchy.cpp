@@ -106,11 +106,10 @@ std::int64_t first_step_nonzeros(const Topology& t, SchemeKind scheme) {
 }
 
 /// Bytes of the transient tables of building a level of size @p child with an S0 of @p nonzeros:
-/// the sorted half-edges and one-ring scratch of the Topology, and the triplets or growth slack
-/// of S0 (Doo–Sabin's triplets are sorted into a second copy).
-std::int64_t transient_bytes(const LevelSize& child, std::int64_t nonzeros, SchemeKind scheme) {
-    const std::int64_t per_nonzero = scheme == SchemeKind::DooSabin ? 28 : 12;
-    return 32 * child.corners + per_nonzero * nonzeros;
+/// the sorted half-edges and one-ring scratch of the Topology (Doo–Sabin's is built from its face
+/// list), and the growth slack of S0.
+std::int64_t transient_bytes(const LevelSize& child, std::int64_t nonzeros) {
+    return 32 * child.corners + 12 * nonzeros;
 }
 
 /// Refuses a hierarchy whose estimated peak exceeds the memory budget, naming the cause.
@@ -160,7 +159,7 @@ void check_refinement(const Topology& base, const RefineOptions& options, Keepin
     const LevelSize& finest = sizes.back();
     const std::int64_t peak =
         (keeping == Keeping::EveryLevel
-             ? estimated_peak_bytes(sizes, options.scheme)
+             ? estimated_peak_bytes(sizes)
              : estimated_finest_peak_bytes(sizes, options.scheme, keeping == Keeping::FinestFaces)) +
         options.reserved_bytes;
     LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
@@ -224,7 +223,7 @@ std::int64_t estimated_step_nonzeros(const LevelSize& parent, SchemeKind scheme)
     return 0;
 }
 
-std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme) {
+std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes) {
     std::int64_t kept = 0;
     std::int64_t transient = 0;
     for (std::size_t l = 0; l < sizes.size(); ++l) {
@@ -232,7 +231,7 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKin
         if (l > 0) {
             const std::int64_t nonzeros = sizes[l - 1].step_nonzeros;
             kept += 12 * nonzeros + 4 * sizes[l].vertices;
-            transient = std::max(transient, transient_bytes(sizes[l], nonzeros, scheme));
+            transient = std::max(transient, transient_bytes(sizes[l], nonzeros));
         }
     }
     return kept + transient;
@@ -250,20 +249,23 @@ std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, Sc
         // The parent's points again, row-major, as the rows read them; the base's topology and
         // points are the caller's, counted once below.
         const std::int64_t parent_bytes = 24 * parent.vertices + (l == 1 ? 0 : rounded(estimated_bytes(parent)));
-        const bool faces_only = face_list && l == last && scheme != SchemeKind::DooSabin;
+        const bool faces_only = face_list && l == last;
         const std::int64_t child_bytes = faces_only ? rounded(24 * child.vertices + 4 * (child.corners + child.faces))
                                                     : rounded(estimated_bytes(child));
-        // Doo–Sabin builds its S0 from triplets and its child from the face list; a face split numbers
-        // the child's edges (4 bytes each), pairs the parent's edges with their corners (8) and
-        // sharpness (8 per edge and vertex), and keeps a slot per parent column in the row builder.
-        // The first step's S0 counts as if it were stored (12 bytes per non-zero, exact at level 0):
-        // its rows are built whole, so masks dense over a large face cost time with the square of its
-        // degree, and such a mesh is refused naming the face, as by the Hierarchy (check_memory).
+        // Doo–Sabin builds its child Topology from the face list (its half-edges sorted, the list
+        // itself); a face split numbers the child's edges (4 bytes each), pairs the parent's edges
+        // with their corners (8) and sharpness (8 per edge and vertex). Both keep a slot per parent
+        // column in the row builder. The first step's S0 counts as if it were stored (12 bytes per
+        // non-zero, exact at level 0): its rows are built whole, so masks dense over a large face cost
+        // time with the square of its degree, and such a mesh is refused naming the face, as by the
+        // Hierarchy (check_memory).
         const std::int64_t nonzeros = parent.step_nonzeros;
-        const std::int64_t transient = scheme == SchemeKind::DooSabin
-                                           ? transient_bytes(child, nonzeros, scheme) + 12 * nonzeros
-                                           : 4 * child.edges + 16 * parent.edges + 12 * parent.vertices +
-                                                 4 * child.vertices + (l == 1 ? 12 * nonzeros : 0);
+        const std::int64_t first_rows = l == 1 ? 12 * nonzeros : 0;
+        const std::int64_t doo_sabin_child = faces_only ? 0 : 32 * child.corners + 4 * (child.corners + child.faces);
+        const std::int64_t transient =
+            scheme == SchemeKind::DooSabin
+                ? doo_sabin_child + 4 * parent.vertices + first_rows
+                : 4 * child.edges + 16 * parent.edges + 12 * parent.vertices + 4 * child.vertices + first_rows;
         largest_step = std::max(largest_step, parent_bytes + child_bytes + transient);
     }
     return estimated_bytes(sizes[0]) + largest_step;
@@ -379,7 +381,9 @@ FinestLevel refine_to_finest(const Topology& base, const Points& control_points,
         Topology child =
             detail::refine_carrying(parent, options.scheme, options.scheme_options, options.weights, carried,
                                     detail::step_threads(options.num_threads, parent), last_faces);
-        if (last_faces != nullptr && options.scheme != SchemeKind::DooSabin) {
+        if (last_faces != nullptr && options.scheme == SchemeKind::DooSabin) {
+            out.counts.push_back(detail::doo_sabin_child_counts(parent, options.scheme_options));
+        } else if (last_faces != nullptr) {
             // The face splits' counts follow from the parent's (next_size is exact for them).
             const LevelSize size = next_size(
                 {parent.num_vertices(), parent.num_edges(), parent.num_faces(), parent.num_corners(), 0, 0, 0},
@@ -393,9 +397,6 @@ FinestLevel refine_to_finest(const Topology& base, const Points& control_points,
         if (!last) {
             carried.parent = carried.child;
         }
-    }
-    if (faces != nullptr) {
-        level = Topology{};  // Doo–Sabin's, built in any case
     }
     // Not through ?: with the const base and control points, which would copy the child's.
     if (options.levels == 0) {

@@ -4,7 +4,6 @@
 
 #include "limsurf/detail/refine_face_split.h"
 #include "limsurf/detail/tuned_copy.h"
-#include "limsurf/mesh/control_mesh.h"
 
 namespace limsurf {
 
@@ -46,8 +45,7 @@ Level refine(const Topology& parent, SchemeKind kind, const SchemeOptions& optio
 
 namespace {
 
-/// One step of a face-split scheme run as @p run says; Doo–Sabin (not a face split) by its public
-/// function, on one thread.
+/// One step of @p kind run as @p run says.
 Level run_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options, const TunedWeights& weights,
                const detail::StepRun& run) {
     switch (kind) {
@@ -62,9 +60,9 @@ Level run_step(const Topology& parent, SchemeKind kind, const SchemeOptions& opt
     case SchemeKind::C2g0:
         return detail::refine_c2g0_step(parent, run);
     case SchemeKind::DooSabin:
-        break;
+        return detail::refine_doo_sabin_step(parent, options, run);
     }
-    return refine_doo_sabin(parent, options);
+    return detail::refine_bilinear_step(parent, run);
 }
 
 }  // namespace
@@ -76,18 +74,9 @@ Level detail::refine_step(const Topology& parent, SchemeKind kind, const SchemeO
 
 Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
                                  const TunedWeights& weights, CarriedPoints& carried, int threads, PolygonSoup* faces) {
-    if (kind != SchemeKind::DooSabin) {
-        return std::move(
-            run_step(parent, kind, options, weights, StepRun{.carried = &carried, .threads = threads, .faces = faces})
-                .topology);
-    }
-    // Doo–Sabin collects its S0 as triplets: it is built and applied as Hierarchy::apply does.
-    Level step = refine(parent, kind, options, weights);
-    carried.child = step.S0 * Points(carried.parent);
-    if (faces != nullptr) {
-        write_faces(step.topology, *faces);
-    }
-    return std::move(step.topology);
+    return std::move(
+        run_step(parent, kind, options, weights, StepRun{.carried = &carried, .threads = threads, .faces = faces})
+            .topology);
 }
 
 }  // namespace limsurf

@@ -26,7 +26,7 @@ RefineOptions refine_options(SchemeKind scheme, const ReferenceProblem& problem)
 
 std::int64_t reference_peak_bytes(const Topology& topology, SchemeKind scheme, int level) {
     const std::vector<LevelSize> sizes = predict_sizes(topology, scheme, level);
-    return estimated_peak_bytes(sizes, scheme) + solve_bytes_per_vertex * sizes.back().vertices;
+    return estimated_peak_bytes(sizes) + solve_bytes_per_vertex * sizes.back().vertices;
 }
 
 void check_reference(const Topology& topology, SchemeKind scheme, const ReferenceProblem& problem) {
