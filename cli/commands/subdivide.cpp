@@ -120,7 +120,7 @@ int run_subdivide(const SubdivideOptions& options) {
                         {"output", levels.back()},
                         {"per_level", levels},
                         {"output_file", options.output},
-                        {"estimated_peak_bytes", estimated_finest_peak_bytes(sizes, refine.scheme, true)},
+                        {"estimated_peak_bytes", estimated_finest_peak_bytes(sizes, true)},
                         {"seconds", seconds}});
         }
         return exit_ok;

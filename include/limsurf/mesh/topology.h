@@ -32,8 +32,9 @@ namespace limsurf {
 class Topology;
 namespace detail {
 struct HalfEdge;
-/// Refinement output only (src/limsurf/refine): a Topology built without validating
-/// faces that a refinement step made; validated anyway in Debug builds.
+/// Refinement output only (the locally refined patches of limit/local_patch.cpp; every scheme's
+/// step builds its child directly, below): a Topology built without validating faces that a
+/// refinement made; validated anyway in Debug builds.
 Topology refined_topology(Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,
                           const SharpnessTags& sharpness);
 /// Refinement output only: the child of the quad split (Catmull–Clark, bilinear; vertex and face
@@ -43,6 +44,16 @@ Topology refined_topology(Index num_vertices, std::span<const Index> face_offset
 Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_sharpness);
 /// As quad_split_topology, for the triangle split (Loop, linear, C2g0). @pre all faces are triangles
 Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_sharpness);
+/// Refinement output only: whether Doo–Sabin gives parent vertex @p v a face of its own (every
+/// interior vertex; a boundary vertex in 3 or more faces when @p vertex_faces_on_boundary).
+bool has_doo_sabin_vertex_face(const Topology& parent, Index v, bool vertex_faces_on_boundary);
+/// Refinement output only: the face list of Doo–Sabin's child (refine/doo_sabin.cpp gives the order:
+/// F-faces, E-faces of interior edges, V-faces; child vertex c is parent corner c).
+void doo_sabin_faces(const Topology& parent, bool vertex_faces_on_boundary, std::vector<Index>& face_offsets,
+                     std::vector<Index>& face_vertices);
+/// Refinement output only: Doo–Sabin's child built directly from @p parent's tables, as
+/// quad_split_topology is; every table equals that of Topology(doo_sabin_faces(…)) (no sharpness).
+Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundary);
 }  // namespace detail
 
 class Topology {
@@ -160,6 +171,7 @@ class Topology {
                                              const SharpnessTags&);
     friend Topology detail::quad_split_topology(const Topology&, const SharpnessTags&);
     friend Topology detail::tri_split_topology(const Topology&, const SharpnessTags&);
+    friend Topology detail::doo_sabin_topology(const Topology&, bool);
     struct Trusted {};
     /// Builds the tables without validating: the faces come from a refinement step.
     Topology(Trusted, Index num_vertices, std::span<const Index> face_offsets, std::span<const Index> face_vertices,

@@ -80,7 +80,7 @@ struct LevelSize {
 
 /// @brief Peak memory (bytes) of a Hierarchy over @p sizes (predict_sizes()): every level's
 ///   topology, S0 and positions (all are kept) and the transient tables of building the largest
-///   step. Calibrated on the bundled meshes (measured peaks 0.8–0.95 of it; docs/io.md "Limits").
+///   step. Calibrated on the bundled meshes (measured peaks 0.73–0.95 of it; docs/io.md "Memory").
 [[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes);
 
 /// @brief Peak memory (bytes) of refine_finest() (@p face_list false) or refine_finest_faces() (true)
@@ -88,9 +88,8 @@ struct LevelSize {
 ///   for refine_finest_faces' last step only its face list — and points) and transient tables, each
 ///   table rounded up to whole huge pages; the first step's S0 counts as if stored (its masks, dense
 ///   over a face, cost time with the square of its degree). An upper bound: measured peaks are
-///   0.65–0.88 of it (docs/io.md "Memory").
-[[nodiscard]] std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme,
-                                                       bool face_list);
+///   0.64–0.88 of it (docs/io.md "Memory").
+[[nodiscard]] std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, bool face_list);
 
 class Hierarchy {
   public:

@@ -397,4 +397,299 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
     return child;
 }
 
+// --- Doo–Sabin ------------------------------------------------------------------------------------
+//
+// Child vertex c is parent corner c (of face f at vertex v, f's corner i). The child faces are the
+// F-face of each parent face, the E-face of each interior parent edge e ([f_b, f_a, g_a, g_b]: f =
+// edge_faces(e)[0] runs e from its lower end a to b, g back) and the V-face of each parent vertex
+// that has one (has_doo_sabin_vertex_face; the children at v in vertex_faces(v) order). In order of
+// first appearance the child edges are: the F-face sides (side c runs from c to the next corner of
+// its face: number c), then the two new sides of each E-face (the j-th E-face's at a: C + 2j, at b:
+// C + 2j + 1; each shared with the V-face of its end when there is one), then the closing side of
+// each V-face of a boundary vertex (from its last child to its first: C + 2J + its rank).
+//
+// Child vertex c has up to four faces, in counter-clockwise order (each next face shares the
+// previous one's edge entering c): its F-face f, the E-face of e_in (f's edge entering v), the V-face
+// of v, the E-face of e_out (f's edge leaving v). Each leaves c by: F: side c; E(e_in): side c_prev
+// (f's previous corner); V: the side at v of E(e_in), or its closing side; E(e_out): the side at v of
+// E(e_out). A missing face (a boundary edge, a vertex without V-face) makes c a boundary vertex.
+
+bool has_doo_sabin_vertex_face(const Topology& parent, Index v, bool vertex_faces_on_boundary) {
+    return !parent.is_boundary_vertex(v) || (vertex_faces_on_boundary && parent.vertex_faces(v).size() >= 3);
+}
+
+namespace {
+
+/// Numbers of the E- and V-faces and closing sides, per parent edge and vertex (invalid_index where
+/// there is none).
+struct DooSabinNumbers {
+    HugeTable<Index> edge_face;     ///< per parent edge: its E-face's rank j
+    HugeTable<Index> vertex_face;   ///< per parent vertex: its V-face's rank
+    HugeTable<Index> closing_side;  ///< per parent vertex: the rank of its V-face's closing side
+    Index num_edge_faces = 0;
+    Index num_vertex_faces = 0;
+    Index num_closing_sides = 0;
+};
+
+DooSabinNumbers number_doo_sabin_faces(const Topology& parent, bool vertex_faces_on_boundary) {
+    DooSabinNumbers n;
+    assign_huge(n.edge_face, at(parent.num_edges()), invalid_index);
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        if (!parent.is_boundary_edge(e)) {
+            n.edge_face[at(e)] = n.num_edge_faces++;
+        }
+    }
+    assign_huge(n.vertex_face, at(parent.num_vertices()), invalid_index);
+    assign_huge(n.closing_side, at(parent.num_vertices()), invalid_index);
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        if (has_doo_sabin_vertex_face(parent, v, vertex_faces_on_boundary)) {
+            n.vertex_face[at(v)] = n.num_vertex_faces++;
+            if (parent.is_boundary_vertex(v)) {
+                n.closing_side[at(v)] = n.num_closing_sides++;
+            }
+        }
+    }
+    return n;
+}
+
+/// The corner after corner @p c of face @p f (global corner indices).
+Index next_corner_of(const Topology& t, Index f, Index c) {
+    const Index first = t.face_offset(f);
+    return first + (c - first + 1) % t.face_degree(f);
+}
+
+/// The E-face of interior parent edge @p e, [f_b, f_a, g_a, g_b], from edge_corners(parent).
+std::array<Index, 4> edge_face_of(const Topology& parent, const HugeTable<std::array<Index, 2>>& edge_corner, Index e) {
+    const Index fa = edge_corner[at(e)][0];
+    const Index gb = edge_corner[at(e)][1];
+    return {next_corner_of(parent, parent.edge_faces(e)[0], fa), fa,
+            next_corner_of(parent, parent.edge_faces(e)[1], gb), gb};
+}
+
+/// The child's face list from the numbers (the order above).
+template <class Table>
+void write_doo_sabin_faces(const Topology& parent, const DooSabinNumbers& n, Table& offsets, Table& vertices) {
+    const Index F = parent.num_faces();
+    const auto num_faces = at(F + n.num_edge_faces + n.num_vertex_faces);
+    reserve_huge(offsets, num_faces + 1);
+    offsets.assign(1, 0);
+    std::size_t vertex_face_corners = 0;
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        vertex_face_corners += n.vertex_face[at(v)] != invalid_index ? parent.vertex_faces(v).size() : 0;
+    }
+    reserve_huge(vertices, at(parent.num_corners()) + 4 * at(n.num_edge_faces) + vertex_face_corners);
+    vertices.clear();
+    for (Index c = 0; c < parent.num_corners(); ++c) {
+        vertices.push_back(c);
+    }
+    offsets.insert(offsets.end(), parent.face_offsets().begin() + 1, parent.face_offsets().end());
+    const auto edge_corner = edge_corners(parent);
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        if (n.edge_face[at(e)] == invalid_index) {
+            continue;
+        }
+        const auto face = edge_face_of(parent, edge_corner, e);
+        vertices.insert(vertices.end(), face.begin(), face.end());
+        offsets.push_back(static_cast<Index>(vertices.size()));
+    }
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        if (n.vertex_face[at(v)] == invalid_index) {
+            continue;
+        }
+        const auto ring_faces = parent.vertex_faces(v);
+        const auto ring_corners = parent.vertex_face_corners(v);
+        for (std::size_t p = 0; p < ring_faces.size(); ++p) {
+            vertices.push_back(parent.face_offset(ring_faces[p]) + ring_corners[p]);
+        }
+        offsets.push_back(static_cast<Index>(vertices.size()));
+    }
+}
+
+}  // namespace
+
+void doo_sabin_faces(const Topology& parent, bool vertex_faces_on_boundary, std::vector<Index>& face_offsets,
+                     std::vector<Index>& face_vertices) {
+    write_doo_sabin_faces(parent, number_doo_sabin_faces(parent, vertex_faces_on_boundary), face_offsets,
+                          face_vertices);
+}
+
+Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundary) {
+    const DooSabinNumbers n = number_doo_sabin_faces(parent, vertex_faces_on_boundary);
+    const Index C = parent.num_corners();
+    Topology child;
+    child.num_vertices_ = C;
+    write_doo_sabin_faces(parent, n, child.face_offsets_, child.face_vertices_);
+
+    // The side of E(e) at parent vertex v (a or b), and the parent's corner c at v's previous one.
+    const auto side_at = [&](Index e, Index v) {
+        return C + 2 * n.edge_face[at(e)] + (parent.edge_vertices(e)[1] == v ? 1 : 0);
+    };
+    const auto closing_side = [&](Index v) { return C + 2 * n.num_edge_faces + n.closing_side[at(v)]; };
+    const auto previous_corner = [&](Index f, Index c) {
+        return c == parent.face_offsets_[at(f)] ? parent.face_offsets_[at(f) + 1] - 1 : c - 1;
+    };
+
+    // Edges: ends and face counts.
+    const auto num_edges = at(C + 2 * n.num_edge_faces + n.num_closing_sides);
+    assign_huge(child.edge_vertices_, 2 * num_edges);
+    assign_huge(child.edge_face_offsets_, num_edges + 1, 0);
+    const auto set_edge = [&](Index e, Index a, Index b, Index faces) {
+        child.edge_vertices_[2 * at(e)] = std::min(a, b);
+        child.edge_vertices_[2 * at(e) + 1] = std::max(a, b);
+        child.edge_face_offsets_[at(e) + 1] = faces;
+    };
+    for (Index f = 0; f < parent.num_faces(); ++f) {
+        for (Index c = parent.face_offsets_[at(f)]; c < parent.face_offsets_[at(f) + 1]; ++c) {
+            set_edge(c, c, parent.next_corner(f, c), parent.is_boundary_edge(parent.face_edges_[at(c)]) ? 1 : 2);
+        }
+    }
+    const auto edge_corner = edge_corners(parent);
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        if (n.edge_face[at(e)] == invalid_index) {
+            continue;
+        }
+        const auto [fb, fa, ga, gb] = edge_face_of(parent, edge_corner, e);
+        const auto ends = parent.edge_vertices(e);
+        set_edge(side_at(e, ends[0]), fa, ga, n.vertex_face[at(ends[0])] != invalid_index ? 2 : 1);
+        set_edge(side_at(e, ends[1]), gb, fb, n.vertex_face[at(ends[1])] != invalid_index ? 2 : 1);
+    }
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        if (n.closing_side[at(v)] != invalid_index) {
+            const auto ring_faces = parent.vertex_faces(v);
+            const auto ring_corners = parent.vertex_face_corners(v);
+            set_edge(closing_side(v), parent.face_offset(ring_faces.back()) + ring_corners.back(),
+                     parent.face_offset(ring_faces.front()) + ring_corners.front(), 1);
+        }
+    }
+
+    // Face edges and signs, side by side with the face list.
+    assign_huge(child.face_edges_, child.face_vertices_.size());
+    assign_huge(child.face_edge_signs_, child.face_vertices_.size());
+    std::size_t slot = 0;
+    for (Index c = 0; c < C; ++c, ++slot) {
+        child.face_edges_[slot] = c;
+    }
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        if (n.edge_face[at(e)] == invalid_index) {
+            continue;
+        }
+        const auto ends = parent.edge_vertices(e);
+        const Index fa = edge_corner[at(e)][0];
+        const Index gb = edge_corner[at(e)][1];
+        for (const Index side : {fa, side_at(e, ends[0]), gb, side_at(e, ends[1])}) {
+            child.face_edges_[slot++] = side;
+        }
+    }
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        if (n.vertex_face[at(v)] == invalid_index) {
+            continue;
+        }
+        const auto ring_edges = parent.vertex_edges(v);
+        const auto k = parent.vertex_faces(v).size();
+        for (std::size_t p = 0; p < k; ++p) {
+            // Faces p and p + 1 share vertex_edges(v)[p + 1] (p's edge entering v).
+            const bool closing = p + 1 == k && parent.is_boundary_vertex(v);
+            child.face_edges_[slot++] = closing ? closing_side(v) : side_at(ring_edges[(p + 1) % ring_edges.size()], v);
+        }
+    }
+    for (Index f = 0; f < child.num_faces(); ++f) {
+        for (Index c = child.face_offsets_[at(f)]; c < child.face_offsets_[at(f) + 1]; ++c) {
+            child.face_edge_signs_[at(c)] =
+                child.face_vertices_[at(c)] < child.face_vertices_[at(child.next_corner(f, c))] ? 1 : -1;
+        }
+    }
+    child.fill_edge_faces(nullptr);
+
+    // One-rings: per child vertex, the four candidate faces in counter-clockwise order, the corner of
+    // c in each and the side each leaves c by; a boundary vertex's walk starts at the face after the
+    // gap and closes with the side entering its last face.
+    const Index F = parent.num_faces();
+    HugeTable<Index> ring_position;  // per parent corner: its index in its vertex's one-ring
+    assign_huge(ring_position, at(C));
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        const auto ring_faces = parent.vertex_faces(v);
+        const auto ring_corners = parent.vertex_face_corners(v);
+        for (std::size_t p = 0; p < ring_faces.size(); ++p) {
+            ring_position[at(parent.face_offset(ring_faces[p]) + ring_corners[p])] = static_cast<Index>(p);
+        }
+    }
+    struct Candidate {
+        Index face = invalid_index;  ///< invalid_index: missing
+        Index corner = 0;
+        Index leaving = 0;   ///< the side it leaves c by
+        Index entering = 0;  ///< the side it enters c by
+    };
+    const auto candidates = [&](Index f, Index c) {
+        const Index v = parent.face_vertices_[at(c)];
+        const Index c_prev = previous_corner(f, c);
+        const Index e_out = parent.face_edges_[at(c)];
+        const Index e_in = parent.face_edges_[at(c_prev)];
+        // Corner of c in E(e): [f_b, f_a, g_a, g_b]; f is edge_faces(e)[0] when it runs e lower -> higher.
+        const auto edge_face_corner = [&](Index e) {
+            const bool first = parent.face_edge_signs_[at(e == e_out ? c : c_prev)] > 0;
+            const bool at_lower = parent.edge_vertices(e)[0] == v;
+            return first ? (at_lower ? Index{1} : Index{0}) : (at_lower ? Index{2} : Index{3});
+        };
+        std::array<Candidate, 4> ring{};
+        ring[0] = {f, c - parent.face_offset(f), c, c_prev};
+        if (n.edge_face[at(e_in)] != invalid_index) {
+            ring[1] = {F + n.edge_face[at(e_in)], edge_face_corner(e_in), c_prev, side_at(e_in, v)};
+        }
+        if (n.vertex_face[at(v)] != invalid_index) {
+            const bool last = ring_position[at(c)] + 1 == static_cast<Index>(parent.vertex_faces(v).size());
+            const bool first = ring_position[at(c)] == 0;
+            const bool boundary = parent.is_boundary_vertex(v);
+            ring[2] = {F + n.num_edge_faces + n.vertex_face[at(v)], ring_position[at(c)],
+                       boundary && last ? closing_side(v) : side_at(e_in, v),
+                       boundary && first ? closing_side(v) : side_at(e_out, v)};
+        }
+        if (n.edge_face[at(e_out)] != invalid_index) {
+            ring[3] = {F + n.edge_face[at(e_out)], edge_face_corner(e_out), side_at(e_out, v), c};
+        }
+        return ring;
+    };
+
+    assign_huge(child.vertex_face_offsets_, at(C) + 1, 0);
+    assign_huge(child.vertex_is_boundary_, at(C), 0);
+    for (Index f = 0; f < F; ++f) {
+        for (Index c = parent.face_offsets_[at(f)]; c < parent.face_offsets_[at(f) + 1]; ++c) {
+            const auto ring = candidates(f, c);
+            const auto present =
+                std::count_if(ring.begin(), ring.end(), [](const Candidate& x) { return x.face != invalid_index; });
+            child.vertex_face_offsets_[at(c) + 1] = static_cast<Index>(present);
+            child.vertex_is_boundary_[at(c)] = present < 4 ? 1 : 0;
+        }
+    }
+    child.allocate_one_rings();
+    for (Index f = 0; f < F; ++f) {
+        for (Index c = parent.face_offsets_[at(f)]; c < parent.face_offsets_[at(f) + 1]; ++c) {
+            const auto ring = candidates(f, c);
+            std::size_t start = 0;  // interior: the F-face, c's first corner in the face list
+            if (child.vertex_is_boundary_[at(c)] != 0) {
+                // the present face whose predecessor (the face sharing its leaving side) is missing
+                while (ring[start].face == invalid_index || ring[(start + 3) % 4].face != invalid_index) {
+                    ++start;
+                }
+            }
+            Index face_slot = child.vertex_face_offsets_[at(c)];
+            Index edge_slot = child.vertex_edge_offsets_[at(c)];
+            for (std::size_t i = 0; i < 4 && ring[(start + i) % 4].face != invalid_index; ++i) {
+                const Candidate& x = ring[(start + i) % 4];
+                child.vertex_faces_[at(face_slot)] = x.face;
+                child.vertex_face_corners_[at(face_slot++)] = x.corner;
+                child.vertex_edges_[at(edge_slot++)] = x.leaving;
+                if (face_slot == child.vertex_face_offsets_[at(c) + 1] && child.vertex_is_boundary_[at(c)] != 0) {
+                    child.vertex_edges_[at(edge_slot++)] = x.entering;  // the closing boundary side
+                }
+            }
+        }
+    }
+
+    child.build_boundary_loops();
+    child.build_components();
+    child.apply_sharpness({});
+    check_child(child);
+    return child;
+}
+
 }  // namespace limsurf::detail

@@ -18,7 +18,8 @@
 //
 // A step runs as the face splits' do (detail::StepRun): the rows, one per child vertex in
 // corner order, are built in order (SparseRowBuilder, or the carried points), while the
-// child's Topology, or only its face list, is built on a second thread.
+// child's Topology (detail::doo_sabin_topology: built from the parent's tables, as the face
+// splits' are), or only its face list, is built on a second thread.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -26,7 +27,6 @@
 #include <vector>
 
 #include "limsurf/core/error.h"
-#include "limsurf/detail/huge_pages.h"
 #include "limsurf/detail/refine_face_split.h"
 #include "limsurf/refine/refine.h"
 
@@ -90,11 +90,6 @@ CornerRule corner_rule(const Topology& parent, Index f, Index i, Index n, bool b
     return CornerRule::Classic;
 }
 
-/// Whether parent vertex @p v has a V-face.
-bool has_vertex_face(const Topology& parent, Index v, bool boundary_rule) {
-    return !parent.is_boundary_vertex(v) || (boundary_rule && parent.vertex_faces(v).size() >= 3);
-}
-
 /// How many child faces of each kind, and how many corners they have.
 struct ChildFaceCounts {
     Index edge_faces = 0;                 ///< interior parent edges
@@ -109,7 +104,7 @@ ChildFaceCounts count_child_faces(const Topology& parent, bool boundary_rule) {
         counts.edge_faces += parent.is_boundary_edge(e) ? 0 : 1;
     }
     for (Index v = 0; v < parent.num_vertices(); ++v) {
-        if (has_vertex_face(parent, v, boundary_rule)) {
+        if (detail::has_doo_sabin_vertex_face(parent, v, boundary_rule)) {
             ++counts.vertex_faces;
             counts.boundary_vertex_faces += parent.is_boundary_vertex(v) ? 1 : 0;
             counts.vertex_face_corners += parent.vertex_faces(v).size();
@@ -118,73 +113,41 @@ ChildFaceCounts count_child_faces(const Topology& parent, bool boundary_rule) {
     return counts;
 }
 
-/// The child's F-, E- and V-faces, in that order, into @p offsets (#F_child + 1) and @p vertices;
-/// with @p provenance, each face's parent element there.
-void write_child_faces(const Topology& parent, bool boundary_rule, std::vector<Index>& offsets,
-                       std::vector<Index>& vertices, Provenance* provenance) {
+/// The parent of each child face (F-, E-, V-faces in detail::doo_sabin_faces' order) and of each
+/// child vertex (the face of its corner).
+Provenance doo_sabin_provenance(const Topology& parent, bool boundary_rule) {
     const ChildFaceCounts counts = count_child_faces(parent, boundary_rule);
-    const Index num_faces = parent.num_faces();
-    const auto num_child_faces = at(num_faces + counts.edge_faces + counts.vertex_faces);
-    detail::reserve_huge(offsets, num_child_faces + 1);
-    detail::reserve_huge(vertices, at(parent.num_corners()) + 4 * at(counts.edge_faces) + counts.vertex_face_corners);
-    offsets.assign(1, 0);
-    vertices.clear();
-    const auto add_parent = [provenance](ParentKind kind, Index element) {
-        if (provenance != nullptr) {
-            provenance->face_parent_kind.push_back(kind);
-            provenance->face_parent.push_back(element);
-        }
+    const auto num_child_faces = at(parent.num_faces() + counts.edge_faces + counts.vertex_faces);
+    Provenance p;
+    p.face_parent_kind.reserve(num_child_faces);
+    p.face_parent.reserve(num_child_faces);
+    p.face_parent_corner.assign(num_child_faces, invalid_index);
+    const auto add = [&p](ParentKind kind, Index element) {
+        p.face_parent_kind.push_back(kind);
+        p.face_parent.push_back(element);
     };
-    if (provenance != nullptr) {
-        provenance->face_parent_kind.reserve(num_child_faces);
-        provenance->face_parent.reserve(num_child_faces);
-        provenance->face_parent_corner.assign(num_child_faces, invalid_index);
+    for (Index f = 0; f < parent.num_faces(); ++f) {
+        add(ParentKind::Face, f);
     }
-    // F-faces: the children of the corners of f, in corner order.
-    for (Index f = 0; f < num_faces; ++f) {
+    for (Index e = 0; e < parent.num_edges(); ++e) {
+        if (!parent.is_boundary_edge(e)) {
+            add(ParentKind::Edge, e);
+        }
+    }
+    for (Index v = 0; v < parent.num_vertices(); ++v) {
+        if (detail::has_doo_sabin_vertex_face(parent, v, boundary_rule)) {
+            add(ParentKind::Vertex, v);
+        }
+    }
+    p.vertex_parent_kind.assign(at(parent.num_corners()), ParentKind::Face);
+    p.vertex_parent.resize(at(parent.num_corners()));
+    for (Index f = 0; f < parent.num_faces(); ++f) {
         const Index offset = parent.face_offset(f);
         for (Index i = 0; i < parent.face_degree(f); ++i) {
-            vertices.push_back(offset + i);
+            p.vertex_parent[at(offset + i)] = f;
         }
-        offsets.push_back(static_cast<Index>(vertices.size()));
-        add_parent(ParentKind::Face, f);
     }
-    // E-faces. face_edges(g)[k] runs from g's corner k to corner k+1, so the corner of face g at the
-    // tail of e is the k with face_edges(g)[k] == e.
-    const auto tail_corner = [&parent](Index g, Index e) {
-        const auto edges = parent.face_edges(g);
-        const auto k = std::find(edges.begin(), edges.end(), e) - edges.begin();
-        return parent.face_offset(g) + static_cast<Index>(k);
-    };
-    const auto next_corner = [&parent](Index g, Index corner) {
-        const Index offset = parent.face_offset(g);
-        return offset + (corner - offset + 1) % parent.face_degree(g);
-    };
-    for (Index e = 0; e < parent.num_edges(); ++e) {
-        const auto ef = parent.edge_faces(e);
-        if (ef.size() != 2) {
-            continue;
-        }
-        // edge_faces lists first the face traversing lower -> higher: f runs a -> b, g runs b -> a.
-        const Index fa = tail_corner(ef[0], e);
-        const Index gb = tail_corner(ef[1], e);
-        vertices.insert(vertices.end(), {next_corner(ef[0], fa), fa, next_corner(ef[1], gb), gb});
-        offsets.push_back(static_cast<Index>(vertices.size()));
-        add_parent(ParentKind::Edge, e);
-    }
-    // V-faces: the children of v's corners, counter-clockwise about v.
-    for (Index v = 0; v < parent.num_vertices(); ++v) {
-        if (!has_vertex_face(parent, v, boundary_rule)) {
-            continue;
-        }
-        const auto vf = parent.vertex_faces(v);
-        const auto vc = parent.vertex_face_corners(v);
-        for (std::size_t i = 0; i < vf.size(); ++i) {
-            vertices.push_back(parent.face_offset(vf[i]) + vc[i]);
-        }
-        offsets.push_back(static_cast<Index>(vertices.size()));
-        add_parent(ParentKind::Vertex, v);
-    }
+    return p;
 }
 
 /// One row per parent corner (= child vertex), in corner order: the classic mask of its face, or
@@ -243,18 +206,6 @@ Index row_nonzeros(const Topology& parent, bool boundary_rule) {
     return nonzeros;
 }
 
-Provenance provenance_of_vertices(const Topology& parent, Provenance faces) {
-    faces.vertex_parent_kind.assign(at(parent.num_corners()), ParentKind::Face);
-    faces.vertex_parent.resize(at(parent.num_corners()));
-    for (Index f = 0; f < parent.num_faces(); ++f) {
-        const Index offset = parent.face_offset(f);
-        for (Index i = 0; i < parent.face_degree(f); ++i) {
-            faces.vertex_parent[at(offset + i)] = f;
-        }
-    }
-    return faces;
-}
-
 }  // namespace
 
 Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options) {
@@ -264,28 +215,21 @@ Level refine_doo_sabin(const Topology& parent, const SchemeOptions& options) {
 Level detail::refine_doo_sabin_step(const Topology& parent, const SchemeOptions& options, const StepRun& run) {
     check_supported(parent);
     const bool boundary_rule = options.boundary != BoundaryInterpolation::None;
-    const bool keep_provenance = run.carried == nullptr;
-    Provenance face_provenance;
-    auto child = detail::concurrently(run.threads, [&]() -> Topology {
-        Provenance* provenance = keep_provenance ? &face_provenance : nullptr;
+    auto child = detail::concurrently(run.threads, [&parent, boundary_rule, &run]() -> Topology {
         if (run.faces != nullptr) {  // Doo–Sabin has no sharpness to write
-            write_child_faces(parent, boundary_rule, run.faces->face_offsets, run.faces->face_vertices, provenance);
+            detail::doo_sabin_faces(parent, boundary_rule, run.faces->face_offsets, run.faces->face_vertices);
             run.faces->sharpness = {};
             return Topology{};
         }
-        std::vector<Index> offsets;
-        std::vector<Index> vertices;
-        write_child_faces(parent, boundary_rule, offsets, vertices, provenance);
-        return detail::refined_topology(parent.num_corners(), offsets, vertices, {});
+        return detail::doo_sabin_topology(parent, boundary_rule);
     });
 
     detail::SparseRowBuilder rows(parent.num_corners(), parent.num_vertices(),
                                   run.carried == nullptr ? row_nonzeros(parent, boundary_rule) : 0, run.carried);
     add_corner_rows(parent, boundary_rule, rows);
     SparseMatrix S0 = rows.finish();
-    Topology topology = child.get();  // face_provenance is complete once the child is
-    Provenance provenance = keep_provenance ? provenance_of_vertices(parent, std::move(face_provenance)) : Provenance{};
-    return Level{std::move(topology), std::move(S0), std::move(provenance)};
+    Provenance provenance = run.carried == nullptr ? doo_sabin_provenance(parent, boundary_rule) : Provenance{};
+    return Level{child.get(), std::move(S0), std::move(provenance)};
 }
 
 std::array<Index, 3> detail::doo_sabin_child_counts(const Topology& parent, const SchemeOptions& options) {

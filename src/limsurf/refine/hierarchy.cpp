@@ -106,8 +106,8 @@ std::int64_t first_step_nonzeros(const Topology& t, SchemeKind scheme) {
 }
 
 /// Bytes of the transient tables of building a level of size @p child with an S0 of @p nonzeros:
-/// the sorted half-edges and one-ring scratch of the Topology (Doo–Sabin's is built from its face
-/// list), and the growth slack of S0.
+/// the numbering and one-ring scratch of the child Topology (32 bytes per child corner: an upper
+/// bound calibrated when it still sorted half-edges; docs/io.md "Memory"), and the growth slack of S0.
 std::int64_t transient_bytes(const LevelSize& child, std::int64_t nonzeros) {
     return 32 * child.corners + 12 * nonzeros;
 }
@@ -158,9 +158,8 @@ void check_refinement(const Topology& base, const RefineOptions& options, Keepin
     const std::vector<LevelSize> sizes = predict_sizes(base, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
     const std::int64_t peak =
-        (keeping == Keeping::EveryLevel
-             ? estimated_peak_bytes(sizes)
-             : estimated_finest_peak_bytes(sizes, options.scheme, keeping == Keeping::FinestFaces)) +
+        (keeping == Keeping::EveryLevel ? estimated_peak_bytes(sizes)
+                                        : estimated_finest_peak_bytes(sizes, keeping == Keeping::FinestFaces)) +
         options.reserved_bytes;
     LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
                   " levels would make ", finest.faces, " faces at level ", options.levels, " (about ",
@@ -237,7 +236,7 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes) {
     return kept + transient;
 }
 
-std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, SchemeKind scheme, bool face_list) {
+std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, bool face_list) {
     // Tables of 4 MiB and more take whole 2 MiB huge pages (core/huge_page_allocator.h): each of a
     // level's ~17 rounds up by less than 2 MiB, and by less than half itself.
     const auto rounded = [](std::int64_t bytes) { return bytes + std::min(bytes / 2, std::int64_t{34} << 20); };
@@ -252,20 +251,16 @@ std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, Sc
         const bool faces_only = face_list && l == last;
         const std::int64_t child_bytes = faces_only ? rounded(24 * child.vertices + 4 * (child.corners + child.faces))
                                                     : rounded(estimated_bytes(child));
-        // Doo–Sabin builds its child Topology from the face list (its half-edges sorted, the list
-        // itself); a face split numbers the child's edges (4 bytes each), pairs the parent's edges
-        // with their corners (8) and sharpness (8 per edge and vertex). Both keep a slot per parent
-        // column in the row builder. The first step's S0 counts as if it were stored (12 bytes per
-        // non-zero, exact at level 0): its rows are built whole, so masks dense over a large face cost
-        // time with the square of its degree, and such a mesh is refused naming the face, as by the
-        // Hierarchy (check_memory).
+        // Building the child (its Topology from the parent's tables, or only its face list) numbers
+        // the child's edges (4 bytes each), pairs the parent's edges with their corners (8) and
+        // sharpness or faces (8 per edge and vertex), and keeps a slot per parent column in the row
+        // builder and one per child vertex. The first step's S0 counts as if it were stored (12 bytes
+        // per non-zero, exact at level 0): its rows are built whole, so masks dense over a large face
+        // cost time with the square of its degree, and such a mesh is refused naming the face, as by
+        // the Hierarchy (check_memory).
         const std::int64_t nonzeros = parent.step_nonzeros;
-        const std::int64_t first_rows = l == 1 ? 12 * nonzeros : 0;
-        const std::int64_t doo_sabin_child = faces_only ? 0 : 32 * child.corners + 4 * (child.corners + child.faces);
-        const std::int64_t transient =
-            scheme == SchemeKind::DooSabin
-                ? doo_sabin_child + 4 * parent.vertices + first_rows
-                : 4 * child.edges + 16 * parent.edges + 12 * parent.vertices + 4 * child.vertices + first_rows;
+        const std::int64_t transient = 4 * child.edges + 16 * parent.edges + 12 * parent.vertices + 4 * child.vertices +
+                                       (l == 1 ? 12 * nonzeros : 0);
         largest_step = std::max(largest_step, parent_bytes + child_bytes + transient);
     }
     return estimated_bytes(sizes[0]) + largest_step;

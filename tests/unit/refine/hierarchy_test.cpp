@@ -529,8 +529,8 @@ TEST(RefineFinest, IsHeldToItsOwnMemoryEstimate) {
     RefineOptions options = options_for(SchemeKind::CatmullClark, 6);
     const auto sizes = predict_sizes(base, options.scheme, options.levels);
     const std::int64_t every_level = estimated_peak_bytes(sizes);
-    const std::int64_t finest = estimated_finest_peak_bytes(sizes, options.scheme, false);
-    const std::int64_t faces = estimated_finest_peak_bytes(sizes, options.scheme, true);
+    const std::int64_t finest = estimated_finest_peak_bytes(sizes, false);
+    const std::int64_t faces = estimated_finest_peak_bytes(sizes, true);
     EXPECT_LT(faces, finest);
     EXPECT_LT(finest, every_level);
     // At least what is returned: the finest positions and face list, or its topology.
