@@ -20,7 +20,6 @@
 // corner order, are built in order (SparseRowBuilder, or the carried points), while the
 // child's Topology (detail::doo_sabin_topology: built from the parent's tables, as the face
 // splits' are), or only its face list, is built on a second thread.
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -90,12 +89,11 @@ CornerRule corner_rule(const Topology& parent, Index f, Index i, Index n, bool b
     return CornerRule::Classic;
 }
 
-/// How many child faces of each kind, and how many corners they have.
+/// How many child faces of each kind.
 struct ChildFaceCounts {
-    Index edge_faces = 0;                 ///< interior parent edges
-    Index vertex_faces = 0;               ///< parent vertices with a V-face
-    Index boundary_vertex_faces = 0;      ///< of which on the boundary (each closes with a boundary edge)
-    std::size_t vertex_face_corners = 0;  ///< Σ valence over the V-faces
+    Index edge_faces = 0;             ///< interior parent edges
+    Index vertex_faces = 0;           ///< parent vertices with a V-face
+    Index boundary_vertex_faces = 0;  ///< of which on the boundary (each closes with a boundary edge)
 };
 
 ChildFaceCounts count_child_faces(const Topology& parent, bool boundary_rule) {
@@ -107,7 +105,6 @@ ChildFaceCounts count_child_faces(const Topology& parent, bool boundary_rule) {
         if (detail::has_doo_sabin_vertex_face(parent, v, boundary_rule)) {
             ++counts.vertex_faces;
             counts.boundary_vertex_faces += parent.is_boundary_vertex(v) ? 1 : 0;
-            counts.vertex_face_corners += parent.vertex_faces(v).size();
         }
     }
     return counts;
