@@ -40,18 +40,22 @@ def test_subdivide_from_arrays():
     assert np.array_equal(fine.V, limsurf.subdivide(limsurf.Mesh(V, F), "loop", levels=2).V)
 
 
-def test_threads_give_the_same_mesh_and_operators(mesh_path):
-    # From 1024 faces on, each step builds the child topology on a second thread.
-    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
-    one = limsurf.subdivide(mesh, "loop", 5, threads=1)
-    two = limsurf.subdivide(mesh, "loop", 5, threads=2)
-    assert one.num_faces == 20 * 4**5
+@pytest.mark.parametrize("name,scheme", [("icosahedron", "loop"), ("cube", "doo-sabin")])
+def test_threads_give_the_same_mesh_and_operators(mesh_path, name, scheme):
+    # From 1024 faces on, each step builds the child topology (the last step of topology=False: its
+    # face list) on a second thread; Doo-Sabin's step too.
+    mesh = limsurf.read_mesh(mesh_path(name))
+    assert limsurf.subdivide(mesh, scheme, 4).num_faces >= 1024, "the last step would not take a second thread"
+    one = limsurf.subdivide(mesh, scheme, 5, threads=1)
+    two = limsurf.subdivide(mesh, scheme, 5, threads=2)
     assert np.array_equal(one.V, two.V) and np.array_equal(one.face_vertices, two.face_vertices)
-    _, ops_one = limsurf.subdivide(mesh, "loop", 5, operators=True, threads=1)
-    _, ops_two = limsurf.subdivide(mesh, "loop", 5, operators=True, threads=2)
+    V, F = limsurf.subdivide(mesh, scheme, 5, topology=False, threads=2)
+    assert np.array_equal(V, one.V) and len(F) == one.num_faces
+    _, ops_one = limsurf.subdivide(mesh, scheme, 5, operators=True, threads=1)
+    _, ops_two = limsurf.subdivide(mesh, scheme, 5, operators=True, threads=2)
     assert (ops_one["S0"] != ops_two["S0"]).nnz == 0
     with pytest.raises(limsurf.InputError, match="num_threads must be >= 0"):
-        limsurf.subdivide(mesh, "loop", 1, threads=-1)
+        limsurf.subdivide(mesh, scheme, 1, threads=-1)
 
 
 def test_topology_false_gives_the_meshs_arrays(mesh_path):
