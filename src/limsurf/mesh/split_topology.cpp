@@ -574,9 +574,8 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
             continue;
         }
         const auto ends = parent.edge_vertices(e);
-        const Index fa = edge_corner[at(e)][0];
-        const Index gb = edge_corner[at(e)][1];
-        for (const Index side : {fa, side_at(e, ends[0]), gb, side_at(e, ends[1])}) {
+        const auto face = edge_face_of(parent, edge_corner, e);  // [f_b, f_a, g_a, g_b]
+        for (const Index side : {face[1], side_at(e, ends[0]), face[3], side_at(e, ends[1])}) {
             child.face_edges_[slot++] = side;
         }
     }
@@ -651,12 +650,14 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
 
     assign_huge(child.vertex_face_offsets_, at(C) + 1, 0);
     assign_huge(child.vertex_is_boundary_, at(C), 0);
+    // Its F-face, the E-faces of its face's two edges at it when interior, its vertex's V-face.
     for (Index f = 0; f < F; ++f) {
         for (Index c = parent.face_offsets_[at(f)]; c < parent.face_offsets_[at(f) + 1]; ++c) {
-            const auto ring = candidates(f, c);
-            const auto present =
-                std::count_if(ring.begin(), ring.end(), [](const Candidate& x) { return x.face != invalid_index; });
-            child.vertex_face_offsets_[at(c) + 1] = static_cast<Index>(present);
+            const Index v = parent.face_vertices_[at(c)];
+            const Index present = 1 + (parent.is_boundary_edge(parent.face_edges_[at(previous_corner(f, c))]) ? 0 : 1) +
+                                  (n.vertex_face[at(v)] != invalid_index ? 1 : 0) +
+                                  (parent.is_boundary_edge(parent.face_edges_[at(c)]) ? 0 : 1);
+            child.vertex_face_offsets_[at(c) + 1] = present;
             child.vertex_is_boundary_[at(c)] = present < 4 ? 1 : 0;
         }
     }
