@@ -12,15 +12,20 @@ and the saddles k4 (xi1^2 - xi2^2), k5 (2 xi1 xi2) ((37), (38)) with the cup-sad
 R = k3^2 / (k4^2 + k5^2) (1 + nu) / (1 - nu) (R >= 1: cup, else saddle; the library's
 decompose_shapes), and solves again with each vertex's chosen weights ("auto"). Every level
 decides for itself (the paper decides once, on level 2 or 3, and keeps the choice). Three
-examples, as the paper's Figs. 10, 12 and 14: plate_ev35 (valences 3 and 5 inside) under the
-uniform and the sinusoidal load p sin(2 pi x / a) sin(2 pi y / b), and plate_asym (valences 3, 5
-and 6; the paper's asymmetric mesh has 3 and 5 only) under the sinusoidal load. Written:
+examples, as the paper's Figs. 10, 12 and 14: plate_sym (fourfold symmetric, valences 3 and 5
+inside: the stand-in for Fig. 8a) under the uniform and the sinusoidal load
+p sin(2 pi x / a) sin(2 pi y / b), and plate_flip (no symmetry, valences 3 and 5: Fig. 8b) under the
+sinusoidal load. The paper shows its meshes only as pictures; ours put the valence-5 vertices where
+its R values say they are (data/meshes/README.md). Next to each R the study writes Navier's own:
+the exact solution's Hessian at the vertex's limit point, taken to its characteristic coordinates
+through the decomposition's tangents. Written:
 
   tuned_plates.csv         one row per (example, level): vertices, the classical, cup-pass and auto
                            L2 and energy errors, and the reductions against classical (percent,
                            positive: the tuned weights are closer to Navier)
-  tuned_plates_ratios.csv  one row per (example, level, tuned vertex): valence, k3, k4, k5, R and
-                           the chosen shape with its lambda and weights
+  tuned_plates_ratios.csv  one row per (example, level, tuned vertex): valence, the limit point
+                           (x, y), k3, k4, k5, R, Navier's R there, and the chosen shape with its
+                           lambda and weights
   tuned_plates.json        per example: the slopes of log error against log (control vertices),
                            least squares over levels >= 1 as plate_errors.py, for classical, cup
                            pass and auto; the reductions at the finest level; the R values and
@@ -32,12 +37,14 @@ Orders in h are -2 x slope (the vertex count grows like h^-2).
 
   /usr/bin/python3 studies/tuned_plates.py build/release/cli/limsurf out/studies
 
-Full: levels 0..5 as the paper (3.5-4 minutes with two jobs; level 5 of plate_asym has 28929
-control vertices). --quick: plate_ev35 under the uniform load, levels 0..2 (15-25 s).
+Full: levels 0..4 on plate_sym (16641 control vertices, as the paper's level 5 of a four times
+coarser mesh) and 0..5 on plate_flip (20865), some 3 minutes with two jobs. --quick: plate_sym under
+the uniform load, levels 0..2 (15-25 s).
 """
 
 from __future__ import annotations
 
+import math
 import sys
 
 import studylib as sl
@@ -46,11 +53,13 @@ NAME = "tuned_plates"
 
 # (example, mesh, load, label, full levels)
 EXAMPLES = [
-    ("ev35_uniform", "plate_ev35.obj", "uniform", "plate_ev35, uniform load (Fig. 10)", 5),
-    ("ev35_sinusoidal", "plate_ev35.obj", "sinusoidal", "plate_ev35, sinusoidal load (Fig. 12)", 5),
-    ("asym_sinusoidal", "plate_asym.obj", "sinusoidal", "plate_asym, sinusoidal load (Fig. 14)", 5),
+    ("sym_uniform", "plate_sym.obj", "uniform", "plate_sym, uniform load (Fig. 10)", 4),
+    ("sym_sinusoidal", "plate_sym.obj", "sinusoidal", "plate_sym, sinusoidal load (Fig. 12)", 4),
+    ("flip_sinusoidal", "plate_flip.obj", "sinusoidal", "plate_flip, sinusoidal load (Fig. 14)", 5),
 ]
-QUICK = {"ev35_uniform": 2}
+QUICK = {"sym_uniform": 2}
+PLATE = 10.0  # the CLI's default square [0, 10]^2
+NU = 0.3
 FIT_FROM_LEVEL = 1
 
 SERIES = [  # (key, legend, colour, marker, line style)
@@ -64,8 +73,8 @@ COLUMNS = (["example", "mesh", "load", "level", "vertices"]
            + [f"{s}_{e}" for s, *_ in SERIES for e, _, _ in ERRORS]
            + [f"{s}_{e}_reduction_pct" for s in ("cup", "auto") for e, _, _ in ERRORS])
 
-RATIO_COLUMNS = ["example", "level", "vertex", "valence", "k3", "k4", "k5", "R", "shape", "lambda", "alpha",
-                 "beta", "gamma"]
+RATIO_COLUMNS = ["example", "level", "vertex", "valence", "x", "y", "k3", "k4", "k5", "R", "R_navier", "shape",
+                 "lambda", "alpha", "beta", "gamma"]
 
 
 def extra_options(p):
@@ -77,6 +86,40 @@ def reduction(classical: float, tuned: float) -> float:
     return 100.0 * (1.0 - tuned / classical)
 
 
+def navier_hessian(load: str, x: float, y: float) -> tuple[float, float, float]:
+    """(w_xx, w_yy, w_xy) of Navier's deflection up to a common factor: the uniform load's series
+    over odd m, n (Timoshenko ch. 5), or the sinusoidal load's own shape."""
+    if load == "sinusoidal":
+        a = 2 * math.pi / PLATE
+        s, c = math.sin(a * x) * math.sin(a * y), math.cos(a * x) * math.cos(a * y)
+        return -s, -s, c
+    hxx = hyy = hxy = 0.0
+    for m in range(1, 402, 2):
+        a = m * math.pi / PLATE
+        sx, cx = math.sin(a * x), math.cos(a * x)
+        for n in range(1, 402, 2):
+            b = n * math.pi / PLATE
+            w = 1.0 / (m * n * (m * m + n * n) ** 2)
+            sxy, cxy = sx * math.sin(b * y), cx * math.cos(b * y)
+            hxx -= w * a * a * sxy
+            hyy -= w * b * b * sxy
+            hxy += w * a * b * cxy
+    return hxx, hyy, hxy
+
+
+def navier_ratio(load: str, decomposition: dict) -> float:
+    """R of (38) of Navier's solution at the vertex: its Hessian H at the limit point taken to the
+    characteristic coordinates, J^T H J = 2 [[k3 + k4, k5], [k5, k3 - k4]], J = the tangents."""
+    x, y, _ = decomposition["position"]
+    (t1x, t1y, _), (t2x, t2y, _) = decomposition["tangents"]
+    hxx, hyy, hxy = navier_hessian(load, x, y)
+    g11 = t1x * (hxx * t1x + hxy * t1y) + t1y * (hxy * t1x + hyy * t1y)
+    g22 = t2x * (hxx * t2x + hxy * t2y) + t2y * (hxy * t2x + hyy * t2y)
+    g12 = t1x * (hxx * t2x + hxy * t2y) + t1y * (hxy * t2x + hyy * t2y)
+    k3, k4, k5 = (g11 + g22) / 4, (g11 - g22) / 4, g12 / 2
+    return k3 * k3 / (k4 * k4 + k5 * k5) * (1 + NU) / (1 - NU)
+
+
 def main(argv=None) -> int:
     args = sl.parse_args(__doc__.splitlines()[0], argv, extra_options)
     examples = []
@@ -86,9 +129,9 @@ def main(argv=None) -> int:
         levels = args.levels if args.levels is not None else (QUICK[ex] if args.quick else full)
         examples.append((ex, mesh_name, load, label, levels))
     runs = [(e, tuned) for e in examples for tuned in ("auto", "none")]
-    # The costliest (plate_asym, auto: two passes) first: with two jobs it overlaps the others.
+    # The costliest (auto: two passes) first: with two jobs they overlap the others.
     order = list(reversed(range(len(runs))))
-    order.sort(key=lambda i: (runs[i][0][1] != "plate_asym.obj", runs[i][1] != "auto"))
+    order.sort(key=lambda i: runs[i][1] != "auto")
     tasks = [lambda r=runs[i]: sl.run_json(args.limsurf, "plate", sl.mesh(r[0][1]), "--levels", str(r[0][4]),
                                            "--load", r[0][2], "--tuned", r[1])
              for i in order]
@@ -120,10 +163,13 @@ def main(argv=None) -> int:
             verdicts = []
             for v in la["tuned_vertices"]:
                 d = v["decomposition"]
+                exact = navier_ratio(load, d)
                 ratio_rows.append(dict(example=ex, level=lc["level"], vertex=v["vertex"], valence=v["valence"],
-                                       k3=d["k3"], k4=d["k4"], k5=d["k5"], R=d["ratio"], shape=v["shape"],
+                                       x=d["position"][0], y=d["position"][1], k3=d["k3"], k4=d["k4"], k5=d["k5"],
+                                       R=d["ratio"], R_navier=exact, shape=v["shape"],
                                        **{k: v[k] for k in ("lambda", "alpha", "beta", "gamma")}))
-                verdicts.append({"vertex": v["vertex"], "valence": v["valence"], "R": d["ratio"], "shape": v["shape"],
+                verdicts.append({"vertex": v["vertex"], "valence": v["valence"], "x": d["position"][0],
+                                 "y": d["position"][1], "R": d["ratio"], "R_navier": exact, "shape": v["shape"],
                                  "lambda": v["lambda"]})
             per["vertices"].append(lc["vertices"])
             per["levels"].append({"level": lc["level"], "tuned_vertices": verdicts})
@@ -158,10 +204,11 @@ def print_summary(rows, ratio_rows, summary):
         print(f"| {r['example']} | {r['level']} | {r['vertices']} | {r['classical_l2']:.3e} | {r['cup_l2']:.3e} |"
               f" {r['auto_l2']:.3e} | {r['classical_energy']:.3e} | {r['cup_energy']:.3e} | {r['auto_energy']:.3e} |"
               f" {r['auto_l2_reduction_pct']:.1f} | {r['auto_energy_reduction_pct']:.1f} |")
-    print("\ncup-saddle ratio R and the verdict per level (vertex:valence R shape):")
+    print("\ncup-saddle ratio R and the verdict per level (vertex:valence at (x, y): R (Navier's R) shape):")
     for ex, per in summary["examples"].items():
         for lv in per["levels"]:
-            cells = ", ".join(f"{v['vertex']}:{v['valence']} {v['R']:.3g} {v['shape']}" for v in lv["tuned_vertices"])
+            cells = ", ".join(f"{v['vertex']}:{v['valence']} at ({v['x']:.3f}, {v['y']:.3f}): {v['R']:.3g} "
+                              f"({v['R_navier']:.3g}) {v['shape']}" for v in lv["tuned_vertices"])
             print(f"  {ex} level {lv['level']}: {cells}")
     print(f"\nslopes against vertices, levels >= {FIT_FROM_LEVEL} (order in h = -2 slope):")
     for ex, per in summary["examples"].items():

@@ -421,28 +421,94 @@ def make_c2g0_torus(nu, nv):
                 vs, split_quads(quads), 1, 0, 1, "volume", (6,))
 
 
-def make_plate_ev35():
-    """The plate [0 10]^2 as a 4x4 grid whose central 2x2 block is re-quadded around its centre to
-    the block's corners: four interior vertices of valence 3 and four of valence 5, symmetric."""
+def ev35_pattern(lines):
+    """The square as a 4x4 grid on the lines `lines` (five x = y values) whose central 2x2 block is
+    re-quadded around its centre to the block's corners: the block's corners get valence 5, its edge
+    midpoints valence 3; fourfold symmetric when the lines are."""
     n = 4
-    vs, quads = plane_grid(n, 0.0, 10.0)
+    vs = [(lines[i], lines[j], 0.0) for j in range(n + 1) for i in range(n + 1)]
 
     def vid(i, j):
         return j * (n + 1) + i
 
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)) for j in range(n) for i in range(n)]
     quads = [q for q in quads if not all(1 <= (v % (n + 1)) <= 3 and 1 <= (v // (n + 1)) <= 3 for v in q)]
     ring = [vid(1, 1), vid(2, 1), vid(3, 1), vid(3, 2), vid(3, 3), vid(2, 3), vid(1, 3), vid(1, 2)]
     c = vid(2, 2)
     quads += [(c, ring[k], ring[k + 1], ring[(k + 2) % 8]) for k in range(0, 8, 2)]
     # The valence-3 vertices (the block's edge midpoints) would make straight angles in the new
-    # quads: move them half a unit towards the plate's edges (still symmetric).
-    vs = list(vs)
+    # quads: move them a fifth of their distance from the centre outwards (still symmetric).
     for k in range(1, 8, 2):
         x, y, z = vs[ring[k]]
         vs[ring[k]] = (x + 0.2 * (x - 5.0), y + 0.2 * (y - 5.0), z)
+    return vs, quads
+
+
+def split_quads_bilinear(vs, quads):
+    """Each quad into four through its edge midpoints and centroid (no smoothing: the same surface)."""
+    vs = list(vs)
+    mids = {}
+
+    def mid(a, b):
+        key = (min(a, b), max(a, b))
+        if key not in mids:
+            mids[key] = len(vs)
+            vs.append(vscale(vadd(vs[a], vs[b]), 0.5))
+        return mids[key]
+
+    out = []
+    for q in quads:
+        f = len(vs)
+        vs.append(tuple(sum(vs[v][c] for v in q) / 4.0 for c in range(3)))
+        m = [mid(q[i], q[(i + 1) % 4]) for i in range(4)]
+        out += [(q[i], m[i], f, m[i - 1]) for i in range(4)]
+    return vs, out
+
+
+def make_plate_ev35():
+    """The plate [0 10]^2 as ev35_pattern on the uniform 4x4 grid: four interior vertices of valence
+    3 and four of valence 5, symmetric."""
+    vs, quads = ev35_pattern([0.0, 2.5, 5.0, 7.5, 10.0])
     return Mesh("plate_ev35", "the plate [0 10]^2 (the seed's L = 10): a 4x4 quad grid whose central 2x2 "
                 "block is re-quadded to give four interior vertices of valence 3 (moved outwards by 0.5) and four "
                 "of valence 5",
+                vs, quads, 0, 1, 1, "plus_z", (3, 5))
+
+
+def make_plate_sym():
+    """The seed's §4.1-4.2 example (Fig. 8a): ev35_pattern on the lines 0, 1.5, 5, 8.5, 10, split
+    once without smoothing, so that each valence-5 vertex's limit point lies at (1.786, 1.786) and its
+    images: where Navier's solution under the sinusoidal load has the seed's R = 29.2 (on the
+    diagonal, R = 29.3 at x = 1.76), and under the uniform load is saddle-shaped."""
+    vs, quads = split_quads_bilinear(*ev35_pattern([0.0, 1.5, 5.0, 8.5, 10.0]))
+    return Mesh("plate_sym", "the plate [0 10]^2 with fourfold symmetry (the seed's Fig. 8a stand-in): the "
+                "plate_ev35 pattern on the lines 0 1.5 5 8.5 10; each quad split in four without smoothing; four "
+                "interior vertices of valence 5 (limit points x = y = 1.786 and images) and four of valence 3",
+                vs, quads, 0, 1, 1, "plus_z", (3, 5))
+
+
+def make_plate_flip():
+    """The seed's §4.3 example (Fig. 8b): a 5x4 grid on uneven lines with the edge between two
+    neighbouring cells rotated, which gives two vertices of valence 5 (limit points (2.17, 2.21),
+    in a cup of the sinusoidal load's solution, and (5.08, 4.67), at its central saddle) and two of
+    valence 3, moved half a unit apart so that no angle is straight. No symmetry."""
+    xs, ys = [0.0, 1.8, 3.6, 5.4, 7.6, 10.0], [0.0, 1.8, 5.0, 7.4, 10.0]
+    nx = len(xs)
+
+    def vid(i, j):
+        return j * nx + i
+
+    vs = [(x, y, 0.0) for y in ys for x in xs]
+    quads = [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1))
+             for j in range(len(ys) - 1) for i in range(nx - 1) if not (j == 1 and i in (1, 2))]
+    # Cells (1, 1) and (2, 1) form a hexagon h; its middle edge h1-h4 becomes h0-h3.
+    h = [vid(1, 1), vid(2, 1), vid(3, 1), vid(3, 2), vid(2, 2), vid(1, 2)]
+    quads += [(h[0], h[1], h[2], h[3]), (h[0], h[3], h[4], h[5])]
+    vs[h[1]] = vadd(vs[h[1]], (0.0, -0.5, 0.0))
+    vs[h[4]] = vadd(vs[h[4]], (0.0, 0.5, 0.0))
+    return Mesh("plate_flip", "the plate [0 10]^2 without symmetry (the seed's Fig. 8b stand-in): a 5x4 quad grid "
+                "on the lines x = 0 1.8 3.6 5.4 7.6 10 and y = 0 1.8 5 7.4 10 with one edge rotated; two interior "
+                "vertices of valence 5 (limit points (2.17 2.21) and (5.08 4.67)) and two of valence 3",
                 vs, quads, 0, 1, 1, "plus_z", (3, 5))
 
 
@@ -995,7 +1061,7 @@ def all_meshes():
     meshes += [make_tri_valence(k) for k in range(3, 13)]
     meshes += [make_tetra_sphere(j) for j in range(0, 5)]
     meshes += [make_c2g0_torus(4, 5), make_c2g0_torus(8, 10)]
-    meshes += [make_plate_ev35(), make_plate_asym()]
+    meshes += [make_plate_ev35(), make_plate_asym(), make_plate_sym(), make_plate_flip()]
     meshes += [make_rve_block(), make_square_inclusion()]
     meshes += [make_shell_scordelis_lo(), make_shell_pinched_cylinder(), make_shell_hemisphere()]
     return meshes
@@ -1289,9 +1355,18 @@ checks this, and that V - E + F = 2c - 2g - b, before writing anything.
 Scale: the cube has edge 1; the tetrahedron, octahedron, icosahedron,
 dodecahedron and all spheres have unit circumradius.
 
-Plates (`limsurf plate`, docs/fem.md "Plates"): `plate_ev35` (symmetric) and
-`plate_asym` (no symmetry; valences 3, 5 and 6 inside) stand in for the seed's
-Fig. 8 meshes of the square [0 10]^2. Their boundary control points lie on the
+Plates (`limsurf plate`, docs/fem.md "Plates"), all of the square [0 10]^2:
+`plate_sym` (fourfold symmetric; valences 3 and 5 inside) and `plate_flip` (no
+symmetry; valences 3 and 5) stand in for the seed's Fig. 8 meshes, which the
+paper shows only as pictures. They are placed by the paper's own numbers: the
+verdicts of §4 depend on where a valence-5 vertex's limit point sits in the
+exact solution, so `plate_sym`'s four lie where Navier's solution under the
+sinusoidal load has the R = 29.2 of §4.2 (x = y = 1.786; the exact R there is
+35, and 0.50 under the uniform load), and `plate_flip` has one in a cup of that
+solution and one at its central saddle, as §4.3's P6 and P12.
+`plate_ev35` (symmetric, valence-5 vertices at the quarter points) and
+`plate_asym` (no symmetry; valences 3, 5 and 6 inside) were the earlier
+stand-ins and stay as test meshes. Their boundary control points lie on the
 square's edges, so the limit boundary is the square, and each square corner is
 a corner of one face only (a corner shared by two faces converges only like h).
 `plate_asym` is a partition of the square into a hexagon, three pentagons, a

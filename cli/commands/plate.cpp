@@ -83,7 +83,13 @@ nlohmann::json tuned_vertex_json(const PlateTunedVertex& v) {
                        {"gamma", v.weights.weights.gamma}};
     if (v.decomposition) {
         const ShapeDecomposition& d = *v.decomposition;
-        out["decomposition"] = {{"k3", d.k3}, {"k4", d.k4}, {"k5", d.k5}, {"ratio", d.ratio}};
+        const auto array = [](const Eigen::Vector3d& x) { return nlohmann::json{x(0), x(1), x(2)}; };
+        out["decomposition"] = {{"k3", d.k3},
+                                {"k4", d.k4},
+                                {"k5", d.k5},
+                                {"ratio", d.ratio},
+                                {"position", array(d.position)},
+                                {"tangents", {array(d.tangent1), array(d.tangent2)}}};
     }
     return out;
 }

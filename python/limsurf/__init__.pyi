@@ -398,6 +398,8 @@ class ShapeDecomposition(TypedDict):
     k5: float
     ratio: float
     normal: FloatArray
+    position: FloatArray
+    tangents: FloatArray
     cup_dominates: bool
 
 VertexWeights = tuple[float, float, float] | TuningWeights

@@ -132,7 +132,7 @@ py::dict plate_level_dict(const PlateLevel& level, bool tuned) {
                        "beta"_a = v.weights.weights.beta, "gamma"_a = v.weights.weights.gamma);
             if (v.decomposition) {
                 const ShapeDecomposition& k = *v.decomposition;
-                d["decomposition"] = py::dict("k3"_a = k.k3, "k4"_a = k.k4, "k5"_a = k.k5, "ratio"_a = k.ratio);
+                d["decomposition"] = shape_decomposition_dict(k);
             }
             vertices.append(d);
         }

@@ -14,6 +14,10 @@
 #include "limsurf/scheme/scheme.h"
 #include "limsurf/sec/reference_solution.h"
 
+namespace limsurf {
+struct ShapeDecomposition;
+}  // namespace limsurf
+
 namespace limsurf::python {
 
 namespace py = pybind11;
@@ -93,5 +97,10 @@ void bind_membrane(py::module_& m);
 void bind_tuning(py::module_& m);
 void bind_reverse(py::module_& m);
 void bind_elasticity(py::module_& m);
+
+/// The cup–saddle decomposition at one vertex as limsurf.decompose_shapes and limsurf.plate return
+/// it: vertex, valence, k3, k4, k5, ratio, cup_dominates, and the 3-arrays normal and position and
+/// the 2 × 3 array tangents (∂P/∂ξ₁, ∂P/∂ξ₂). Defined in bind_tuning.cpp.
+[[nodiscard]] py::dict shape_decomposition_dict(const ShapeDecomposition& d);
 
 }  // namespace limsurf::python

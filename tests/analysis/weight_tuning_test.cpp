@@ -286,6 +286,17 @@ TEST(ShapeDecomposition, PlantedQuadraticsComeBack) {
             const double R = k3 * k3 / (k4 * k4 + k5 * k5) * 1.3 / 0.7;
             EXPECT_NEAR(d[0].ratio, R, 1e-9 * R);
             EXPECT_TRUE(d[0].cup_dominates());
+            // (x, y) = (ξ₁, ξ₂): the tangents are the unit axes, and the limit point lies above ξ = 0.
+            EXPECT_LT((d[0].tangent1 - Eigen::Vector3d(1, 0, 0)).norm(), 1e-12);
+            EXPECT_LT((d[0].tangent2 - Eigen::Vector3d(0, 1, 0)).norm(), 1e-12);
+            EXPECT_LT(d[0].position.head<2>().norm(), 1e-12);
+            if (!tuned) {  // Catmull–Clark's limit stencil (n² c + 4 Σ e + Σ f) / (n (n + 5)), c = 0 here
+                double sum = 0.0;
+                for (Index i = 1; i < t.num_vertices(); ++i) {
+                    sum += (i <= n ? 4.0 : 1.0) * P(i, 2);  // one_ring(): edge neighbours 1..n, then faces'
+                }
+                EXPECT_NEAR(d[0].position.z(), sum / (n * (n + 5)), 1e-12);
+            }
             // A rigid motion: rotate about an oblique axis and translate.
             const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
             const Points moved = (P * Q.transpose()).rowwise() + Eigen::RowVector3d(3, -1, 2);
@@ -293,6 +304,9 @@ TEST(ShapeDecomposition, PlantedQuadraticsComeBack) {
             ASSERT_EQ(e.size(), 1u);
             EXPECT_NEAR(e[0].ratio, d[0].ratio, 1e-9 * R);
             EXPECT_NEAR(std::abs(e[0].k3), k3, 1e-10);
+            EXPECT_LT((e[0].position - (Q * d[0].position + Eigen::Vector3d(3, -1, 2))).norm(), 1e-12);
+            EXPECT_LT((e[0].tangent1 - Q * d[0].tangent1).norm(), 1e-12);
+            EXPECT_LT((e[0].tangent2 - Q * d[0].tangent2).norm(), 1e-12);
         }
     }
 }

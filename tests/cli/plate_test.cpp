@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include <Eigen/Core>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -201,6 +203,114 @@ TEST(CliPlate, TunedWeightsAtTheValenceFiveVertices) {
             const double R = v.at("decomposition").at("ratio").get<double>();
             EXPECT_GT(R, 0.0);
             EXPECT_EQ(v.at("shape"), R >= 1.0 ? "cup" : "saddle");
+        }
+    }
+}
+
+/// The Hessian (w_xx, w_yy, w_xy) of Navier's deflection of the simply supported square [0, 10]² up
+/// to a common factor (R does not see it): the uniform load's double series over odd m, n, or the
+/// sinusoidal load sin(2πx/10) sin(2πy/10) (Table 2), whose deflection is that same product.
+Eigen::Matrix2d navier_hessian(const std::string& load, double x, double y) {
+    const double pi = std::numbers::pi, L = 10.0;
+    Eigen::Matrix2d H = Eigen::Matrix2d::Zero();
+    if (load == "sinusoidal") {
+        const double a = 2.0 * pi / L, s = std::sin(a * x) * std::sin(a * y), c = std::cos(a * x) * std::cos(a * y);
+        H << -s, c, c, -s;
+        return H;
+    }
+    for (int m = 1; m <= 401; m += 2) {
+        for (int n = 1; n <= 401; n += 2) {
+            const double a = m * pi / L, b = n * pi / L, w = 1.0 / (m * n * std::pow(m * m + n * n, 2));
+            const double sxy = std::sin(a * x) * std::sin(b * y), cxy = std::cos(a * x) * std::cos(b * y);
+            H(0, 0) -= w * a * a * sxy;
+            H(1, 1) -= w * b * b * sxy;
+            H(0, 1) += w * a * b * cxy;
+        }
+    }
+    H(1, 0) = H(0, 1);
+    return H;
+}
+
+/// R of (38) that Navier's solution has at a tuned vertex: its Hessian at the vertex's limit point,
+/// taken to the vertex's characteristic coordinates through the decomposition's tangents (JᵀHJ =
+/// 2[[k₃+k₄, k₅], [k₅, k₃−k₄]]).
+double navier_ratio(const std::string& load, const nlohmann::json& decomposition) {
+    const auto& position = decomposition.at("position");
+    const auto& tangents = decomposition.at("tangents");
+    Eigen::Matrix2d J;
+    J << tangents.at(0).at(0).get<double>(), tangents.at(1).at(0).get<double>(),  //
+        tangents.at(0).at(1).get<double>(), tangents.at(1).at(1).get<double>();
+    const Eigen::Matrix2d G =
+        J.transpose() * navier_hessian(load, position.at(0).get<double>(), position.at(1).get<double>()) * J;
+    const double k3 = (G(0, 0) + G(1, 1)) / 4.0, k4 = (G(0, 0) - G(1, 1)) / 4.0, k5 = G(0, 1) / 2.0;
+    return k3 * k3 / (k4 * k4 + k5 * k5) * 1.3 / 0.7;
+}
+
+// The seed's §4 verdicts (iga-tuned-catmull-clark-weights, Figs. 10, 12, 14) on its Fig. 8 stand-ins,
+// decided at the paper's levels: plate_sym level 2, saddle at all four valence-5 vertices under the
+// uniform load (paper R = 0.766) and cup under the sinusoidal one (R = 29.2); plate_flip level 3,
+// one cup (P6, R = 85.8) and one saddle vertex (P12, R = 0.0463). The independent witness is Navier's
+// own R at each vertex (navier_ratio): the same verdict, and R within a factor 2.5 — (37) reads the
+// solution's control values as samples of the quadratics, the limit surface is what Navier matches,
+// which moves R by a factor of 1.5-1.9 on these meshes. The second pass lowers both errors.
+TEST(CliPlate, TheSeedsVerdictsOnItsFigureEightStandIns) {
+    struct Example {
+        const char* mesh;
+        const char* load;
+        int level;
+        int cups, saddles;
+    };
+    for (const Example& ex : {Example{"plate_sym", "uniform", 2, 0, 4}, Example{"plate_sym", "sinusoidal", 2, 4, 0},
+                              Example{"plate_flip", "sinusoidal", 3, 1, 1}}) {
+        SCOPED_TRACE(testing::Message() << ex.mesh << ", " << ex.load << " load");
+        const std::string mesh = (test::mesh_dir() / (std::string(ex.mesh) + ".obj")).string();
+        const std::string level = std::to_string(ex.level);
+        const CliRun tuned =
+            limsurf({"plate", mesh, "--load", ex.load, "--levels", level, "--tuned", "auto", "--json"});
+        const CliRun classical = limsurf({"plate", mesh, "--load", ex.load, "--levels", level, "--json"});
+        ASSERT_EQ(tuned.exit_code, 0) << tuned.err;
+        ASSERT_EQ(classical.exit_code, 0) << classical.err;
+        const auto out = nlohmann::json::parse(tuned.out), reference = nlohmann::json::parse(classical.out);
+        const auto& at_level = out.at("levels").at(static_cast<std::size_t>(ex.level));
+        int cups = 0, saddles = 0;
+        for (const auto& v : at_level.at("tuned_vertices")) {
+            ASSERT_EQ(v.at("valence"), 5);
+            const auto& d = v.at("decomposition");
+            const double R = d.at("ratio").get<double>(), exact = navier_ratio(ex.load, d);
+            SCOPED_TRACE(testing::Message() << "vertex " << v.at("vertex") << ": R " << R << ", Navier's " << exact);
+            (R >= 1.0 ? cups : saddles) += 1;
+            EXPECT_EQ(v.at("shape"), R >= 1.0 ? "cup" : "saddle");
+            EXPECT_EQ(R >= 1.0, exact >= 1.0);
+            EXPECT_LT(std::abs(std::log(R / exact)), std::log(2.5));
+        }
+        EXPECT_EQ(cups, ex.cups);
+        EXPECT_EQ(saddles, ex.saddles);
+        // Level 0 is decomposed one level finer and scaled back: the geometry's part of the limit
+        // point and tangents is exactly level 1's (the tangents of the finer one-ring are λ = 0.55
+        // times the coarser's, the cup pass's λ).
+        std::size_t matched = 0;  // a vertex keeps its number when refined
+        for (const auto& coarse : out.at("levels").at(0).at("tuned_vertices")) {
+            for (const auto& fine : out.at("levels").at(1).at("tuned_vertices")) {
+                if (fine.at("vertex") != coarse.at("vertex")) {
+                    continue;
+                }
+                ++matched;
+                const auto& a = coarse.at("decomposition");
+                const auto& b = fine.at("decomposition");
+                for (int c = 0; c < 2; ++c) {
+                    EXPECT_NEAR(b.at("position").at(c).get<double>(), a.at("position").at(c).get<double>(), 1e-12);
+                    for (int t = 0; t < 2; ++t) {
+                        EXPECT_NEAR(b.at("tangents").at(t).at(c).get<double>(),
+                                    0.55 * a.at("tangents").at(t).at(c).get<double>(), 1e-10);
+                    }
+                }
+            }
+        }
+        EXPECT_EQ(matched, static_cast<std::size_t>(ex.cups + ex.saddles));
+        const auto& errors = at_level.at("navier");
+        const auto& before = reference.at("levels").at(static_cast<std::size_t>(ex.level));
+        for (const char* key : {"l2_relative_error", "energy_relative_error"}) {
+            EXPECT_LT(errors.at(key).get<double>(), before.at("navier").at(key).get<double>()) << key;
         }
     }
 }

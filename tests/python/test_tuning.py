@@ -208,6 +208,30 @@ def test_superposition_and_the_ratio(mesh_path):
         assert not turned["cup_dominates"]
 
 
+def test_limit_point_and_tangents_are_the_limit_surfaces(mesh_path):
+    # Any control points (here the disk moved at random, out of the plane too): 'position' is the
+    # limit surface at the vertex, as LimitBasis evaluates it at the corner of a face, and each face's
+    # derivative along its edge out of the vertex is s (cos θ_j tangent1 + sin θ_j tangent2), with one
+    # s and θ_j = 2πj/5 (the characteristic map takes the j-th spoke to that angle).
+    mesh = limsurf.read_mesh(mesh_path("disk_ev5_quads"))
+    P = np.asarray(mesh.V) + 0.05 * np.random.default_rng(7).standard_normal(np.asarray(mesh.V).shape)
+    (d,) = limsurf.decompose_shapes(mesh, P)
+    F = np.asarray(mesh.F)
+    faces = np.flatnonzero(F[:, 0] == d["vertex"])  # the vertex is every one of its faces' first corner
+    assert len(faces) == 5
+    W = limsurf.LimitBasis(mesh, "catmull-clark").weights(faces, np.zeros(5), np.zeros(5), order=1)
+    assert np.allclose(W["position"] @ P, d["position"], rtol=0, atol=1e-13)
+    assert d["tangents"].shape == (2, 3) and d["position"].shape == (3,)
+    T = d["tangents"].T
+    du = W["du"] @ P
+    coefficients = np.linalg.lstsq(T, du.T, rcond=None)[0].T
+    assert np.allclose(coefficients @ T.T, du, rtol=0, atol=1e-12 * np.abs(du).max())
+    z = coefficients[:, 0] + 1j * coefficients[:, 1]
+    assert np.allclose(np.abs(z), np.abs(z[0]), rtol=1e-10)
+    turn = np.angle(z[1:] / z[:-1])
+    assert np.allclose(np.abs(turn), 2 * math.pi / 5, rtol=0, atol=1e-10) and len(set(np.sign(turn))) == 1
+
+
 def test_rigid_motions_leave_the_decomposition(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("disk_ev5_quads"))
     P = planted(mesh, c3=1.0, c4=0.5, c5=-0.2)
@@ -224,6 +248,8 @@ def test_rigid_motions_leave_the_decomposition(mesh_path):
         for k in ("k3", "k4", "k5"):
             assert after[k] == pytest.approx(before[k], abs=1e-9 * abs(before["k3"])), k
         assert np.allclose(after["normal"], Q @ before["normal"], atol=1e-9)
+        assert np.allclose(after["position"], Q @ before["position"] + (moved - P @ Q.T)[0], atol=1e-9)
+        assert np.allclose(after["tangents"], before["tangents"] @ Q.T, atol=1e-9)
         assert after["normal"].shape == (3,) and after["normal"].dtype == np.float64
     # The other orientation of the faces flips the normal (and k3 with it) and turns the ξ frame: the sizes stay.
     (flipped,) = limsurf.decompose_shapes(mesh.V, np.asarray(mesh.F)[:, ::-1], P)
@@ -302,6 +328,8 @@ def test_plate_with_tuned_weights_equals_the_cli(cli, mesh_path):
         for u, v in zip(a["tuned_vertices"], b["tuned_vertices"]):
             assert (u["vertex"], u["valence"], u["shape"]) == (v["vertex"], v["valence"], v["shape"])
             assert u["decomposition"]["ratio"] == pytest.approx(v["decomposition"]["ratio"], rel=1e-12)
+            for key in ("position", "tangents"):
+                assert np.allclose(u["decomposition"][key], np.array(v["decomposition"][key]), rtol=1e-12, atol=1e-15)
             # the choice follows the ratio (38): cup where R >= 1
             assert u["shape"] == ("cup" if u["decomposition"]["ratio"] >= 1 else "saddle")
     with pytest.raises(limsurf.InputError):

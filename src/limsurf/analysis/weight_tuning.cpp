@@ -755,18 +755,21 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
         }
         // Tangents ⟨l₁, P⟩, ⟨l₂, P⟩ through the complex coefficient at frequency 1, and the normal (34).
         const Eigen::Vector2cd l1 = left(B1, s.lambda, 1);
-        const auto project1 = [&](int column) {
+        const auto ring_coefficients = [&](int column, int k) {
             std::vector<Complex> ev(at(n)), fvv(at(n));
             for (int j = 0; j < n; ++j) {
                 ev[at(j)] = P(e[at(j)], column);
                 fvv[at(j)] = P(fv[at(j)], column);
             }
-            return Complex(l1.dot(coefficients(ev, fvv, 1)));  // l1ᴴ ĉ
+            return coefficients(ev, fvv, k);
         };
         Eigen::Vector3cd t;
         for (int c = 0; c < 3; ++c) {
-            t(c) = project1(c);
+            t(c) = l1.dot(ring_coefficients(c, 1));  // l1ᴴ ĉ
         }
+        // One-ring data a ξ₁ + b ξ₂ = Re(W z), W = a − i b, has frequency-1 coefficient W r₁ / 2
+        // (z̄ sits at frequency −1), so l₁ᴴ ĉ = W (l₁ᴴ r₁) / 2.
+        const Eigen::Vector3cd W = 2.0 * t / Complex(l1.dot(r1));
         const Eigen::Vector3d t1 = t.real(), t2 = t.imag();
         Eigen::Vector3d normal = t1.cross(t2);
         LIMSURF_CHECK(normal.norm() > 1e-14 * std::max(1.0, t1.norm() * t2.norm()), NumericalError,
@@ -807,6 +810,15 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
         d.vertex = v;
         d.valence = n;
         d.normal = normal;
+        d.tangent1 = W.real();
+        d.tangent2 = -W.imag();
+        // The limit point: block 0's left eigenvector of 1, scaled so that a constant comes back.
+        const Eigen::VectorXcd l0 = left(B0, 1.0, 0);
+        for (int c = 0; c < 3; ++c) {
+            const Eigen::Vector2cd mean = ring_coefficients(c, 0);
+            d.position(c) =
+                (l0.dot(Eigen::Vector3cd(P(v, c), mean(0), mean(1))) / l0.dot(Eigen::Vector3cd::Ones())).real();
+        }
         d.k3 = (cup_coefficient(gc, ge, gf) / cup_coefficient(0.0, u3e, u3f)).real();
         // Saddle: the frequency-2 coefficient against that of z² = u₄ + i u₅, κ = 2 α_g / α_z²
         // (docs/tuning.md); g's saddle part is Re(κ z²) = Re κ u₄ − Im κ u₅.

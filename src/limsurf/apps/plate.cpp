@@ -288,11 +288,13 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
         }
         const Level finer = refine(mesh.t, options.scheme, SchemeOptions{}, weights);
         auto d = decompose_shapes(finer.topology, Points(finer.S0 * P), weights, 5, nu);
-        for (ShapeDecomposition& e : d) {  // back to level 0: k_j / λ_j
+        for (ShapeDecomposition& e : d) {  // back to level 0: k_j / λ_j, the tangents / λ
             const TunedVertex s = one_ring_spectrum(e.valence, weights.at(e.vertex, e.valence));
             e.k3 /= s.lambda3;
             e.k4 /= s.lambda4;
             e.k5 /= s.lambda4;
+            e.tangent1 /= s.lambda;
+            e.tangent2 /= s.lambda;
             e.ratio = cup_saddle_ratio(e.k3, e.k4, e.k5, nu);
         }
         return d;
