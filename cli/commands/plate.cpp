@@ -1,6 +1,6 @@
 // limsurf plate MESH (--load uniform|sinusoidal|single-wave|FORMULA [--pressure P] | --load-file FILE)
 //   --support simply|clamped [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--threads N] [--json]
-//   [--tuned none|cup|saddle|auto] [-o deflection.vtk]:
+//   [--tuned none|cup|saddle|auto [--decide-level K]] [-o deflection.vtk]:
 // Kirchhoff–Love bending of the planar plate bounded by the limit surface of a planar Catmull–Clark
 // control mesh (fem/plate.h). For each level 0..L (the control mesh refined l times: the same
 // plate) it reports the deflection at the centre and at (a/4, b/4) of the bounding box, the largest
@@ -10,7 +10,8 @@
 // mass matrix M of the limit basis; at level l the values are carried by the subdivision matrices,
 // p_l = S0 p_{l−1}, so every level sees the same load p_h. --tuned puts IGA-tuned weights at the
 // interior extraordinary vertices of valence >= 5 (iga-tuned-catmull-clark-weights §3.4, §4; auto:
-// two passes per level, R per vertex). Parsing and printing only: the levels
+// two passes per level, R per vertex; with --decide-level K one cup pass on level K decides for every
+// level, as the paper's §4). Parsing and printing only: the levels
 // and their checks are solve_plate_levels (apps/plate.h).
 #include "limsurf/apps/plate.h"
 
@@ -47,6 +48,7 @@ struct PlateOptions {
     double nu = 0.3;
     int degree = 6;
     std::string tuned = "none";
+    std::optional<int> decide_level;  ///< --tuned auto: decide once on this level (the paper's §4)
     std::string output;
     int threads = 0;
     bool json = false;
@@ -107,6 +109,7 @@ int run_plate(const PlateOptions& options) {
         study.levels = options.levels;
         study.quadrature = SamplerOptions{options.degree, 6, options.threads};
         study.tuning = parse_plate_tuning(options.tuned);
+        study.decide_level = options.decide_level;
         PlateLoad load;
         load.pressure = options.pressure;
         const bool per_vertex = !options.load_file.empty();
@@ -146,16 +149,18 @@ int run_plate(const PlateOptions& options) {
         }
         const PlateRectangle& box = result.rectangle;
         const double D = result.bending_rigidity;
-        nlohmann::json out{{"load", per_vertex ? "file" : options.load},
-                           {"pressure", per_vertex ? nlohmann::json(nullptr) : nlohmann::json(options.pressure)},
-                           {"support", options.support},
-                           {"E", options.E},
-                           {"nu", options.nu},
-                           {"thickness", options.thickness},
-                           {"bending_rigidity", D},
-                           {"tuned", options.tuned},
-                           {"rectangle", {{"x0", box.x0}, {"y0", box.y0}, {"a", box.a}, {"b", box.b}}},
-                           {"levels", levels}};
+        nlohmann::json out{
+            {"load", per_vertex ? "file" : options.load},
+            {"pressure", per_vertex ? nlohmann::json(nullptr) : nlohmann::json(options.pressure)},
+            {"support", options.support},
+            {"E", options.E},
+            {"nu", options.nu},
+            {"thickness", options.thickness},
+            {"bending_rigidity", D},
+            {"tuned", options.tuned},
+            {"decide_level", options.decide_level ? nlohmann::json(*options.decide_level) : nlohmann::json(nullptr)},
+            {"rectangle", {{"x0", box.x0}, {"y0", box.y0}, {"a", box.a}, {"b", box.b}}},
+            {"levels", levels}};
         if (per_vertex) {
             out["load_file"] = options.load_file;
         }
@@ -199,6 +204,9 @@ int run_plate(const PlateOptions& options) {
                           << " weights, lambda " << v["lambda"];
                 if (v.contains("decomposition")) {
                     std::cout << ", R = " << v["decomposition"]["ratio"];
+                    if (options.decide_level) {
+                        std::cout << " (decided on level " << *options.decide_level << ")";
+                    }
                 }
                 std::cout << '\n';
             }
@@ -237,10 +245,21 @@ void add_plate_command(CLI::App& app, CommandStatus& status) {
                     "Tuned weights at interior extraordinary vertices of valence >= 5: none (default), cup, "
                     "saddle, or auto (a cup pass, the cup-saddle ratio R per vertex, then a second pass)")
         ->check(CLI::IsMember({"none", "cup", "saddle", "auto"}));
+    cmd->add_option("--decide-level", options->decide_level,
+                    "With --tuned auto: decide cup or saddle once, from the cup pass on this level (0..6), and "
+                    "keep the choice on every level, as the paper's section 4 does (default: every level decides)")
+        ->check(CLI::Range(0, 6));
     cmd->add_option("-o,--output", options->output,
                     "Write the finest control mesh with the field w (.ply, .vtk, .vtu)");
     cmd->add_flag("--json", options->json, "Print JSON");
-    cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_plate(*options); }); });
+    cmd->callback([options, &status] {
+        if (options->decide_level && options->tuned != "auto") {
+            std::cerr << "error: --decide-level needs --tuned auto (see 'limsurf plate --help')\n";
+            status.exit_code = exit_usage;
+            return;
+        }
+        status.exit_code = run_guarded([&] { return run_plate(*options); });
+    });
 }
 
 }  // namespace limsurf::cli

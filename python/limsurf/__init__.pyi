@@ -272,7 +272,8 @@ def rigid_body_modes(V: Mesh | ArrayLike) -> FloatArray: ...
 def plate(mesh: Mesh, scheme: FemScheme, load: float | PlateLoadName | SurfaceFunction | ArrayLike, *,
           support: PlateSupport = "simply", E: float = 2e11, nu: float = 0.3, thickness: float = 0.1, levels: int = 0,
           pressure: float | None = None, degree: int = 6, tiles: int = 6,
-          tuned: Literal["none", "cup", "saddle", "auto"] = "none") -> dict[str, object]: ...
+          tuned: Literal["none", "cup", "saddle", "auto"] = "none",
+          decide_level: int | None = None) -> dict[str, object]: ...
 def shell(mesh: Mesh, scheme: FemScheme, *, levels: int = 0, E: float = 1.0, nu: float = 0.3, thickness: float = 0.1,
           gravity: float = 0.0, pressure: float = 0.0, traction: Traction | None = None,
           point_loads: list[tuple[Vector3, Vector3]] = ..., supports: list[tuple[SupportSelection, str]] = ...,

@@ -153,7 +153,7 @@ py::dict plate_level_dict(const PlateLevel& level, bool tuned) {
 
 py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& load, const std::string& support,
                double E, double nu, double thickness, int levels, std::optional<double> pressure, int degree, int tiles,
-               const std::string& tuned) {
+               const std::string& tuned, std::optional<int> decide_level) {
     return naming_source(mesh, [&] {
         PlateStudyOptions options;
         options.material = PlateMaterial{E, nu, thickness};
@@ -162,6 +162,7 @@ py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& lo
         options.levels = levels;
         options.quadrature = SamplerOptions{degree, tiles, 0};
         options.tuning = parse_plate_tuning(tuned);
+        options.decide_level = decide_level;
         const PlateLoad spec = plate_load(load, pressure, mesh.mesh.num_vertices());
         PlateStudy r;
         {
@@ -177,7 +178,8 @@ py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& lo
         py::dict out("load"_a = to_string(spec.shape),
                      "pressure"_a = named ? py::object(py::float_(spec.pressure)) : py::object(py::none()),
                      "support"_a = support, "E"_a = E, "nu"_a = nu, "thickness"_a = thickness,
-                     "bending_rigidity"_a = r.bending_rigidity, "tuned"_a = tuned, "warnings"_a = r.warnings,
+                     "bending_rigidity"_a = r.bending_rigidity, "tuned"_a = tuned, "decide_level"_a = decide_level,
+                     "warnings"_a = r.warnings,
                      "rectangle"_a = py::dict("x0"_a = box.x0, "y0"_a = box.y0, "a"_a = box.a, "b"_a = box.b),
                      "levels"_a = rows);
         if (r.navier_load && !r.rectangle_plate) {
@@ -460,12 +462,13 @@ scaled by the points' extent. The limit surface moves rigidly with them: shell_s
         "plate",
         [](const Mesh& mesh, const std::string& scheme, const py::handle& load, const std::string& support, double E,
            double nu, double thickness, int levels, std::optional<double> pressure, int degree, int tiles,
-           const std::string& tuned) {
-            return plate(mesh, scheme, load, support, E, nu, thickness, levels, pressure, degree, tiles, tuned);
+           const std::string& tuned, std::optional<int> decide_level) {
+            return plate(mesh, scheme, load, support, E, nu, thickness, levels, pressure, degree, tiles, tuned,
+                         decide_level);
         },
         "mesh"_a, "scheme"_a, "load"_a, py::kw_only(), "support"_a = "simply", "E"_a = 2e11, "nu"_a = 0.3,
         "thickness"_a = 0.1, "levels"_a = 0, "pressure"_a = py::none(), "degree"_a = 6, "tiles"_a = 6,
-        "tuned"_a = "none",
+        "tuned"_a = "none", "decide_level"_a = py::none(),
         R"(Kirchhoff–Love bending of the plate bounded by the limit surface of a planar (z = 0) control mesh,
 on the mesh and on it refined 1..levels times (0..6): `limsurf plate --json`'s numbers under the same
 keys (units: those of E, t and the load, e.g. Pa, m, N/m² give a deflection in m).
@@ -478,7 +481,9 @@ or #V values, the load's control values (p_h = Σ p_i φ_i, carried to refined l
 values). scheme: 'catmull-clark' (the CLI's) or 'loop', with the default rules. tuned: 'none', 'cup',
 'saddle' or 'auto' (Catmull–Clark only): IGA-tuned weights at the interior extraordinary vertices of
 valence >= 5, as `limsurf plate --tuned` (levels then carry 'tuned_vertices' and, for 'auto',
-'first_pass'; 'warnings' lists what the CLI prints on stderr).
+'first_pass'; 'warnings' lists what the CLI prints on stderr). decide_level (with 'auto'): decide cup or
+saddle once, from the cup pass on that level (0..6), and keep the choice on every level, as the paper's
+§4 does (`--decide-level`; 'first_pass' then only on that level).
 
 Returns 'load' ('uniform', 'sinusoidal', 'single-wave', 'function' or 'values'), 'pressure' (None
 for a function or values), 'support', 'E', 'nu', 'thickness', 'bending_rigidity', 'rectangle',

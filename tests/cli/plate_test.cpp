@@ -315,6 +315,43 @@ TEST(CliPlate, TheSeedsVerdictsOnItsFigureEightStandIns) {
     }
 }
 
+// --decide-level K (the paper's §4: decide on level 2 or 3, keep the choice): one cup pass, on level
+// K, chooses for every level; on a level the per-level run decides alike it gives the same numbers.
+TEST(CliPlate, DecidingOnceKeepsTheChoiceOnEveryLevel) {
+    const std::string mesh = (test::mesh_dir() / "plate_flip.obj").string();
+    const auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args{"plate", mesh, "--load", "sinusoidal", "--tuned", "auto", "--json"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const CliRun r = limsurf(args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return nlohmann::json::parse(r.out);
+    };
+    const auto each = run({"--levels", "2"});
+    const auto once = run({"--levels", "2", "--decide-level", "2"});
+    const auto beyond = run({"--levels", "1", "--decide-level", "2"});  // decided on a level not reported
+    EXPECT_TRUE(each.at("decide_level").is_null());
+    EXPECT_EQ(once.at("decide_level"), 2);
+    const auto& decided = once.at("levels").at(2).at("tuned_vertices");
+    ASSERT_EQ(decided.size(), 2u);
+    for (const auto* out : {&once, &beyond}) {
+        for (const auto& level : out->at("levels")) {
+            const int l = level.at("level").get<int>();
+            SCOPED_TRACE(testing::Message() << "level " << l << (out == &beyond ? " of --levels 1" : ""));
+            EXPECT_EQ(level.contains("first_pass"), out == &once && l == 2);
+            EXPECT_EQ(level.at("tuned_vertices"), decided);
+            // plate_flip's verdicts are the same on every level, so every level solves as the per-level run.
+            const auto& alike = each.at("levels").at(static_cast<std::size_t>(l));
+            for (std::size_t i = 0; i < decided.size(); ++i) {
+                EXPECT_EQ(alike.at("tuned_vertices").at(i).at("shape"), decided.at(i).at("shape"));
+            }
+            EXPECT_EQ(level.at("navier"), alike.at("navier"));
+        }
+    }
+    EXPECT_EQ(limsurf({"plate", mesh, "--decide-level", "2"}).exit_code, 2);
+    EXPECT_EQ(limsurf({"plate", mesh, "--tuned", "cup", "--decide-level", "2"}).exit_code, 2);
+    EXPECT_EQ(limsurf({"plate", mesh, "--tuned", "auto", "--decide-level", "7"}).exit_code, 2);
+}
+
 TEST(CliPlate, TuningWithoutExtraordinaryVerticesWarns) {
     const CliRun run = limsurf({"plate", square_plate(), "--tuned", "auto", "--json"});
     ASSERT_EQ(run.exit_code, 0) << run.err;

@@ -334,3 +334,21 @@ def test_plate_with_tuned_weights_equals_the_cli(cli, mesh_path):
             assert u["shape"] == ("cup" if u["decomposition"]["ratio"] >= 1 else "saddle")
     with pytest.raises(limsurf.InputError):
         limsurf.plate(limsurf.read_mesh(path), "catmull-clark", "uniform", tuned="bowl")
+
+
+def test_plate_deciding_once_equals_the_cli(cli, mesh_path):
+    """decide_level=K is `limsurf plate --decide-level K`: level K's cup pass chooses for every level."""
+    path = mesh_path("plate_flip.obj")
+    theirs = cli("plate", path, "--levels", 1, "--load", "sinusoidal", "--tuned", "auto", "--decide-level", 2, "--json")
+    ours = limsurf.plate(limsurf.read_mesh(path), "catmull-clark", "sinusoidal", levels=1, tuned="auto",
+                         decide_level=2)
+    assert ours["decide_level"] == theirs["decide_level"] == 2
+    for a, b in zip(ours["levels"], theirs["levels"]):
+        assert "first_pass" not in a and "first_pass" not in b  # level 2 is not among those reported
+        assert a["navier"]["l2_relative_error"] == pytest.approx(b["navier"]["l2_relative_error"], rel=1e-12)
+        assert [(u["vertex"], u["shape"]) for u in a["tuned_vertices"]] == \
+            [(v["vertex"], v["shape"]) for v in b["tuned_vertices"]] == [(7, "cup"), (15, "saddle")]
+        for u, v in zip(a["tuned_vertices"], b["tuned_vertices"]):
+            assert u["decomposition"]["ratio"] == pytest.approx(v["decomposition"]["ratio"], rel=1e-12)
+    with pytest.raises(limsurf.InputError, match="auto"):
+        limsurf.plate(limsurf.read_mesh(path), "catmull-clark", "sinusoidal", tuned="cup", decide_level=2)

@@ -57,7 +57,9 @@ enum class PlateTuning {
     Cup,     ///< tuned_vertex_weights(valence, Cup) at every such vertex
     Saddle,  ///< tuned_vertex_weights(valence, Saddle)
     /// Two passes per level: cup weights; the decomposition (38) of that solution at each vertex; then
-    /// cup weights where R ≥ 1 and saddle weights where R < 1 (§3.4).
+    /// cup weights where R ≥ 1 and saddle weights where R < 1 (§3.4). With
+    /// PlateStudyOptions::decide_level, the paper's §4 procedure instead: the cup pass and the choice
+    /// on that level only, the choice then kept on every level.
     Auto
 };
 /// "none", "cup", "saddle", "auto".
@@ -74,6 +76,10 @@ struct PlateStudyOptions {
     SamplerOptions quadrature{6, 6, 0};            ///< degree per tile, tile levels
     PlateTuning tuning = PlateTuning::None;        ///< Catmull–Clark only
     TuningOptions tuning_options;                  ///< how tuned_vertex_weights() integrates
+    /// PlateTuning::Auto: decide cup or saddle once, from the cup pass on the control mesh refined this
+    /// many times (0..6, also beyond `levels`), and keep the choice on every level, as §4 does (levels
+    /// 2 and 3); empty: every level decides from its own cup pass.
+    std::optional<int> decide_level;
 };
 
 /// The bounding rectangle [x0, x0 + a] × [y0, y0 + b] of the control points.
@@ -109,7 +115,8 @@ struct PlateTunedVertex {
     int valence = 0;
     QuadraticShape shape = QuadraticShape::Cup;
     TunedVertex weights;
-    /// PlateTuning::Auto: the decomposition of the first (cup) pass at this level. At level 0 it is
+    /// PlateTuning::Auto: the decomposition of the first (cup) pass at this level, or at
+    /// PlateStudyOptions::decide_level when one is given (the same vertex there). At level 0 it is
     /// read one level finer and scaled back, k_j / λ_j (⟨l_j, S p⟩ = λ_j ⟨l_j, p⟩): the control mesh's
     /// one-rings may hold two tuned vertices, which the closed form does not cover.
     std::optional<ShapeDecomposition> decomposition;
@@ -129,7 +136,7 @@ struct PlateLevel {
     /// The tuned vertices and their weights (empty for PlateTuning::None).
     std::vector<PlateTunedVertex> tuned_vertices;
     /// PlateTuning::Auto: the first pass, with cup weights at every tuned vertex (the fields above
-    /// are the second pass's).
+    /// are the second pass's); with a decide_level only on that level.
     std::optional<PlatePass> first_pass;
 };
 
@@ -151,7 +158,8 @@ struct PlateStudy {
 ///   0..options.levels times (solve_plate on each) and measures each level's deflection.
 ///   With a tuning, each tuned vertex's weights act on every level (tuned_weights.h); a mesh with no
 ///   interior extraordinary vertex of valence ≥ 5 is solved with Catmull–Clark's weights and a warning.
-/// @throws InputError for levels outside 0..6, a ClampedNitsche support, load values of the wrong
+/// @throws InputError for levels or a decide_level outside 0..6, a decide_level without
+///   PlateTuning::Auto, a ClampedNitsche support, load values of the wrong
 ///   size, a Function load without a function, a tuning with a scheme other than Catmull–Clark; otherwise as
 ///   solve_plate (closed or non-planar mesh, material out of range, a load that fails or is not finite)
 [[nodiscard]] PlateStudy solve_plate_levels(const Topology& topology, const Points& X, const PlateLoad& load,

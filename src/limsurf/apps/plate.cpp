@@ -158,6 +158,10 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
     const bool tuned = options.tuning != PlateTuning::None;
     LIMSURF_CHECK(!tuned || options.scheme == SchemeKind::CatmullClark, InputError,
                   "plate: tuned weights apply to catmull-clark only, not ", to_string(options.scheme));
+    LIMSURF_CHECK(!options.decide_level || options.tuning == PlateTuning::Auto, InputError,
+                  "plate: a decision level applies to --tuned auto only");
+    LIMSURF_CHECK(!options.decide_level || (*options.decide_level >= 0 && *options.decide_level <= 6), InputError,
+                  "plate: the decision level must be in 0..6, got ", options.decide_level.value_or(0));
     // The vertices to tune and each (valence, shape)'s weights, tuned once.
     std::vector<std::pair<Index, int>> candidates;
     if (tuned) {
@@ -300,6 +304,29 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
         return d;
     };
 
+    // §3.4: the cup pass on one level and the choice it makes at each tuned vertex (refinement keeps
+    // the vertices' numbers, so a choice holds on every level).
+    const auto choose = [&](int level, std::optional<PlatePass>& first_pass) {
+        std::vector<PlateTunedVertex> choices = all_with(QuadraticShape::Cup);
+        const TunedWeights cup = weights_of(choices);
+        const Refined first = refined(level, cup);
+        first_pass = solve_pass(first, cup, level);
+        const auto parts = decompose(first, first_pass->solution.w, cup, level);
+        for (PlateTunedVertex& c : choices) {
+            const auto found = std::find_if(parts.begin(), parts.end(),
+                                            [&](const ShapeDecomposition& d) { return d.vertex == c.vertex; });
+            LIMSURF_CHECK(found != parts.end(), NumericalError, "plate: no decomposition at vertex ", c.vertex);
+            if (!found->cup_dominates()) {
+                c = choice(c.vertex, c.valence, QuadraticShape::Saddle);
+            }
+            c.decomposition = *found;
+        }
+        return choices;
+    };
+    std::optional<PlatePass> decided_pass;
+    const std::vector<PlateTunedVertex> decided =
+        options.decide_level ? choose(*options.decide_level, decided_pass) : std::vector<PlateTunedVertex>{};
+
     for (int level = 0; level <= options.levels; ++level) {
         PlateLevel entry;
         entry.level = level;
@@ -311,23 +338,16 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
         case PlateTuning::Saddle:
             choices = all_with(options.tuning == PlateTuning::Cup ? QuadraticShape::Cup : QuadraticShape::Saddle);
             break;
-        case PlateTuning::Auto: {
-            choices = all_with(QuadraticShape::Cup);
-            const TunedWeights cup = weights_of(choices);
-            const Refined first = refined(level, cup);
-            entry.first_pass = solve_pass(first, cup, level);
-            const auto parts = decompose(first, entry.first_pass->solution.w, cup, level);
-            for (PlateTunedVertex& c : choices) {
-                const auto found = std::find_if(parts.begin(), parts.end(),
-                                                [&](const ShapeDecomposition& d) { return d.vertex == c.vertex; });
-                LIMSURF_CHECK(found != parts.end(), NumericalError, "plate: no decomposition at vertex ", c.vertex);
-                if (!found->cup_dominates()) {
-                    c = choice(c.vertex, c.valence, QuadraticShape::Saddle);
+        case PlateTuning::Auto:
+            if (!options.decide_level) {
+                choices = choose(level, entry.first_pass);
+            } else {
+                choices = decided;
+                if (level == *options.decide_level) {
+                    entry.first_pass = decided_pass;
                 }
-                c.decomposition = *found;
             }
             break;
-        }
         }
         const TunedWeights weights = weights_of(choices);
         const Refined mesh = refined(level, weights);
