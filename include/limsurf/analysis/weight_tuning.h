@@ -172,9 +172,11 @@ struct ShapeDecomposition {
     /// The vertex's limit point ⟨l₀, P⟩: where the decomposition holds (for a plate, (x, y, w)).
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     /// ∂P/∂ξ₁ and ∂P/∂ξ₂ of the limit surface at the vertex, in the characteristic coordinates that
-    /// k₃, k₄, k₅ refer to (first spoke along +ξ₁, the spoke's control point at ξ = 1): with them
-    /// a smooth field's Hessian H in the tangent plane maps to the ξ-Hessian JᵀHJ = 2[[k₃+k₄, k₅],
-    /// [k₅, k₃−k₄]], J = (tangent1 tangent2), so R can be predicted from an exact solution.
+    /// k₃, k₄, k₅ refer to (first spoke along +ξ₁, the spoke's control point at ξ = 1). With
+    /// J = (tangent1 tangent2) a smooth field with Hessian H in the tangent plane has the ξ-Hessian
+    /// JᵀHJ, which a quadratic k₃u₃ + k₄u₄ + k₅u₅ has as 2[[k₃+k₄, k₅], [k₅, k₃−k₄]]: the k's and R
+    /// an exact solution has there (a solution's control values give k's that differ from those of
+    /// its limit; docs/tuning.md).
     Eigen::Vector3d tangent1 = Eigen::Vector3d::Zero();
     Eigen::Vector3d tangent2 = Eigen::Vector3d::Zero();
     [[nodiscard]] bool cup_dominates() const noexcept { return ratio >= 1.0; }
