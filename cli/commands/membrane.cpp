@@ -116,6 +116,7 @@ nlohmann::json stage_json(const MembraneProblem& problem, const MembraneResult& 
     out["iterations"] = result.iterations;
     out["seconds"] = result.seconds;
     out["converged"] = result.converged;
+    out["projected"] = result.projected;
     out["status"] = result.status;
     return out;
 }
@@ -313,15 +314,20 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
     }
     require_finite(out);  // before anything is written
     write_outputs(options, mesh.with_positions(answer.positions), surface);
+    // What the file holds when a stage stopped short: its last iterate, or a feasible point it met.
+    const auto held = [](const MembraneResult& r) {
+        return r.projected ? "a point that meets the constraints (see the status), not a minimiser"
+                           : "its last iterate; see the residuals";
+    };
     if (!run.shape.converged) {
-        print_warnings({"the solver did not converge (" + run.shape.status + "): '" + options.output +
-                        "' holds its last iterate; see the residuals"});
+        print_warnings({"the solver did not converge (" + run.shape.status + "): '" + options.output + "' holds " +
+                        held(run.shape)});
         if (request.regularize_harmonic) {
             print_warnings({"the harmonic regularisation (3.12) was not run: it starts from a converged shape"});
         }
     } else if (run.regularization && !run.regularization->converged) {
         print_warnings({"the harmonic regularisation did not converge (" + run.regularization->status + "): '" +
-                        options.output + "' holds its last iterate; see the residuals"});
+                        options.output + "' holds " + held(*run.regularization)});
     }
     if (out["self_intersection"]["intersects"].get<bool>()) {
         print_warnings({"the limit surface of '" + options.output + "' passes through itself (" +

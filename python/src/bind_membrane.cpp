@@ -142,6 +142,7 @@ py::dict stage_dict(const MembraneProblem& problem, const MembraneResult& result
     out["iterations"] = result.iterations;
     out["seconds"] = result.seconds;
     out["converged"] = result.converged;
+    out["projected"] = result.projected;
     out["status"] = result.status;
     return out;
 }

@@ -340,6 +340,32 @@ TEST(MembraneValidation, RefusesInfeasibleProblemsAndBadPoints) {
     EXPECT_THROW((void)minimize_membrane(s.functionals, Points::Zero(X.rows(), 3), problem), NumericalError);
 }
 
+// A solve stopped by max_iterations returns, when it can, a point that holds the constraints: the
+// lowest-objective point it met within 1e-3 of them, or its last iterate, projected onto them.
+// Being feasible, its W is at least the converged minimum's.
+TEST_F(MembraneOptimization, AnUnfinishedSolveReturnsAFeasiblePointWhenItCan) {
+    const MembraneProblem problem = canham(0.9);
+    const double minimum = prolate_tetra_2().values.willmore;
+    int projected = 0;
+    for (const int iterations : {4, 8, 16}) {
+        SCOPED_TRACE(testing::Message() << iterations << " iterations");
+        MembraneOptions options;
+        options.max_iterations = iterations;
+        const MembraneResult r =
+            minimize_membrane(tetra_2().functionals, stretched(tetra_2().mesh.positions(), 1.0, 1.0, 1.5), problem,
+                              options);
+        EXPECT_FALSE(r.converged);
+        if (!r.projected) {
+            continue;
+        }
+        ++projected;
+        expect_constraints(r, problem, options.constraint_tolerance);
+        EXPECT_GE(r.values.willmore, minimum * (1.0 - 1e-9));
+        EXPECT_NE(r.status.find("projected onto the constraints"), std::string::npos) << r.status;
+    }
+    EXPECT_GE(projected, 1);
+}
+
 TEST_F(MembraneOptimization, ACallerCanStopTheSolver) {
     const Surface s("icosahedron", SchemeKind::Loop);
     MembraneOptions options;

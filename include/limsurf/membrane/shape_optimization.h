@@ -82,6 +82,11 @@ struct MembraneResult {
     /// constraint holds to constraint_tolerance relative to its target. Ipopt's other
     /// "acceptable level" stops come back with converged = false and say so in status.
     bool converged = false;
+    /// Not converged, yet positions hold every constraint to constraint_tolerance: the solve stopped
+    /// short (e.g. at max_iterations) and the point of lowest objective it met within 1e-3 of the
+    /// constraints (or the point it stopped at, when within 0.1 of them), projected onto them, is
+    /// returned instead of its last iterate: a point that holds the constraints, not a minimiser.
+    bool projected = false;
     int iterations = 0;
     double seconds = 0.0;
     std::string status;  ///< Ipopt's status, in words
@@ -91,9 +96,10 @@ struct MembraneResult {
 /// @details Each constraint reaches Ipopt as (value − target) / |target| (M0 = 0: divided by the
 ///   M of the sphere of area A0), so constraint_tolerance is relative; W ≤ bound is an inequality.
 ///   Never returns NaN positions: when the solver fails, the last point where every functional was
-///   finite comes back with converged = false and the status saying why. A trial point where the
-///   surface degenerates (NumericalError from ShapeFunctionals) makes Ipopt shorten the step; it
-///   is not an error. Ipopt's MUMPS is not reentrant: concurrent calls are serialised.
+///   finite comes back with converged = false and the status saying why — or, when the solve met
+///   points near the constraints, the best of them projected onto them (MembraneResult::projected). A trial point where
+///   the surface degenerates (NumericalError from ShapeFunctionals) makes Ipopt shorten the step; it is not an error.
+///   Ipopt's MUMPS is not reentrant: concurrent calls are serialised.
 /// @throws InputError for an infeasible problem (A0 <= 0, V0 <= 0, V0 above the volume of the
 ///   sphere of area A0, i.e. reduced volume > 1, a Willmore bound <= 0, non-finite data), initial
 ///   points of the wrong shape or not finite, non-positive tolerances
