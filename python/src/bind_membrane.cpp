@@ -247,7 +247,9 @@ minimize_membrane(mesh, scheme, area=..., ...) or minimize_membrane(V, F, scheme
 Returns the dict of `limsurf membrane --json` plus 'positions' (#V × 3, the last stage's control points).
 callback(dict) is called after every iteration with 'stage', 'iteration', 'objective',
 'constraint_violation', 'dual_infeasibility', 'step'; returning False stops the solve (converged False);
-an exception in it stops the solve and is raised. Raises limsurf.InputError for an infeasible request
+an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
+has 'projected' True when the points returned hold the constraints: the lowest objective met near them,
+or its last iterate, projected onto them (a feasible point, not a minimiser; 'status' says which). Raises limsurf.InputError for an infeasible request
 (area <= 0, reduced volume outside (0, 1], both or neither volume options) or an open mesh,
 limsurf.UnsupportedError for Doo–Sabin or without Ipopt.)";
 

@@ -100,6 +100,14 @@ def test_callback_sees_every_iteration_and_can_stop_the_solve(mesh_path):
                                         callback=lambda it: it["iteration"] < 3)
     assert not stopped["converged"] and stopped["iterations"] <= 4
     assert np.isfinite(stopped["positions"]).all()
+    assert stopped["projected"] is False  # a stop asked for returns the last iterate as it is
+    # Cut short by max_iterations instead, the points returned hold the constraints when it could project.
+    # (12 iterations are still 2754 relative away: the last iterate as it is; 20 come near enough.)
+    far = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=12)
+    assert not far["converged"] and far["projected"] is False and far["max_relative_residual"] > 1
+    short = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=20)
+    assert not short["converged"] and short["projected"] is True
+    assert short["max_relative_residual"] <= 1e-9 and "projected onto the constraints" in short["status"]
 
     def fail(it):
         raise KeyError("from the callback")
