@@ -8,9 +8,9 @@
 #include "limsurf/membrane/shape_optimization.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <exception>
 #include <mutex>
 #include <numbers>
@@ -373,9 +373,22 @@ class MembraneNlp final : public Ipopt::TNLP {
         return {good_, good_values_};
     }
 
-    /// The point with the lowest objective among those evaluated within nearly_feasible of every
-    /// constraint (scaled as Ipopt sees them); empty when there was none.
-    [[nodiscard]] const Points& best_nearly_feasible() const noexcept { return best_; }
+    /// Points evaluated within nearly_feasible of every constraint (scaled as Ipopt sees them),
+    /// lowest objective first: the lowest of all, then up to 16 earlier ones, each at least 1 %
+    /// above the next — a projection that fails from the last of a run's points (a surface on its
+    /// way to degenerate) can fall back on an earlier one. Empty when there was none.
+    [[nodiscard]] std::vector<const Points*> nearly_feasible_points() const {
+        std::vector<const Points*> out;
+        if (best_.size() > 0) {
+            out.push_back(&best_);
+        }
+        for (auto record = records_.rbegin(); record != records_.rend(); ++record) {
+            if (record->second != best_) {
+                out.push_back(&record->second);
+            }
+        }
+        return out;
+    }
     [[nodiscard]] const std::exception_ptr& fatal() const noexcept { return fatal_; }
     [[nodiscard]] const std::exception_ptr& trial_failure() const noexcept { return trial_failure_; }
     [[nodiscard]] bool stopped_by_caller() const noexcept { return stopped_by_caller_; }
@@ -434,6 +447,12 @@ class MembraneNlp final : public Ipopt::TNLP {
             if (best_.size() == 0 || objective < best_objective_) {
                 best_ = current_;
                 best_objective_ = objective;
+                if (records_.empty() || objective < 0.99 * records_.back().first) {
+                    records_.emplace_back(objective, current_);
+                    if (records_.size() > 16) {
+                        records_.pop_front();
+                    }
+                }
             }
         }
         return true;
@@ -451,8 +470,9 @@ class MembraneNlp final : public Ipopt::TNLP {
     Points good_;  // the last point where every functional was finite, and its values
     ShapeValues good_values_;
     Points final_;  // Ipopt's final point (empty until finalize_solution)
-    Points best_;   // best_nearly_feasible()
+    Points best_;   // nearly_feasible_points(): the lowest, and the earlier records
     double best_objective_ = 0.0;
+    std::deque<std::pair<double, Points>> records_;
     std::exception_ptr trial_failure_;
     std::exception_ptr fatal_;
     bool stopped_by_caller_ = false;
@@ -535,40 +555,51 @@ int project_onto_constraints(const ShapeFunctionals& functionals, const std::vec
     return 8;
 }
 
+/// @p start projected onto the constraints, when it lies within near_enough_to_project of them and
+/// the projection meets the tolerance.
+std::optional<std::pair<Points, ShapeValues>> projected(const ShapeFunctionals& functionals, const MembraneNlp& nlp,
+                                                        const std::vector<ShapeFunctional>& gradients,
+                                                        const MembraneOptions& options, const Points& start) {
+    Points X = start;
+    ShapeValues values;
+    try {
+        values = functionals.evaluate(X, gradients);
+        if (!all_finite(values) || !constraints_hold(nlp.constraints(), values, near_enough_to_project)) {
+            return std::nullopt;
+        }
+        (void)project_onto_constraints(functionals, nlp.constraints(), gradients, options.constraint_tolerance, X,
+                                       values);
+    } catch (const NumericalError&) {  // degenerate on the way
+        return std::nullopt;
+    }
+    if (!constraints_hold(nlp.constraints(), values, options.constraint_tolerance)) {
+        return std::nullopt;
+    }
+    return std::pair{std::move(X), std::move(values)};
+}
+
 /// A solve that stopped short (no convergence, not stopped by the caller) still returns a feasible
-/// point when it can: the lowest-objective nearly feasible point it met and the point Ipopt left (if
-/// within near_enough_to_project), each projected onto the constraints; the one with the lower objective of those that
-/// then hold them to the tolerance replaces the result (projected = true; converged stays false). Returns what was
+/// point when it can: the first of its nearly feasible points (lowest objective first) that projects
+/// onto the constraints, and the point Ipopt left projected likewise; the one with the lower
+/// objective replaces the result (projected = true; converged stays false). Returns what was
 /// projected, in words (empty when nothing could be).
 std::string salvage(const ShapeFunctionals& functionals, const MembraneNlp& nlp, const MembraneProblem& problem,
                     const MembraneOptions& options, MembraneResult& result) {
     const auto gradients = gradients_of(problem, nlp.constraints());
     std::optional<std::pair<Points, ShapeValues>> chosen;
     std::string which;
-    const std::array<std::pair<const Points*, const char*>, 2> starts{
-        std::pair{&nlp.best_nearly_feasible(), "the point of lowest objective met within 1e-3 of the constraints"},
-        std::pair{&result.positions, "the last iterate"}};
-    for (const auto& [start, name] : starts) {
-        if (start->size() == 0) {
-            continue;
+    const auto candidates = nlp.nearly_feasible_points();
+    for (std::size_t k = 0; k < candidates.size() && !chosen; ++k) {
+        chosen = projected(functionals, nlp, gradients, options, *candidates[k]);
+        if (chosen) {
+            which = k == 0 ? "the point of lowest objective met within 1e-3 of the constraints"
+                           : "a point met within 1e-3 of the constraints (the lower ones did not project)";
         }
-        Points X = *start;
-        ShapeValues values;
-        try {
-            values = functionals.evaluate(X, gradients);
-            if (!all_finite(values) || !constraints_hold(nlp.constraints(), values, near_enough_to_project)) {
-                continue;
-            }
-            (void)project_onto_constraints(functionals, nlp.constraints(), gradients, options.constraint_tolerance, X,
-                                           values);
-        } catch (const NumericalError&) {  // degenerate on the way: not a candidate
-            continue;
-        }
-        if (constraints_hold(nlp.constraints(), values, options.constraint_tolerance) &&
-            (!chosen || objective_of(problem, values) < objective_of(problem, chosen->second))) {
-            chosen.emplace(std::move(X), std::move(values));
-            which = name;
-        }
+    }
+    if (auto last = projected(functionals, nlp, gradients, options, result.positions);
+        last && (!chosen || objective_of(problem, last->second) < objective_of(problem, chosen->second))) {
+        chosen = std::move(last);
+        which = "the last iterate";
     }
     if (chosen) {
         std::tie(result.positions, result.values) = std::move(*chosen);
