@@ -97,9 +97,10 @@ struct MembraneResult {
 ///   M of the sphere of area A0), so constraint_tolerance is relative; W ≤ bound is an inequality.
 ///   Never returns NaN positions: when the solver fails, the last point where every functional was
 ///   finite comes back with converged = false and the status saying why — or, when the solve met
-///   points near the constraints, the best of them projected onto them (MembraneResult::projected). A trial point where
-///   the surface degenerates (NumericalError from ShapeFunctionals) makes Ipopt shorten the step; it is not an error.
-///   Ipopt's MUMPS is not reentrant: concurrent calls are serialised.
+///   points near the constraints, the best of them projected onto them (MembraneResult::projected).
+///   A trial point where the surface degenerates (NumericalError from ShapeFunctionals) makes Ipopt
+///   shorten the step; it is not an error. Ipopt's MUMPS is not reentrant: concurrent calls are
+///   serialised.
 /// @throws InputError for an infeasible problem (A0 <= 0, V0 <= 0, V0 above the volume of the
 ///   sphere of area A0, i.e. reduced volume > 1, a Willmore bound <= 0, non-finite data), initial
 ///   points of the wrong shape or not finite, non-positive tolerances

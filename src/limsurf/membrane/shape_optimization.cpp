@@ -374,18 +374,13 @@ class MembraneNlp final : public Ipopt::TNLP {
     }
 
     /// Points evaluated within nearly_feasible of every constraint (scaled as Ipopt sees them),
-    /// lowest objective first: the lowest of all, then up to 16 earlier ones, each at least 1 %
-    /// above the next — a projection that fails from the last of a run's points (a surface on its
-    /// way to degenerate) can fall back on an earlier one. Empty when there was none.
+    /// lowest objective first: the lowest of all, then up to 16 earlier ones, about 1 % apart — a
+    /// projection that fails from the last of a run's points (a surface on its way to degenerate)
+    /// can fall back on an earlier one. Empty when there was none.
     [[nodiscard]] std::vector<const Points*> nearly_feasible_points() const {
         std::vector<const Points*> out;
-        if (best_.size() > 0) {
-            out.push_back(&best_);
-        }
         for (auto record = records_.rbegin(); record != records_.rend(); ++record) {
-            if (record->second != best_) {
-                out.push_back(&record->second);
-            }
+            out.push_back(&record->second);
         }
         return out;
     }
@@ -416,6 +411,23 @@ class MembraneNlp final : public Ipopt::TNLP {
         }
     }
 
+    /// Keeps current_ when @p objective is the lowest so far: the last record is always the lowest;
+    /// it replaces its predecessor unless that one lies 1 % above the record before it.
+    void record(double objective) {
+        if (!records_.empty() && objective >= records_.back().first) {
+            return;
+        }
+        const std::size_t n = records_.size();
+        if (n >= 2 && objective >= 0.99 * records_[n - 2].first) {
+            records_.back() = {objective, current_};
+            return;
+        }
+        records_.emplace_back(objective, current_);
+        if (records_.size() > 17) {  // the lowest and 16 earlier ones
+            records_.pop_front();
+        }
+    }
+
     /// Evaluates at @p x unless the cache holds it. False when the surface is degenerate there or
     /// a value is not finite (Ipopt then cuts the step), or on a fatal exception.
     bool update(const Ipopt::Number* x, bool new_x) {
@@ -443,17 +455,7 @@ class MembraneNlp final : public Ipopt::TNLP {
         good_ = current_;
         good_values_ = values_;
         if (constraints_hold(constraints_, values_, nearly_feasible)) {
-            const double objective = objective_of(problem_, values_);
-            if (best_.size() == 0 || objective < best_objective_) {
-                best_ = current_;
-                best_objective_ = objective;
-                if (records_.empty() || objective < 0.99 * records_.back().first) {
-                    records_.emplace_back(objective, current_);
-                    if (records_.size() > 16) {
-                        records_.pop_front();
-                    }
-                }
-            }
+            record(objective_of(problem_, values_));
         }
         return true;
     }
@@ -469,10 +471,8 @@ class MembraneNlp final : public Ipopt::TNLP {
     bool valid_ = true;
     Points good_;  // the last point where every functional was finite, and its values
     ShapeValues good_values_;
-    Points final_;  // Ipopt's final point (empty until finalize_solution)
-    Points best_;   // nearly_feasible_points(): the lowest, and the earlier records
-    double best_objective_ = 0.0;
-    std::deque<std::pair<double, Points>> records_;
+    Points final_;                                   // Ipopt's final point (empty until finalize_solution)
+    std::deque<std::pair<double, Points>> records_;  // (objective, point): nearly_feasible_points()
     std::exception_ptr trial_failure_;
     std::exception_ptr fatal_;
     bool stopped_by_caller_ = false;
