@@ -12,7 +12,8 @@
 //     (its edge entering v; index taken modulo the valence for interior
 //     vertices). A boundary vertex has one more edge than faces: its first
 //     edge and its last edge are boundary edges.
-//   - vertex_face_corners(v)[i] is the corner of vertex_faces(v)[i] at v.
+//   - vertex_face_corners(v)[i] is the corner of vertex_faces(v)[i] at v (a
+//     view, VertexFaceCorners: the Topology keeps it in a byte per corner).
 //
 // Construction validates everything (validate.h) and throws on any error, so
 // every Topology is a consistently oriented 2-manifold with boundary, without
@@ -20,8 +21,11 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "limsurf/core/huge_page_allocator.h"
@@ -30,6 +34,83 @@
 
 namespace limsurf {
 class Topology;
+
+namespace detail {
+/// An input iterator over a view that is read by index (operator[]) rather than stored.
+template <class View, class Value>
+class IndexIterator {
+  public:
+    using iterator_category = std::input_iterator_tag;
+    using value_type = Value;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = Value;
+    IndexIterator() = default;
+    IndexIterator(const View* view, std::size_t i) : view_(view), i_(i) {}
+    [[nodiscard]] Value operator*() const { return (*view_)[i_]; }
+    IndexIterator& operator++() {
+        ++i_;
+        return *this;
+    }
+    IndexIterator operator++(int) {
+        IndexIterator before = *this;
+        ++i_;
+        return before;
+    }
+    [[nodiscard]] bool operator==(const IndexIterator& other) const noexcept { return i_ == other.i_; }
+
+  private:
+    const View* view_ = nullptr;
+    std::size_t i_ = 0;
+};
+}  // namespace detail
+
+/// The corners at which a vertex sits in its faces, parallel to Topology::vertex_faces(v): a view
+/// into its Topology (valid while it lives), read like a span of Index.
+class VertexFaceCorners {
+  public:
+    using iterator = detail::IndexIterator<VertexFaceCorners, Index>;
+    using value_type = Index;
+    [[nodiscard]] std::size_t size() const noexcept { return size_; }
+    [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
+    /// @pre i < size()
+    [[nodiscard]] Index operator[](std::size_t i) const;
+    [[nodiscard]] Index front() const { return (*this)[0]; }
+    [[nodiscard]] Index back() const { return (*this)[size_ - 1]; }
+    [[nodiscard]] iterator begin() const { return {this, 0}; }
+    [[nodiscard]] iterator end() const { return {this, size_}; }
+
+  private:
+    friend class Topology;
+    VertexFaceCorners(const Topology* topology, std::size_t first_slot, std::size_t size)
+        : topology_(topology), first_slot_(first_slot), size_(size) {}
+    const Topology* topology_;
+    std::size_t first_slot_;
+    std::size_t size_;
+};
+
+/// The signs of a face's edges, +1 where corner k -> k+1 runs lower -> higher vertex index, else
+/// -1 (Topology::face_edge_signs): read from the face's corners, like a span of std::int8_t.
+class FaceEdgeSigns {
+  public:
+    using iterator = detail::IndexIterator<FaceEdgeSigns, std::int8_t>;
+    using value_type = std::int8_t;
+    /// The signs of the face with corners @p corners (counter-clockwise).
+    explicit FaceEdgeSigns(std::span<const Index> corners) : corners_(corners) {}
+    [[nodiscard]] std::size_t size() const noexcept { return corners_.size(); }
+    [[nodiscard]] bool empty() const noexcept { return corners_.empty(); }
+    /// @pre k < size()
+    [[nodiscard]] std::int8_t operator[](std::size_t k) const {
+        const std::size_t next = k + 1 == corners_.size() ? 0 : k + 1;
+        return corners_[k] < corners_[next] ? std::int8_t{1} : std::int8_t{-1};
+    }
+    [[nodiscard]] iterator begin() const { return {this, 0}; }
+    [[nodiscard]] iterator end() const { return {this, corners_.size()}; }
+
+  private:
+    std::span<const Index> corners_;
+};
+
 namespace detail {
 struct HalfEdge;
 /// Refinement output only (the locally refined patches of limit/local_patch.cpp; every scheme's
@@ -91,7 +172,7 @@ class Topology {
     /// face_edges(f)[k] joins corners k and k+1 (mod degree).
     [[nodiscard]] std::span<const Index> face_edges(Index f) const { return face_span(face_edges_, f); }
     /// +1 when corner k -> k+1 runs lower -> higher vertex index, else -1.
-    [[nodiscard]] std::span<const std::int8_t> face_edge_signs(Index f) const { return face_span(face_edge_signs_, f); }
+    [[nodiscard]] FaceEdgeSigns face_edge_signs(Index f) const { return FaceEdgeSigns(face_vertices(f)); }
     /// Offset of face f's first corner in the concatenated corner arrays.
     [[nodiscard]] Index face_offset(Index f) const { return face_offsets_[at(f)]; }
     /// #F+1 offsets (CSR row pointer of the face->vertex table).
@@ -109,8 +190,10 @@ class Topology {
     }
     /// The one or two faces incident to edge e (first: the face that traverses
     /// e lower -> higher when there is one).
-    [[nodiscard]] std::span<const Index> edge_faces(Index e) const;
-    [[nodiscard]] bool is_boundary_edge(Index e) const { return edge_faces(e).size() == 1; }
+    [[nodiscard]] std::span<const Index> edge_faces(Index e) const {
+        return std::span<const Index>(edge_faces_).subspan(2 * at(e), at(edge_face_count(e)));
+    }
+    [[nodiscard]] bool is_boundary_edge(Index e) const { return edge_face_count(e) == 1; }
     /// The edge joining a and b, or invalid_index. O(valence).
     [[nodiscard]] Index find_edge(Index a, Index b) const;
 
@@ -120,7 +203,10 @@ class Topology {
     /// Incident faces, counter-clockwise (see the header comment).
     [[nodiscard]] std::span<const Index> vertex_faces(Index v) const;
     /// Corner of vertex_faces(v)[i] at which v sits.
-    [[nodiscard]] std::span<const Index> vertex_face_corners(Index v) const;
+    [[nodiscard]] VertexFaceCorners vertex_face_corners(Index v) const {
+        const Index first = vertex_face_offsets_[at(v)];
+        return {this, at(first), at(vertex_face_offsets_[at(v) + 1] - first)};
+    }
     /// Incident edges, counter-clockwise, interleaved with vertex_faces(v).
     [[nodiscard]] std::span<const Index> vertex_edges(Index v) const;
     /// The vertex at the other end of edge e from v. @pre v is an end of e
@@ -144,7 +230,7 @@ class Topology {
     [[nodiscard]] Index euler_characteristic() const noexcept { return num_vertices() - num_edges() + num_faces(); }
     [[nodiscard]] Index num_components() const noexcept { return num_components_; }
     /// Component of face f, in 0..num_components()-1, numbered by first face.
-    [[nodiscard]] Index face_component(Index f) const { return face_component_[at(f)]; }
+    [[nodiscard]] Index face_component(Index f) const { return face_component_.empty() ? 0 : face_component_[at(f)]; }
     /// Component of vertex v.
     [[nodiscard]] Index vertex_component(Index v) const;
     /// Genus of a connected orientable surface: (2 - chi - b) / 2; for several
@@ -167,6 +253,7 @@ class Topology {
     [[nodiscard]] SharpnessTags sharpness_tags() const;
 
   private:
+    friend class VertexFaceCorners;
     friend Topology detail::refined_topology(Index, std::span<const Index>, std::span<const Index>,
                                              const SharpnessTags&);
     friend Topology detail::quad_split_topology(const Topology&, const SharpnessTags&);
@@ -191,10 +278,36 @@ class Topology {
     }
     /// Returns, parallel to edge_faces_, the corner at which each of those faces enters the edge.
     detail::HugeTable<Index> build_edges(std::span<const detail::HalfEdge> half_edges);
-    /// From face_edges_, face_edge_signs_ and the face count of each edge in edge_face_offsets_[e + 1]:
-    /// the offsets and edge_faces_; the corner at which each face enters the edge into
-    /// @p edge_face_corners when it is not null.
+    /// edge_faces_ from face_edges_ and the corners' signs (edge_vertices_ sized); the corner at which
+    /// each face enters the edge into @p edge_face_corners (two slots per edge) when it is not null.
     void fill_edge_faces(detail::HugeTable<Index>* edge_face_corners);
+    /// 1 on the boundary, else 2 (a Topology's edges are manifold).
+    [[nodiscard]] Index edge_face_count(Index e) const { return edge_faces_[2 * at(e) + 1] == invalid_index ? 1 : 2; }
+    /// vertex_face_corners_ holds a corner in a byte; a corner of large_corner or more is found
+    /// in large_corners_ (faces of 255 corners and more are rare; a byte per corner saves 3 of a
+    /// Topology's ~37 bytes per corner).
+    static constexpr std::uint8_t large_corner = 255;
+    [[nodiscard]] Index vertex_face_corner(std::size_t slot) const {
+        const std::uint8_t c = vertex_face_corners_[slot];
+        return c != large_corner ? Index{c} : large_vertex_face_corner(slot);
+    }
+    [[nodiscard]] Index large_vertex_face_corner(std::size_t slot) const;
+    /// Writes slot @p slot of vertex_face_corners_ (of large_corners_ for a large corner;
+    /// sort_large_corners() once all are written).
+    void set_vertex_face_corner(std::size_t slot, Index corner) {
+        if (corner < large_corner) {
+            vertex_face_corners_[slot] = static_cast<std::uint8_t>(corner);
+            return;
+        }
+        vertex_face_corners_[slot] = large_corner;
+        large_corners_.emplace_back(static_cast<Index>(slot), corner);
+    }
+    void sort_large_corners();
+    /// Where vertex v's one-ring edges start in vertex_edges_ (v = #V: their end). Without boundary
+    /// every vertex has as many edges as faces, and the faces' offsets serve.
+    [[nodiscard]] Index vertex_edge_offset(Index v) const {
+        return vertex_edge_offsets_.empty() ? vertex_face_offsets_[at(v)] : vertex_edge_offsets_[at(v)];
+    }
     /// vertex_is_boundary_ and the one-ring offsets from each vertex's number of faces (in
     /// vertex_face_offsets_[v + 1]); sizes the one-ring tables.
     void allocate_one_rings();
@@ -204,6 +317,10 @@ class Topology {
     void build_boundary_loops();
     void build_components();
     void apply_sharpness(const SharpnessTags& sharpness);
+    /// face_edge_signs(f) at global corner @p c of face @p f.
+    [[nodiscard]] std::int8_t corner_sign(Index f, Index c) const {
+        return face_vertices_[at(c)] < face_vertices_[at(next_corner(f, c))] ? std::int8_t{1} : std::int8_t{-1};
+    }
     /// The corner after corner @p c (a global corner index) of face @p f.
     [[nodiscard]] Index next_corner(Index f, Index c) const {
         return c + 1 == face_offsets_[at(f) + 1] ? face_offsets_[at(f)] : c + 1;
@@ -212,23 +329,24 @@ class Topology {
     Index num_vertices_ = 0;
     detail::HugeTable<Index> face_offsets_{0};
     detail::HugeTable<Index> face_vertices_;
-    detail::HugeTable<Index> face_edges_;
-    detail::HugeTable<std::int8_t> face_edge_signs_;
+    detail::HugeTable<Index> face_edges_;  // (the signs follow from face_vertices_: corner_sign)
 
-    detail::HugeTable<Index> edge_vertices_;      // 2 per edge, lower first
-    detail::HugeTable<Index> edge_face_offsets_;  // #E+1
+    detail::HugeTable<Index> edge_vertices_;  // 2 per edge, lower first
+    // 2 per edge: the face running it lower -> higher (or its only face) first; invalid_index second
+    // on the boundary. No offsets: a Topology's edges have one or two faces.
     detail::HugeTable<Index> edge_faces_;
 
     detail::HugeTable<Index> vertex_face_offsets_;  // #V+1
     detail::HugeTable<Index> vertex_faces_;
-    detail::HugeTable<Index> vertex_face_corners_;
-    detail::HugeTable<Index> vertex_edge_offsets_;  // #V+1
+    detail::HugeTable<std::uint8_t> vertex_face_corners_;  // large_corner: see large_corners_
+    std::vector<std::pair<Index, Index>> large_corners_;   // (slot, corner), by slot
+    detail::HugeTable<Index> vertex_edge_offsets_;         // #V+1; empty without boundary (vertex_edge_offset())
     detail::HugeTable<Index> vertex_edges_;
     detail::HugeTable<std::uint8_t> vertex_is_boundary_;
 
     detail::HugeTable<Index> boundary_loop_offsets_{0};
     detail::HugeTable<Index> boundary_loop_vertices_;
-    detail::HugeTable<Index> face_component_;
+    detail::HugeTable<Index> face_component_;  // #F; empty when there is one component
     Index num_components_ = 0;
     Index genus_ = 0;
 
@@ -236,5 +354,9 @@ class Topology {
     detail::HugeTable<double> vertex_sharpness_;  // empty when all smooth
     detail::HugeTable<std::uint8_t> holes_;       // empty when no holes
 };
+
+inline Index VertexFaceCorners::operator[](std::size_t i) const {
+    return topology_->vertex_face_corner(first_slot_ + i);
+}
 
 }  // namespace limsurf

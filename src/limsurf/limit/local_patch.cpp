@@ -240,7 +240,7 @@ struct Sharpness {
 /// The one-ring of vertex v seen from face f: where f sits and how to step around.
 struct RingView {
     std::span<const Index> faces;
-    std::span<const Index> corners;
+    VertexFaceCorners corners;
     std::span<const Index> edges;
     Index position = 0;  ///< of f in faces
     bool cyclic = true;

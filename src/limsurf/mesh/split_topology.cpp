@@ -28,31 +28,26 @@ std::size_t at(Index i) {
 /// edge, or an edge inside a parent face) and gets the next number the first time its key is seen.
 class EdgeNumbering {
   public:
-    EdgeNumbering(Index num_keys, HugeTable<Index>& edge_vertices, HugeTable<Index>& edge_face_offsets)
-        : edge_vertices_(edge_vertices), edge_face_offsets_(edge_face_offsets) {
+    /// @pre every key names one child edge (the child has @p num_keys edges)
+    EdgeNumbering(Index num_keys, HugeTable<Index>& edge_vertices) : edge_vertices_(edge_vertices) {
         assign_huge(number_, at(num_keys), invalid_index);
         assign_huge(edge_vertices_, 2 * at(num_keys));
-        assign_huge(edge_face_offsets_, at(num_keys) + 1, 0);
     }
-    /// The number of the child edge with @p key joining @p a and @p b, which has @p num_faces faces.
-    Index operator()(Index key, Index a, Index b, Index num_faces) {
+    /// The number of the child edge with @p key joining @p a and @p b.
+    Index operator()(Index key, Index a, Index b) {
         Index& e = number_[at(key)];
         if (e == invalid_index) {
             e = next_++;
             edge_vertices_[2 * at(e)] = std::min(a, b);
             edge_vertices_[2 * at(e) + 1] = std::max(a, b);
-            edge_face_offsets_[at(e) + 1] = num_faces;
         }
         return e;
     }
-    /// The number given to @p key. @pre it was seen
-    [[nodiscard]] Index of(Index key) const { return number_[at(key)]; }
 
   private:
     HugeTable<Index> number_;
     Index next_ = 0;
     HugeTable<Index>& edge_vertices_;
-    HugeTable<Index>& edge_face_offsets_;
 };
 
 /// Key of the half of parent edge @p e at its lower (@p higher_end false) or higher end.
@@ -83,12 +78,13 @@ HugeTable<std::array<Index, 2>> edge_corners(const Topology& parent) {
 /// corner in the face list, i.e. in its face of least index.
 template <std::size_t N>
 void write_interior_ring(const std::array<Index, N>& faces, const std::array<Index, N>& corners,
-                         const std::array<Index, N>& edges, Index* out_faces, Index* out_corners, Index* out_edges) {
+                         const std::array<Index, N>& edges, Index* out_faces, std::uint8_t* out_corners,
+                         Index* out_edges) {
     const auto first = static_cast<std::size_t>(std::min_element(faces.begin(), faces.end()) - faces.begin());
     for (std::size_t i = 0; i < N; ++i) {
         const std::size_t j = (first + i) % N;
         out_faces[i] = faces[j];
-        out_corners[i] = corners[j];
+        out_corners[i] = static_cast<std::uint8_t>(corners[j]);  // < 4 in the splits
         out_edges[i] = edges[j];
     }
 }
@@ -105,29 +101,37 @@ void copy_parent_vertex_ring_sizes(const Topology& parent, HugeTable<Index>& fac
 
 /// A parent vertex's child: the children at its corners, in the parent's order (the first corner
 /// and the boundary start are the parent's); it is corner 0 of each; its edges are the halves at
-/// it of its parent edges. Its slots are the parent vertex's (the first V child vertices, of the
-/// same sizes). @p child_face(f, k) is the child of parent face f at its corner k.
+/// it of its parent edges: each child's first side (the half of the parent edge leaving the corner),
+/// and on the boundary the last child's last side (the half of the edge entering it). Its slots are
+/// the parent vertex's (the first V child vertices, of the same sizes). @p child_face(f, k) is the
+/// child of parent face f at its corner k; @p child has its faces and their edges.
 template <class ChildFace>
-void fill_parent_vertex_rings(const Topology& parent, const EdgeNumbering& number, const ChildFace& child_face,
-                              HugeTable<Index>& faces, HugeTable<Index>& corners, HugeTable<Index>& edges) {
+void fill_parent_vertex_rings(const Topology& parent, const Topology& child, const ChildFace& child_face,
+                              HugeTable<Index>& faces, HugeTable<std::uint8_t>& corners, HugeTable<Index>& edges) {
     Index face_slot = 0;
     Index edge_slot = 0;
     for (Index v = 0; v < parent.num_vertices(); ++v) {
         const auto ring_faces = parent.vertex_faces(v);
         const auto ring_corners = parent.vertex_face_corners(v);
         for (std::size_t i = 0; i < ring_faces.size(); ++i, ++face_slot) {
-            faces[at(face_slot)] = child_face(ring_faces[i], ring_corners[i]);
+            const Index g = child_face(ring_faces[i], ring_corners[i]);
+            faces[at(face_slot)] = g;
             corners[at(face_slot)] = 0;
+            edges[at(edge_slot++)] = child.face_edges(g).front();
         }
-        for (const Index e : parent.vertex_edges(v)) {
-            edges[at(edge_slot++)] = number.of(half_key(e, parent.edge_vertices(e)[1] == v));
+        if (parent.is_boundary_vertex(v)) {
+            edges[at(edge_slot++)] = child.face_edges(faces[at(face_slot - 1)]).back();
         }
     }
 }
 
-/// Child faces [first_child(f), first_child(f + 1)) lie in the component of parent face f.
+/// Child faces [first_child(f), first_child(f + 1)) lie in the component of parent face f (no table
+/// for one component, as the parent's).
 template <class FirstChild>
 void inherit_components(const Topology& parent, const FirstChild& first_child, HugeTable<Index>& component) {
+    if (parent.num_components() == 1) {
+        return;
+    }
     assign_huge(component, at(first_child(parent.num_faces())));
     for (Index f = 0; f < parent.num_faces(); ++f) {
         std::fill(component.begin() + first_child(f), component.begin() + first_child(f + 1), parent.face_component(f));
@@ -171,36 +175,37 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
     }
     assign_huge(child.face_vertices_, 4 * at(C));
     assign_huge(child.face_edges_, 4 * at(C));
-    assign_huge(child.face_edge_signs_, 4 * at(C));
-    EdgeNumbering number(2 * E + C, child.edge_vertices_, child.edge_face_offsets_);
-    for (Index f = 0; f < F; ++f) {
-        const Index first = parent.face_offsets_[at(f)];
-        const Index last = parent.face_offsets_[at(f) + 1] - 1;
-        for (Index c = first; c <= last; ++c) {
-            const Index previous = c == first ? last : c - 1;
-            const Index e_next = parent.face_edges_[at(c)];
-            const Index e_prev = parent.face_edges_[at(previous)];
-            const std::array<Index, 4> corners{parent.face_vertices_[at(c)], edge_point + e_next, face_point + f,
-                                               edge_point + e_prev};
-            // Corner c runs e_next lower -> higher when its sign is +1 (then v_k is e_next's lower end);
-            // the previous corner runs e_prev into v_k.
-            const bool v_higher_on_next = parent.face_edge_signs_[at(c)] < 0;
-            const bool v_higher_on_prev = parent.face_edge_signs_[at(previous)] > 0;
-            const std::array<Index, 4> edges{
-                number(half_key(e_next, v_higher_on_next), corners[0], corners[1],
-                       parent.edge_face_offsets_[at(e_next) + 1] - parent.edge_face_offsets_[at(e_next)]),
-                number(2 * E + c, corners[1], corners[2], 2), number(2 * E + previous, corners[2], corners[3], 2),
-                number(half_key(e_prev, v_higher_on_prev), corners[3], corners[0],
-                       parent.edge_face_offsets_[at(e_prev) + 1] - parent.edge_face_offsets_[at(e_prev)])};
-            for (std::size_t i = 0; i < 4; ++i) {
-                const auto slot = 4 * at(c) + i;
-                child.face_vertices_[slot] = corners[i];
-                child.face_edges_[slot] = edges[i];
-                child.face_edge_signs_[slot] = corners[i] < corners[(i + 1) % 4] ? 1 : -1;
+    {  // the numbering's table goes before the one-rings' are made
+        EdgeNumbering number(2 * E + C, child.edge_vertices_);
+        for (Index f = 0; f < F; ++f) {
+            const Index first = parent.face_offsets_[at(f)];
+            const Index last = parent.face_offsets_[at(f) + 1] - 1;
+            for (Index c = first; c <= last; ++c) {
+                const Index previous = c == first ? last : c - 1;
+                const Index e_next = parent.face_edges_[at(c)];
+                const Index e_prev = parent.face_edges_[at(previous)];
+                const std::array<Index, 4> corners{parent.face_vertices_[at(c)], edge_point + e_next, face_point + f,
+                                                   edge_point + e_prev};
+                // Corner c runs e_next lower -> higher when its sign is +1 (then v_k is e_next's lower end);
+                // the previous corner runs e_prev into v_k.
+                const bool v_higher_on_next = parent.corner_sign(f, c) < 0;
+                const bool v_higher_on_prev = parent.corner_sign(f, previous) > 0;
+                const std::array<Index, 4> edges{number(half_key(e_next, v_higher_on_next), corners[0], corners[1]),
+                                                 number(2 * E + c, corners[1], corners[2]),
+                                                 number(2 * E + previous, corners[2], corners[3]),
+                                                 number(half_key(e_prev, v_higher_on_prev), corners[3], corners[0])};
+                for (std::size_t i = 0; i < 4; ++i) {
+                    const auto slot = 4 * at(c) + i;
+                    child.face_vertices_[slot] = corners[i];
+                    child.face_edges_[slot] = edges[i];
+                }
             }
         }
     }
     child.fill_edge_faces(nullptr);
+    // Child c's sides: 0 the half at v_k of the parent edge leaving corner c, 1 the spoke of c (key
+    // 2E + c), 2 the spoke of c's previous corner, 3 the half at v_k of the edge entering it.
+    const auto side = [&](Index c, std::size_t i) { return child.face_edges_[4 * at(c) + i]; };
 
     // One-ring sizes: a parent vertex's child has its faces; a face point one face per corner of its
     // face; an edge point two per face of its edge, and it is on the boundary when the edge is.
@@ -211,7 +216,7 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
         child.vertex_face_offsets_[at(face_point + f) + 1] = parent.face_degree(f);
     }
     for (Index e = 0; e < E; ++e) {
-        const Index faces = parent.edge_face_offsets_[at(e) + 1] - parent.edge_face_offsets_[at(e)];
+        const Index faces = parent.edge_face_count(e);
         child.vertex_face_offsets_[at(edge_point + e) + 1] = 2 * faces;
         child.vertex_is_boundary_[at(edge_point + e)] = faces == 1 ? 1 : 0;
     }
@@ -219,7 +224,7 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
 
     // A parent vertex's child: child c of each parent corner c at it.
     fill_parent_vertex_rings(
-        parent, number, [&](Index f, Index k) { return parent.face_offsets_[at(f)] + k; }, child.vertex_faces_,
+        parent, child, [&](Index f, Index k) { return parent.face_offsets_[at(f)] + k; }, child.vertex_faces_,
         child.vertex_face_corners_, child.vertex_edges_);
     // A face point: the children of its face in order, at their corner 2; child k leaves it by the
     // spoke of edge k−1.
@@ -227,11 +232,11 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
         const Index first = parent.face_offsets_[at(f)];
         const Index n = parent.face_degree(f);
         const Index slot = child.vertex_face_offsets_[at(face_point + f)];
-        const Index edge_slot = child.vertex_edge_offsets_[at(face_point + f)];
+        const Index edge_slot = child.vertex_edge_offset(face_point + f);
         for (Index k = 0; k < n; ++k) {
             child.vertex_faces_[at(slot + k)] = first + k;
             child.vertex_face_corners_[at(slot + k)] = 2;
-            child.vertex_edges_[at(edge_slot + k)] = number.of(2 * E + first + (k == 0 ? n - 1 : k - 1));
+            child.vertex_edges_[at(edge_slot + k)] = side(first + k, 2);
         }
     }
     // An edge point of edge e (from v_k to v_k+1 at corner c of face g; from v_k+1 to v_k at corner
@@ -243,29 +248,27 @@ Topology quad_split_topology(const Topology& parent, const SharpnessTags& child_
     for (Index e = 0; e < E; ++e) {
         const Index v = edge_point + e;
         Index* faces = &child.vertex_faces_[at(child.vertex_face_offsets_[at(v)])];
-        Index* corners = &child.vertex_face_corners_[at(child.vertex_face_offsets_[at(v)])];
-        Index* edges = &child.vertex_edges_[at(child.vertex_edge_offsets_[at(v)])];
-        const auto face_slots = parent.edge_face_offsets_[at(e)];
+        std::uint8_t* corners = &child.vertex_face_corners_[at(child.vertex_face_offsets_[at(v)])];
+        Index* edges = &child.vertex_edges_[at(child.vertex_edge_offset(v))];
+        const auto face_slots = 2 * e;
         const Index c = edge_corner[at(e)][0];
         const Index next_c = parent.next_corner(parent.edge_faces_[at(face_slots)], c);
-        const bool vk_is_lower = parent.face_edge_signs_[at(c)] > 0;
-        const Index half_at_vk = number.of(half_key(e, !vk_is_lower));
-        const Index half_at_vk1 = number.of(half_key(e, vk_is_lower));
+        const Index half_at_vk = side(c, 0);
+        const Index half_at_vk1 = side(next_c, 3);
         if (child.vertex_is_boundary_[at(v)] != 0) {
             faces[0] = next_c;
             corners[0] = 3;
             edges[0] = half_at_vk1;
             faces[1] = c;
             corners[1] = 1;
-            edges[1] = number.of(2 * E + c);
+            edges[1] = side(c, 1);
             edges[2] = half_at_vk;
             continue;
         }
         const Index c_other = edge_corner[at(e)][1];
         const Index next_other = parent.next_corner(parent.edge_faces_[at(face_slots) + 1], c_other);
         write_interior_ring<4>({c, next_other, c_other, next_c}, {1, 3, 1, 3},
-                               {number.of(2 * E + c), half_at_vk, number.of(2 * E + c_other), half_at_vk1}, faces,
-                               corners, edges);
+                               {side(c, 1), half_at_vk, side(c_other, 1), half_at_vk1}, faces, corners, edges);
     }
 
     // Components and genus are the parent's; child faces come in parent face order, so the
@@ -299,43 +302,44 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
     }
     assign_huge(child.face_vertices_, 3 * faces_count);
     assign_huge(child.face_edges_, 3 * faces_count);
-    assign_huge(child.face_edge_signs_, 3 * faces_count);
-    EdgeNumbering number(2 * E + 3 * F, child.edge_vertices_, child.edge_face_offsets_);
-    const auto faces_of = [&](Index e) {
-        return parent.edge_face_offsets_[at(e) + 1] - parent.edge_face_offsets_[at(e)];
-    };
+    const auto faces_of = [&](Index e) { return parent.edge_face_count(e); };
     const auto inner_key = [&](Index f, Index k) { return 2 * E + 3 * f + k % 3; };
-    std::size_t slot = 0;
-    const auto write = [&](const std::array<Index, 3>& corners, const std::array<Index, 3>& edges) {
-        for (std::size_t i = 0; i < 3; ++i, ++slot) {
-            child.face_vertices_[slot] = corners[i];
-            child.face_edges_[slot] = edges[i];
-            child.face_edge_signs_[slot] = corners[i] < corners[(i + 1) % 3] ? 1 : -1;
+    {  // the numbering's table goes before the one-rings' are made
+        EdgeNumbering number(2 * E + 3 * F, child.edge_vertices_);
+        std::size_t slot = 0;
+        const auto write = [&](const std::array<Index, 3>& corners, const std::array<Index, 3>& edges) {
+            for (std::size_t i = 0; i < 3; ++i, ++slot) {
+                child.face_vertices_[slot] = corners[i];
+                child.face_edges_[slot] = edges[i];
+            }
+        };
+        for (Index f = 0; f < F; ++f) {
+            const Index first = 3 * f;
+            std::array<Index, 3> points{};
+            for (Index k = 0; k < 3; ++k) {
+                points[at(k)] = edge_point + parent.face_edges_[at(first + k)];
+            }
+            for (Index k = 0; k < 3; ++k) {
+                const Index c = first + k;
+                const Index previous = first + (k + 2) % 3;
+                const Index e_next = parent.face_edges_[at(c)];
+                const Index e_prev = parent.face_edges_[at(previous)];
+                const std::array<Index, 3> corners{parent.face_vertices_[at(c)], points[at(k)],
+                                                   points[at((k + 2) % 3)]};
+                const bool v_higher_on_next = parent.corner_sign(f, c) < 0;
+                const bool v_higher_on_prev = parent.corner_sign(f, previous) > 0;
+                write(corners, {number(half_key(e_next, v_higher_on_next), corners[0], corners[1]),
+                                number(inner_key(f, k), corners[1], corners[2]),
+                                number(half_key(e_prev, v_higher_on_prev), corners[2], corners[0])});
+            }
+            write(points, {number(inner_key(f, 1), points[0], points[1]), number(inner_key(f, 2), points[1], points[2]),
+                           number(inner_key(f, 3), points[2], points[0])});
         }
-    };
-    for (Index f = 0; f < F; ++f) {
-        const Index first = 3 * f;
-        std::array<Index, 3> points{};
-        for (Index k = 0; k < 3; ++k) {
-            points[at(k)] = edge_point + parent.face_edges_[at(first + k)];
-        }
-        for (Index k = 0; k < 3; ++k) {
-            const Index c = first + k;
-            const Index previous = first + (k + 2) % 3;
-            const Index e_next = parent.face_edges_[at(c)];
-            const Index e_prev = parent.face_edges_[at(previous)];
-            const std::array<Index, 3> corners{parent.face_vertices_[at(c)], points[at(k)], points[at((k + 2) % 3)]};
-            const bool v_higher_on_next = parent.face_edge_signs_[at(c)] < 0;
-            const bool v_higher_on_prev = parent.face_edge_signs_[at(previous)] > 0;
-            write(corners, {number(half_key(e_next, v_higher_on_next), corners[0], corners[1], faces_of(e_next)),
-                            number(inner_key(f, k), corners[1], corners[2], 2),
-                            number(half_key(e_prev, v_higher_on_prev), corners[2], corners[0], faces_of(e_prev))});
-        }
-        write(points,
-              {number(inner_key(f, 1), points[0], points[1], 2), number(inner_key(f, 2), points[1], points[2], 2),
-               number(inner_key(f, 3), points[2], points[0], 2)});
     }
     child.fill_edge_faces(nullptr);
+    // Child 4f + k's sides: 0 the half at v_k of the parent edge leaving corner k, 1 the inner edge
+    // of f keyed k, 2 the half at v_k of the edge entering it.
+    const auto side = [&](Index f, Index k, std::size_t i) { return child.face_edges_[3 * at(4 * f + k % 3) + i]; };
 
     // One-ring sizes: a parent vertex's child has its faces; an edge point three per face of its
     // edge, and it is on the boundary when the edge is.
@@ -350,7 +354,7 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
 
     // A parent vertex's child: the corner children 4f + k.
     fill_parent_vertex_rings(
-        parent, number, [](Index f, Index k) { return 4 * f + k; }, child.vertex_faces_, child.vertex_face_corners_,
+        parent, child, [](Index f, Index k) { return 4 * f + k; }, child.vertex_faces_, child.vertex_face_corners_,
         child.vertex_edges_);
     // An edge point of edge e (from v_k to v_k+1 at corner k of face g; from v_k+1 to v_k at corner m
     // of face g'): counter-clockwise, g's child k (at its corner 1), g''s child m+1 (corner 2), g''s
@@ -361,30 +365,29 @@ Topology tri_split_topology(const Topology& parent, const SharpnessTags& child_s
     for (Index e = 0; e < E; ++e) {
         const Index v = edge_point + e;
         Index* faces = &child.vertex_faces_[at(child.vertex_face_offsets_[at(v)])];
-        Index* corners = &child.vertex_face_corners_[at(child.vertex_face_offsets_[at(v)])];
-        Index* edges = &child.vertex_edges_[at(child.vertex_edge_offsets_[at(v)])];
+        std::uint8_t* corners = &child.vertex_face_corners_[at(child.vertex_face_offsets_[at(v)])];
+        Index* edges = &child.vertex_edges_[at(child.vertex_edge_offset(v))];
         const Index g = edge_corner[at(e)][0] / 3;
         const Index k = edge_corner[at(e)][0] % 3;
-        const bool vk_is_lower = parent.face_edge_signs_[at(edge_corner[at(e)][0])] > 0;
-        const Index half_at_vk = number.of(half_key(e, !vk_is_lower));
-        const Index half_at_vk1 = number.of(half_key(e, vk_is_lower));
+        const Index half_at_vk = side(g, k, 0);
+        const Index half_at_vk1 = side(g, k + 1, 2);
         if (child.vertex_is_boundary_[at(v)] != 0) {
             const std::array<Index, 3> ring_faces{4 * g + (k + 1) % 3, 4 * g + 3, 4 * g + k};
             const std::array<Index, 3> ring_corners{2, k, 1};
-            const std::array<Index, 4> ring_edges{half_at_vk1, number.of(inner_key(g, k + 1)),
-                                                  number.of(inner_key(g, k)), half_at_vk};
+            const std::array<Index, 4> ring_edges{half_at_vk1, side(g, k + 1, 1), side(g, k, 1), half_at_vk};
             std::copy(ring_faces.begin(), ring_faces.end(), faces);
-            std::copy(ring_corners.begin(), ring_corners.end(), corners);
+            for (std::size_t i = 0; i < ring_corners.size(); ++i) {
+                corners[i] = static_cast<std::uint8_t>(ring_corners[i]);
+            }
             std::copy(ring_edges.begin(), ring_edges.end(), edges);
             continue;
         }
         const Index h = edge_corner[at(e)][1] / 3;
         const Index m = edge_corner[at(e)][1] % 3;
-        write_interior_ring<6>({4 * g + k, 4 * h + (m + 1) % 3, 4 * h + 3, 4 * h + m, 4 * g + (k + 1) % 3, 4 * g + 3},
-                               {1, 2, m, 1, 2, k},
-                               {number.of(inner_key(g, k)), half_at_vk, number.of(inner_key(h, m + 1)),
-                                number.of(inner_key(h, m)), half_at_vk1, number.of(inner_key(g, k + 1))},
-                               faces, corners, edges);
+        write_interior_ring<6>(
+            {4 * g + k, 4 * h + (m + 1) % 3, 4 * h + 3, 4 * h + m, 4 * g + (k + 1) % 3, 4 * g + 3}, {1, 2, m, 1, 2, k},
+            {side(g, k, 1), half_at_vk, side(h, m + 1, 1), side(h, m, 1), half_at_vk1, side(g, k + 1, 1)}, faces,
+            corners, edges);
     }
 
     inherit_components(
@@ -529,18 +532,16 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
         return c == parent.face_offsets_[at(f)] ? parent.face_offsets_[at(f) + 1] - 1 : c - 1;
     };
 
-    // Edges: ends and face counts.
+    // Edges: their ends.
     const auto num_edges = at(C + 2 * n.num_edge_faces + n.num_closing_sides);
     assign_huge(child.edge_vertices_, 2 * num_edges);
-    assign_huge(child.edge_face_offsets_, num_edges + 1, 0);
-    const auto set_edge = [&](Index e, Index a, Index b, Index faces) {
+    const auto set_edge = [&](Index e, Index a, Index b) {
         child.edge_vertices_[2 * at(e)] = std::min(a, b);
         child.edge_vertices_[2 * at(e) + 1] = std::max(a, b);
-        child.edge_face_offsets_[at(e) + 1] = faces;
     };
     for (Index f = 0; f < parent.num_faces(); ++f) {
         for (Index c = parent.face_offsets_[at(f)]; c < parent.face_offsets_[at(f) + 1]; ++c) {
-            set_edge(c, c, parent.next_corner(f, c), parent.is_boundary_edge(parent.face_edges_[at(c)]) ? 1 : 2);
+            set_edge(c, c, parent.next_corner(f, c));
         }
     }
     const auto edge_corner = edge_corners(parent);
@@ -550,21 +551,20 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
         }
         const auto [fb, fa, ga, gb] = edge_face_of(parent, edge_corner, e);
         const auto ends = parent.edge_vertices(e);
-        set_edge(side_at(e, ends[0]), fa, ga, n.vertex_face[at(ends[0])] != invalid_index ? 2 : 1);
-        set_edge(side_at(e, ends[1]), gb, fb, n.vertex_face[at(ends[1])] != invalid_index ? 2 : 1);
+        set_edge(side_at(e, ends[0]), fa, ga);
+        set_edge(side_at(e, ends[1]), gb, fb);
     }
     for (Index v = 0; v < parent.num_vertices(); ++v) {
         if (n.closing_side[at(v)] != invalid_index) {
             const auto ring_faces = parent.vertex_faces(v);
             const auto ring_corners = parent.vertex_face_corners(v);
             set_edge(closing_side(v), parent.face_offset(ring_faces.back()) + ring_corners.back(),
-                     parent.face_offset(ring_faces.front()) + ring_corners.front(), 1);
+                     parent.face_offset(ring_faces.front()) + ring_corners.front());
         }
     }
 
-    // Face edges and signs, side by side with the face list.
+    // Face edges, side by side with the face list.
     assign_huge(child.face_edges_, child.face_vertices_.size());
-    assign_huge(child.face_edge_signs_, child.face_vertices_.size());
     std::size_t slot = 0;
     for (Index c = 0; c < C; ++c, ++slot) {
         child.face_edges_[slot] = c;
@@ -589,12 +589,6 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
             // Faces p and p + 1 share vertex_edges(v)[p + 1] (p's edge entering v).
             const bool closing = p + 1 == k && parent.is_boundary_vertex(v);
             child.face_edges_[slot++] = closing ? closing_side(v) : side_at(ring_edges[(p + 1) % ring_edges.size()], v);
-        }
-    }
-    for (Index f = 0; f < child.num_faces(); ++f) {
-        for (Index c = child.face_offsets_[at(f)]; c < child.face_offsets_[at(f) + 1]; ++c) {
-            child.face_edge_signs_[at(c)] =
-                child.face_vertices_[at(c)] < child.face_vertices_[at(child.next_corner(f, c))] ? 1 : -1;
         }
     }
     child.fill_edge_faces(nullptr);
@@ -625,7 +619,7 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
         const Index e_in = parent.face_edges_[at(c_prev)];
         // Corner of c in E(e): [f_b, f_a, g_a, g_b]; f is edge_faces(e)[0] when it runs e lower -> higher.
         const auto edge_face_corner = [&](Index e) {
-            const bool first = parent.face_edge_signs_[at(e == e_out ? c : c_prev)] > 0;
+            const bool first = parent.corner_sign(f, e == e_out ? c : c_prev) > 0;
             const bool at_lower = parent.edge_vertices(e)[0] == v;
             return first ? (at_lower ? Index{1} : Index{0}) : (at_lower ? Index{2} : Index{3});
         };
@@ -673,11 +667,11 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
                 }
             }
             Index face_slot = child.vertex_face_offsets_[at(c)];
-            Index edge_slot = child.vertex_edge_offsets_[at(c)];
+            Index edge_slot = child.vertex_edge_offset(c);
             for (std::size_t i = 0; i < 4 && ring[(start + i) % 4].face != invalid_index; ++i) {
                 const Candidate& x = ring[(start + i) % 4];
                 child.vertex_faces_[at(face_slot)] = x.face;
-                child.vertex_face_corners_[at(face_slot++)] = x.corner;
+                child.set_vertex_face_corner(at(face_slot++), x.corner);
                 child.vertex_edges_[at(edge_slot++)] = x.leaving;
                 if (face_slot == child.vertex_face_offsets_[at(c) + 1] && child.vertex_is_boundary_[at(c)] != 0) {
                     child.vertex_edges_[at(edge_slot++)] = x.entering;  // the closing boundary side
@@ -686,6 +680,7 @@ Topology doo_sabin_topology(const Topology& parent, bool vertex_faces_on_boundar
         }
     }
 
+    child.sort_large_corners();
     child.build_boundary_loops();
     child.build_components();
     child.apply_sharpness({});

@@ -134,13 +134,10 @@ detail::HugeTable<Index> Topology::build_edges(std::span<const detail::HalfEdge>
     }
 
     // Edges numbered in order of first appearance in the face list (locality, like Vtr), in one pass
-    // over the corners, which also counts each edge's faces (at most two: validated); then the
-    // faces themselves in a second pass.
+    // over the corners; then each edge's faces (at most two: validated) in a second pass.
     detail::HugeTable<Index> edge_of_group;
     detail::assign_huge(edge_of_group, at(num_groups), invalid_index);
-    detail::assign_huge(face_edge_signs_, face_vertices_.size());
     detail::assign_huge(edge_vertices_, 2 * at(num_groups));
-    detail::assign_huge(edge_face_offsets_, at(num_groups) + 1, 0);
     Index num_numbered = 0;
     for (Index f = 0; f < num_faces(); ++f) {
         const Index first = face_offsets_[at(f)];
@@ -154,9 +151,7 @@ detail::HugeTable<Index> Topology::build_edges(std::span<const detail::HalfEdge>
                 edge_vertices_[2 * at(e)] = std::min(a, b);
                 edge_vertices_[2 * at(e) + 1] = std::max(a, b);
             }
-            ++edge_face_offsets_[at(e) + 1];
             face_edges_[at(c)] = e;
-            face_edge_signs_[at(c)] = a < b ? 1 : -1;
         }
     }
     detail::HugeTable<Index> edge_face_corners;
@@ -165,40 +160,51 @@ detail::HugeTable<Index> Topology::build_edges(std::span<const detail::HalfEdge>
 }
 
 void Topology::fill_edge_faces(detail::HugeTable<Index>* edge_face_corners) {
-    std::partial_sum(edge_face_offsets_.begin(), edge_face_offsets_.end(), edge_face_offsets_.begin());
-    detail::assign_huge(edge_faces_, face_vertices_.size());
+    detail::assign_huge(edge_faces_, 2 * at(num_edges()), invalid_index);
     if (edge_face_corners != nullptr) {
-        detail::assign_huge(*edge_face_corners, face_vertices_.size());  // parallel to edge_faces_: where each enters
+        // parallel to edge_faces_: where each face enters the edge
+        detail::assign_huge(*edge_face_corners, edge_faces_.size(), invalid_index);
     }
-    // Each edge lists the face traversing it lower -> higher first, then the other (at most two).
+    // Each edge lists the face traversing it lower -> higher first, then the other; a boundary edge
+    // its only face. A face running it higher -> lower takes the first slot while it is free and
+    // gives it up when the other face comes (consistent orientation: one of each, validated).
+    const auto place = [&](Index slot, Index f, Index c) {
+        edge_faces_[at(slot)] = f;
+        if (edge_face_corners != nullptr) {
+            (*edge_face_corners)[at(slot)] = c;
+        }
+    };
     for (Index f = 0; f < num_faces(); ++f) {
         for (Index c = face_offsets_[at(f)]; c < face_offsets_[at(f) + 1]; ++c) {
-            const Index e = face_edges_[at(c)];
-            const Index slot =
-                face_edge_signs_[at(c)] > 0 ? edge_face_offsets_[at(e)] : edge_face_offsets_[at(e) + 1] - 1;
-            edge_faces_[at(slot)] = f;
-            if (edge_face_corners != nullptr) {
-                (*edge_face_corners)[at(slot)] = c;
+            const Index slot = 2 * face_edges_[at(c)];
+            const bool first_free = edge_faces_[at(slot)] == invalid_index;
+            if (corner_sign(f, c) < 0) {
+                place(first_free ? slot : slot + 1, f, c);
+                continue;
             }
+            if (!first_free) {
+                place(slot + 1, edge_faces_[at(slot)],
+                      edge_face_corners != nullptr ? (*edge_face_corners)[at(slot)] : invalid_index);
+            }
+            place(slot, f, c);
         }
     }
 }
 
 void Topology::allocate_one_rings() {
     std::partial_sum(vertex_face_offsets_.begin(), vertex_face_offsets_.end(), vertex_face_offsets_.begin());
-    detail::assign_huge(vertex_edge_offsets_, at(num_vertices_) + 1, 0);
-    for (Index v = 0; v < num_vertices_; ++v) {
-        vertex_edge_offsets_[at(v) + 1] = vertex_edge_offsets_[at(v)] + vertex_face_offsets_[at(v) + 1] -
-                                          vertex_face_offsets_[at(v)] + vertex_is_boundary_[at(v)];
+    detail::HugeTable<Index>().swap(vertex_edge_offsets_);  // without boundary: vertex_face_offsets_
+    if (std::find(vertex_is_boundary_.begin(), vertex_is_boundary_.end(), 1) != vertex_is_boundary_.end()) {
+        detail::assign_huge(vertex_edge_offsets_, at(num_vertices_) + 1, 0);
+        for (Index v = 0; v < num_vertices_; ++v) {
+            vertex_edge_offsets_[at(v) + 1] = vertex_edge_offsets_[at(v)] + vertex_face_offsets_[at(v) + 1] -
+                                              vertex_face_offsets_[at(v)] + vertex_is_boundary_[at(v)];
+        }
     }
     detail::assign_huge(vertex_faces_, at(vertex_face_offsets_.back()));
     detail::assign_huge(vertex_face_corners_, at(vertex_face_offsets_.back()));
-    detail::assign_huge(vertex_edges_, at(vertex_edge_offsets_.back()));
-}
-
-std::span<const Index> Topology::edge_faces(Index e) const {
-    const auto begin = at(edge_face_offsets_[at(e)]);
-    return std::span<const Index>(edge_faces_).subspan(begin, at(edge_face_offsets_[at(e) + 1]) - begin);
+    large_corners_.clear();
+    detail::assign_huge(vertex_edges_, at(vertex_edge_offset(num_vertices_)));
 }
 
 Index Topology::find_edge(Index a, Index b) const {
@@ -227,8 +233,8 @@ bool Topology::build_one_rings(const detail::HugeTable<Index>& edge_face_corners
     }
     vertex_is_boundary_.assign(at(num_vertices_), 0);
     for (Index e = 0; e < num_edges(); ++e) {
-        if (edge_face_offsets_[at(e) + 1] - edge_face_offsets_[at(e)] == 1) {
-            const Index c = edge_face_corners[at(edge_face_offsets_[at(e)])];
+        if (edge_face_count(e) == 1) {
+            const Index c = edge_face_corners[2 * at(e)];
             start[at(face_vertices_[at(c)])] = c;
             vertex_is_boundary_[at(face_vertices_[at(c)])] = 1;
         }
@@ -253,19 +259,19 @@ bool Topology::build_one_rings(const detail::HugeTable<Index>& edge_face_corners
             walked[at(v)] = 1;
             const Index count = offsets[at(v) + 1] - offsets[at(v)];
             Index face_slot = offsets[at(v)];
-            Index edge_slot = vertex_edge_offsets_[at(v)];
+            Index edge_slot = vertex_edge_offset(v);
             Index corner = start[at(v)];
             for (Index step = 0; step < count; ++step) {
                 const Index f = face_of(corner);
                 const Index first = face_offsets_[at(f)];
                 vertex_faces_[at(face_slot)] = f;
-                vertex_face_corners_[at(face_slot++)] = corner - first;
+                set_vertex_face_corner(at(face_slot++), corner - first);
                 vertex_edges_[at(edge_slot++)] = face_edges_[at(corner)];
                 // Counter-clockwise, the next face shares this face's incoming edge (from the previous corner).
                 const Index previous = corner == first ? face_offsets_[at(f) + 1] - 1 : corner - 1;
                 const Index in = face_edges_[at(previous)];
-                const Index across = edge_face_offsets_[at(in)];
-                if (edge_face_offsets_[at(in) + 1] - across == 1) {
+                const Index across = 2 * in;
+                if (edge_face_count(in) == 1) {
                     vertex_edges_[at(edge_slot++)] = in;  // closing boundary edge
                     break;
                 }
@@ -279,7 +285,7 @@ bool Topology::build_one_rings(const detail::HugeTable<Index>& edge_face_corners
             }
             // A walk round one fan ends at a boundary edge or back at its start: short of the vertex's
             // corners, some other fan meets this one only at the vertex (a bow-tie).
-            if (face_slot != offsets[at(v) + 1] || edge_slot != vertex_edge_offsets_[at(v) + 1]) {
+            if (face_slot != offsets[at(v) + 1] || edge_slot != vertex_edge_offset(v + 1)) {
                 every_walk_complete = false;
                 return;
             }
@@ -296,7 +302,20 @@ bool Topology::build_one_rings(const detail::HugeTable<Index>& edge_face_corners
         }
         walk([&](Index corner) { return corner_face[at(corner)]; });
     }
+    sort_large_corners();
     return every_walk_complete;
+}
+
+Index Topology::large_vertex_face_corner(std::size_t slot) const {
+    const auto found = std::lower_bound(large_corners_.begin(), large_corners_.end(), static_cast<Index>(slot),
+                                        [](const std::pair<Index, Index>& entry, Index s) { return entry.first < s; });
+    LIMSURF_ASSERT(found != large_corners_.end() && found->first == static_cast<Index>(slot),
+                   "no large corner at one-ring slot ", slot);
+    return found->second;
+}
+
+void Topology::sort_large_corners() {
+    std::sort(large_corners_.begin(), large_corners_.end());
 }
 
 std::span<const Index> Topology::vertex_faces(Index v) const {
@@ -304,14 +323,9 @@ std::span<const Index> Topology::vertex_faces(Index v) const {
     return std::span<const Index>(vertex_faces_).subspan(begin, at(vertex_face_offsets_[at(v) + 1]) - begin);
 }
 
-std::span<const Index> Topology::vertex_face_corners(Index v) const {
-    const auto begin = at(vertex_face_offsets_[at(v)]);
-    return std::span<const Index>(vertex_face_corners_).subspan(begin, at(vertex_face_offsets_[at(v) + 1]) - begin);
-}
-
 std::span<const Index> Topology::vertex_edges(Index v) const {
-    const auto begin = at(vertex_edge_offsets_[at(v)]);
-    return std::span<const Index>(vertex_edges_).subspan(begin, at(vertex_edge_offsets_[at(v) + 1]) - begin);
+    const auto begin = at(vertex_edge_offset(v));
+    return std::span<const Index>(vertex_edges_).subspan(begin, at(vertex_edge_offset(v + 1)) - begin);
 }
 
 void Topology::build_boundary_loops() {
@@ -400,10 +414,13 @@ void Topology::build_components() {
         LIMSURF_ASSERT((2 - chi[at(c)] - loops[at(c)]) % 2 == 0, "odd 2 - chi - b in component ", c);
         genus_ += (2 - chi[at(c)] - loops[at(c)]) / 2;
     }
+    if (num_components_ == 1) {
+        detail::HugeTable<Index>().swap(face_component_);  // every face's is 0
+    }
 }
 
 Index Topology::vertex_component(Index v) const {
-    return face_component_[at(vertex_faces(v).front())];
+    return face_component(vertex_faces(v).front());
 }
 
 bool Topology::all_faces_have_degree(Index degree) const noexcept {

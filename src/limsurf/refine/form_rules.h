@@ -62,7 +62,7 @@ class VertexFan {
   private:
     const Topology& t_;
     std::span<const Index> faces_;
-    std::span<const Index> corners_;
+    VertexFaceCorners corners_;
     Index k_ = 0;
     bool boundary_ = false;
 };

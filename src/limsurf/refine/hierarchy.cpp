@@ -196,9 +196,10 @@ std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, in
 }
 
 std::int64_t estimated_bytes(const LevelSize& size) {
-    // The Topology's tables (21 bytes per corner: corners, edges, signs, one-ring faces, corners
-    // and edges; edge ends and faces; vertex offsets; face offsets and components) and positions.
-    return 21 * size.corners + 20 * size.edges + 9 * size.vertices + 8 * size.faces + 24 * size.vertices;
+    // The Topology's tables (17 bytes per corner: corners, edges, one-ring faces, corners (a byte)
+    // and edges; edge ends and two face slots; vertex offsets, face offsets and components, which
+    // a closed or connected mesh goes without, counted anyway) and positions.
+    return 17 * size.corners + 16 * size.edges + 9 * size.vertices + 8 * size.faces + 24 * size.vertices;
 }
 
 std::int64_t estimated_step_nonzeros(const LevelSize& parent, SchemeKind scheme) {
@@ -238,7 +239,8 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes) {
 
 std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, bool face_list) {
     // Tables of 4 MiB and more take whole 2 MiB huge pages (core/huge_page_allocator.h): each of a
-    // level's ~17 rounds up by less than 2 MiB, and by less than half itself.
+    // level's tables and the step's temporaries (fewer than 17) rounds up by less than 2 MiB, and
+    // by less than half itself.
     const auto rounded = [](std::int64_t bytes) { return bytes + std::min(bytes / 2, std::int64_t{34} << 20); };
     const auto last = sizes.size() - 1;
     std::int64_t largest_step = 0;

@@ -1,7 +1,9 @@
 // Topology queries on small generated meshes; the bundled meshes are checked
 // against their analytic counts in bundled_meshes_test.cpp.
 #include <algorithm>
+#include <cstddef>
 #include <set>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -147,6 +149,45 @@ TEST(Topology, OneRingsTurnCounterClockwiseInThePlane) {
             EXPECT_GT(a.cross(b)(2), 0.0) << "vertex " << v << " step " << i;
         }
     }
+}
+
+TEST(Topology, CornersBeyondAByteAreKeptExactly) {
+    // A Topology keeps one-ring corners in a byte each and the corners of faces of 255 corners and
+    // more beside that table: a 300-gon in a ring of quads, built from its face list (the one-ring
+    // walk) and its Doo–Sabin child (whose F-face is a 300-gon again) built from the parent's tables.
+    const Index n = 300;
+    std::vector<std::vector<Index>> faces(1);
+    for (Index i = 0; i < n; ++i) {
+        faces[0].push_back(i);
+        faces.push_back({(i + 1) % n, i, n + i, n + (i + 1) % n});
+    }
+    const Topology t = Topology::from_polygons(2 * n, faces);
+    expect_consistent(t);
+    for (Index v = 0; v < n; ++v) {
+        const auto ring = t.vertex_faces(v);
+        const auto corners = t.vertex_face_corners(v);
+        const auto in_polygon = std::find(ring.begin(), ring.end(), 0) - ring.begin();
+        ASSERT_LT(in_polygon, static_cast<std::ptrdiff_t>(ring.size()));
+        EXPECT_EQ(corners[static_cast<std::size_t>(in_polygon)], v);
+        EXPECT_EQ(std::vector<Index>(corners.begin(), corners.end()).size(), ring.size());
+    }
+
+    const Topology child = detail::doo_sabin_topology(t, true);
+    std::vector<Index> offsets;
+    std::vector<Index> corners;
+    detail::doo_sabin_faces(t, true, offsets, corners);
+    const Topology general(child.num_vertices(), offsets, corners);
+    expect_consistent(child);
+    ASSERT_EQ(child.num_vertices(), general.num_vertices());
+    Index large = 0;
+    for (Index v = 0; v < child.num_vertices(); ++v) {
+        const auto ours = child.vertex_face_corners(v);
+        const auto theirs = general.vertex_face_corners(v);
+        EXPECT_EQ(std::vector<Index>(ours.begin(), ours.end()), std::vector<Index>(theirs.begin(), theirs.end()))
+            << "vertex " << v;
+        large += std::count_if(ours.begin(), ours.end(), [](Index c) { return c >= 255; });
+    }
+    EXPECT_EQ(large, n - 255);  // the F-face's corners 255..299
 }
 
 TEST(Topology, MixedDegreesAndComponents) {
