@@ -66,7 +66,8 @@ class IndexIterator {
 }  // namespace detail
 
 /// The corners at which a vertex sits in its faces, parallel to Topology::vertex_faces(v): a view
-/// into its Topology (valid while it lives), read like a span of Index.
+/// into its Topology, read like a span of Index. Unlike the spans of the other accessors it points
+/// at the Topology object itself: valid while that object lives and is not moved.
 class VertexFaceCorners {
   public:
     using iterator = detail::IndexIterator<VertexFaceCorners, Index>;
