@@ -66,16 +66,22 @@ class IndexIterator {
 }  // namespace detail
 
 /// The corners at which a vertex sits in its faces, parallel to Topology::vertex_faces(v): a view
-/// into its Topology, read like a span of Index. Unlike the spans of the other accessors it points
-/// at the Topology object itself: valid while that object lives and is not moved.
+/// into its Topology's tables (valid as long as the spans of the other accessors), read like a span
+/// of Index. The Topology keeps a corner in a byte; a corner of large_corner or more (faces of 255
+/// corners and more are rare) sits in a short side table, sorted by slot.
 class VertexFaceCorners {
   public:
     using iterator = detail::IndexIterator<VertexFaceCorners, Index>;
     using value_type = Index;
+    /// The byte that sends a lookup to the side table.
+    static constexpr std::uint8_t large_corner = 255;
     [[nodiscard]] std::size_t size() const noexcept { return size_; }
     [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
     /// @pre i < size()
-    [[nodiscard]] Index operator[](std::size_t i) const;
+    [[nodiscard]] Index operator[](std::size_t i) const {
+        const std::uint8_t c = bytes_[i];
+        return c != large_corner ? Index{c} : large(first_slot_ + i);
+    }
     [[nodiscard]] Index front() const { return (*this)[0]; }
     [[nodiscard]] Index back() const { return (*this)[size_ - 1]; }
     [[nodiscard]] iterator begin() const { return {this, 0}; }
@@ -83,11 +89,15 @@ class VertexFaceCorners {
 
   private:
     friend class Topology;
-    VertexFaceCorners(const Topology* topology, std::size_t first_slot, std::size_t size)
-        : topology_(topology), first_slot_(first_slot), size_(size) {}
-    const Topology* topology_;
+    VertexFaceCorners(const std::uint8_t* bytes, std::size_t first_slot, std::size_t size,
+                      std::span<const std::pair<Index, Index>> large_corners)
+        : bytes_(bytes), first_slot_(first_slot), size_(size), large_corners_(large_corners) {}
+    /// The side table's corner at one-ring slot @p slot.
+    [[nodiscard]] Index large(std::size_t slot) const;
+    const std::uint8_t* bytes_;  // at first_slot_
     std::size_t first_slot_;
     std::size_t size_;
+    std::span<const std::pair<Index, Index>> large_corners_;  // (slot, corner), by slot
 };
 
 /// The signs of a face's edges, +1 where corner k -> k+1 runs lower -> higher vertex index, else
@@ -206,7 +216,8 @@ class Topology {
     /// Corner of vertex_faces(v)[i] at which v sits.
     [[nodiscard]] VertexFaceCorners vertex_face_corners(Index v) const {
         const Index first = vertex_face_offsets_[at(v)];
-        return {this, at(first), at(vertex_face_offsets_[at(v) + 1] - first)};
+        return {vertex_face_corners_.data() + at(first), at(first), at(vertex_face_offsets_[at(v) + 1] - first),
+                large_corners_};
     }
     /// Incident edges, counter-clockwise, interleaved with vertex_faces(v).
     [[nodiscard]] std::span<const Index> vertex_edges(Index v) const;
@@ -254,7 +265,6 @@ class Topology {
     [[nodiscard]] SharpnessTags sharpness_tags() const;
 
   private:
-    friend class VertexFaceCorners;
     friend Topology detail::refined_topology(Index, std::span<const Index>, std::span<const Index>,
                                              const SharpnessTags&);
     friend Topology detail::quad_split_topology(const Topology&, const SharpnessTags&);
@@ -284,18 +294,11 @@ class Topology {
     void fill_edge_faces(detail::HugeTable<Index>* edge_face_corners);
     /// 1 on the boundary, else 2 (a Topology's edges are manifold).
     [[nodiscard]] Index edge_face_count(Index e) const { return edge_faces_[2 * at(e) + 1] == invalid_index ? 1 : 2; }
-    /// vertex_face_corners_ holds a corner in a byte; a corner of large_corner or more is found
-    /// in large_corners_ (faces of 255 corners and more are rare; a byte per corner saves 3 of a
-    /// Topology's ~37 bytes per corner).
-    static constexpr std::uint8_t large_corner = 255;
-    [[nodiscard]] Index vertex_face_corner(std::size_t slot) const {
-        const std::uint8_t c = vertex_face_corners_[slot];
-        return c != large_corner ? Index{c} : large_vertex_face_corner(slot);
-    }
-    [[nodiscard]] Index large_vertex_face_corner(std::size_t slot) const;
-    /// Writes slot @p slot of vertex_face_corners_ (of large_corners_ for a large corner;
+    /// Writes slot @p slot of vertex_face_corners_: a byte, or VertexFaceCorners::large_corner and an
+    /// entry of large_corners_ (a byte per corner saves 3 bytes per corner against an Index;
     /// sort_large_corners() once all are written).
     void set_vertex_face_corner(std::size_t slot, Index corner) {
+        constexpr std::uint8_t large_corner = VertexFaceCorners::large_corner;
         if (corner < large_corner) {
             vertex_face_corners_[slot] = static_cast<std::uint8_t>(corner);
             return;
@@ -355,9 +358,5 @@ class Topology {
     detail::HugeTable<double> vertex_sharpness_;  // empty when all smooth
     detail::HugeTable<std::uint8_t> holes_;       // empty when no holes
 };
-
-inline Index VertexFaceCorners::operator[](std::size_t i) const {
-    return topology_->vertex_face_corner(first_slot_ + i);
-}
 
 }  // namespace limsurf

@@ -306,7 +306,7 @@ bool Topology::build_one_rings(const detail::HugeTable<Index>& edge_face_corners
     return every_walk_complete;
 }
 
-Index Topology::large_vertex_face_corner(std::size_t slot) const {
+Index VertexFaceCorners::large(std::size_t slot) const {
     const auto found = std::lower_bound(large_corners_.begin(), large_corners_.end(), static_cast<Index>(slot),
                                         [](const std::pair<Index, Index>& entry, Index s) { return entry.first < s; });
     LIMSURF_ASSERT(found != large_corners_.end() && found->first == static_cast<Index>(slot),
