@@ -76,6 +76,12 @@ class PointArrays {
         }
         return {static_cast<Index>(face), x, y};
     }
+    /// Point i as given, unchecked (a face out of range becomes -1): for LimitBasis::prefetch,
+    /// which ignores what it cannot use.
+    [[nodiscard]] SurfacePoint unchecked(Index i) const {
+        const long long face = faces_.data()[i];
+        return {face >= 0 && face < limit_ ? static_cast<Index>(face) : Index{-1}, u_.data()[i], v_.data()[i]};
+    }
 
   private:
     static py::array_t<double, py::array::c_style | py::array::forcecast> real_vector(const py::handle& h,
@@ -220,6 +226,15 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
         parallel_ranges(static_cast<Index>(n), threads, [&](Index begin, Index end) {
             LimitPoint values;
             for (Index i = begin; i < end; ++i) {
+                if (interleave) {  // as prefetch_ahead (limit/batch_evaluation.h): the chain for points ahead
+                    using Stage = LimitBasis::PrefetchStage;
+                    for (const auto& [k, stage] : {std::pair{3, Stage::Lookup}, std::pair{2, Stage::Patch},
+                                                   std::pair{1, Stage::ControlPoints}}) {
+                        if (i + k < end) {
+                            b.basis.prefetch(interleaved, points.unchecked(i + k), stage);
+                        }
+                    }
+                }
                 const bool ok = failure.evaluate(points, i, [&](const SurfacePoint& p) {
                     if (interleave) {
                         b.basis.evaluate(interleaved, p, values, derivative_order);

@@ -1,5 +1,7 @@
 // evaluate_points (limit/batch_evaluation.h): bit for bit LimitBasis::evaluate at every point, for any
 // thread count, every scheme with a limit basis; bad points refused before any work, naming the point.
+#include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -95,6 +97,48 @@ TEST(BatchEvaluation, RefusesBadPointsNamingThem) {
     EXPECT_NE(message({{hole, 0.5, 0.5}}, X).find("point 0: ptex face " + std::to_string(hole) + " has no limit"),
               std::string::npos);
     EXPECT_NE(message({good}, X.topRows(3)).find("positions are 3 × 3"), std::string::npos);
+}
+
+// LimitBasis::prefetch is a hint: for any point, any stage, any X (wrong size included), on a fresh
+// basis (no local patch built yet) and a warm one, it reads nothing out of range and changes no
+// result. Run it under the asan preset to see an out-of-range read; here a crash fails it.
+TEST(BatchEvaluation, PrefetchAsksForNothingItCannotUse) {
+    const std::pair<const char*, SchemeKind> cases[] = {{"genus2", SchemeKind::CatmullClark},
+                                                        {"cube_ngons", SchemeKind::CatmullClark},
+                                                        {"disk_ev7_tris", SchemeKind::Loop},
+                                                        {"dodecahedron", SchemeKind::DooSabin},
+                                                        {"tetra_1", SchemeKind::C2g0}};
+    using Stage = LimitBasis::PrefetchStage;
+    for (const auto& [name, scheme] : cases) {
+        SCOPED_TRACE(name);
+        const BuildResult built = read_mesh(find_bundled(name).path);
+        const Points& X = built.mesh.positions();
+        const InterleavedPoints interleaved(X);
+        const InterleavedPoints too_small = interleaved.topRows(1);
+        const LimitBasis basis(built.mesh.topology(), scheme);
+        const LimitBasis untouched(built.mesh.topology(), scheme);
+        const std::vector<SurfacePoint> points = random_points(basis, 200);
+        std::vector<SurfacePoint> odd = points;
+        const double nan = std::nan("");
+        for (const Index face : {Index{-1}, basis.num_ptex_faces(), std::numeric_limits<Index>::max(),
+                                 std::numeric_limits<Index>::min()}) {
+            odd.push_back({face, 0.5, 0.5});
+        }
+        odd.push_back({0, nan, -7.0});
+        for (int pass = 0; pass < 2; ++pass) {  // fresh, then with every root built
+            for (const SurfacePoint& p : odd) {
+                for (const Stage stage : {Stage::Lookup, Stage::Patch, Stage::ControlPoints}) {
+                    basis.prefetch(interleaved, p, stage);
+                    basis.prefetch(too_small, p, stage);
+                }
+            }
+            for (const SurfacePoint& p : points) {
+                const Eigen::Matrix<double, 6, 3> ours = basis.evaluate(X, p, DerivativeOrder::Second);
+                const Eigen::Matrix<double, 6, 3> theirs = untouched.evaluate(X, p, DerivativeOrder::Second);
+                ASSERT_EQ(ours, theirs) << "face " << p.face;
+            }
+        }
+    }
 }
 
 }  // namespace

@@ -477,5 +477,28 @@ TEST(PatchBasis, QuarticBoxSplineEqualsThePatchesOfTheLoopSubdividedNet) {
     }
 }
 
+// Asking for fewer rows computes the leading rows bit for bit as all six and leaves the others 0.
+TEST(PatchBasis, QuarticLeadingRowsAreTheSameBitsWhateverIsAskedFor) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int sample = 0; sample < 200; ++sample) {
+        double s = uniform(rng);
+        double t = uniform(rng);
+        if (s + t > 1.0) {
+            s = 1.0 - s;
+            t = 1.0 - t;
+        }
+        Weights<12> all;
+        quartic_box_spline_patch_weights(s, t, all);
+        for (const int rows : {1, 3}) {
+            Weights<12> some;
+            some.setConstant(7.0);
+            quartic_box_spline_patch_weights(s, t, some, rows);
+            ASSERT_EQ(some.topRows(rows), all.topRows(rows)) << "rows " << rows;
+            ASSERT_TRUE(some.bottomRows(6 - rows).isZero(0.0)) << "rows " << rows;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace limsurf

@@ -27,4 +27,10 @@ using PointValues = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
                                           std::span<const SurfacePoint> points,
                                           DerivativeOrder order = DerivativeOrder::First, int num_threads = 0);
 
+/// @brief The prefetches a loop over @p points makes before it evaluates point @p i: LimitBasis::
+///   prefetch's three stages for points i + 3, i + 2 and i + 1 (those before @p end). Changes no
+///   result; evaluate_points calls it, and loops of their own (the Python module's) may.
+void prefetch_ahead(const LimitBasis& basis, const InterleavedPoints& X, std::span<const SurfacePoint> points, Index i,
+                    Index end) noexcept;
+
 }  // namespace limsurf

@@ -172,6 +172,18 @@ class LimitBasis {
     [[nodiscard]] Eigen::Matrix<double, 6, 3> evaluate(const Points& X, const SurfacePoint& point,
                                                        DerivativeOrder order = DerivativeOrder::Second) const;
 
+    /// @brief Asks the caches for what evaluate(X, point, ...) will read at @p point, without
+    ///   waiting for it: a hint for loops over many random points of a mesh larger than the caches,
+    ///   where each evaluation otherwise waits on memory for its face's entry, its patch and its
+    ///   control points. The three are a chain (each found through the one before), so a loop
+    ///   asks for them in @p stage order, for points a few places ahead of the one it evaluates:
+    ///   Lookup for point i + 3, Patch for i + 2, ControlPoints for i + 1 (evaluate_points,
+    ///   limit/batch_evaluation.h, and the Python module do).
+    /// Changes no result and throws nothing: a face out of range, a point outside its domain or a
+    /// face that is not a plain regular patch (those descend local patches) asks for less or nothing.
+    enum class PrefetchStage { Lookup, Patch, ControlPoints };
+    void prefetch(const InterleavedPoints& X, const SurfacePoint& point, PrefetchStage stage) const noexcept;
+
     /// @brief The snapping matrix P (#V × #V): row v holds the limit position mask of
     ///   control vertex v (sec §3.4); P · X are the limit positions of the control vertices.
     /// Vertices without a limit surface around them (holes, None boundaries) get their own position.

@@ -83,7 +83,10 @@ void quadratic_bspline_patch_weights(double s, double t, Eigen::Matrix<double, 6
 ///   OpenSubdiv's patchBasis.cpp). At (0,0) they are 1/2 on point 4 and 1/12 on each of
 ///   its six neighbours (Loop's limit mask at a regular vertex).
 /// @param[out] w 6 × 12 weights (rows value, ∂s, ∂t, ∂ss, ∂st, ∂tt)
+/// @param rows  how many leading rows to compute (1, 3 or 6; the others are 0): each computed row
+///   is bit for bit the same whatever @p rows is. The weights are half of a warm Loop evaluation,
+///   so first derivatives alone should not pay for the second.
 /// @see Stam 1998 "Evaluation of Loop subdivision surfaces", appendix
-void quartic_box_spline_patch_weights(double s, double t, Eigen::Matrix<double, 6, 12>& w) noexcept;
+void quartic_box_spline_patch_weights(double s, double t, Eigen::Matrix<double, 6, 12>& w, int rows = 6) noexcept;
 
 }  // namespace limsurf

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/parallel.h"
@@ -29,6 +30,19 @@ void check_point(const LimitBasis& basis, const SurfacePoint& p, std::size_t i) 
 
 }  // namespace
 
+void prefetch_ahead(const LimitBasis& basis, const InterleavedPoints& X, std::span<const SurfacePoint> points, Index i,
+                    Index end) noexcept {
+    using Stage = LimitBasis::PrefetchStage;
+    const auto ahead = [&](Index k, Stage stage) {
+        if (i + k < end) {
+            basis.prefetch(X, points[static_cast<std::size_t>(i + k)], stage);
+        }
+    };
+    ahead(3, Stage::Lookup);
+    ahead(2, Stage::Patch);
+    ahead(1, Stage::ControlPoints);
+}
+
 PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<const SurfacePoint> points,
                             DerivativeOrder order, int num_threads) {
     LIMSURF_CHECK(X.rows() == basis.topology().num_vertices() && X.cols() == 3, InputError,
@@ -44,6 +58,9 @@ PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<
         parallel_ranges(n, num_threads, [&](Index begin, Index end) {
             LimitPoint point;  // reused: its scratch weights allocate once per thread, not per point
             for (Index i = begin; i < end; ++i) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(P)>, InterleavedPoints>) {
+                    prefetch_ahead(basis, P, points, i, end);
+                }
                 basis.evaluate(P, points[static_cast<std::size_t>(i)], point, order);
                 for (int r = 0; r < rows; ++r) {
                     out.block<1, 3>(i, 3 * r) = point.d.row(r);

@@ -81,7 +81,7 @@ void patch_rows_times(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2
     } else {
         Eigen::Matrix<double, 6, 12> b;
         Eigen::Matrix<double, 6, 12> r;
-        quartic_box_spline_patch_weights(st.x(), st.y(), b);
+        quartic_box_spline_patch_weights(st.x(), st.y(), b, k);
         to_ptex<12>(b, J, r);
         multiply_rows(r, M, k, out);
     }
@@ -127,18 +127,20 @@ void times_points(const Dense& A, const In& P, Out& out) {
 /// out = the first @p k rows (value, derivatives) of the regular patch with points @p P (16 or 12
 /// rows) at (s, t), in ptex derivatives; the other rows 0. The basis is applied to P in patch
 /// coordinates and the 6 × 3 result mapped to ptex (to_ptex is linear in the columns): the
-/// chain rule on 3 columns instead of 16.
+/// chain rule on 3 columns instead of 16. The products are lazy: 6 × 16 · 16 × 3 is above Eigen's
+/// threshold for fixed-size coefficient products, and its general product (packing both sides
+/// for a blocked kernel) took a quarter of a warm evaluation.
 void patch_values(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J, const PatchPoints& P, int k,
                   Values& out) {
     Values patch;
     if (quad) {
         Eigen::Matrix<double, 6, 16> b;
         cubic_bspline_patch_weights(st.x(), st.y(), b);
-        patch.noalias() = b * P.topRows<16>();
+        patch.noalias() = b.lazyProduct(P.topRows<16>());
     } else {
         Eigen::Matrix<double, 6, 12> b;
-        quartic_box_spline_patch_weights(st.x(), st.y(), b);
-        patch.noalias() = b * P.topRows<12>();
+        quartic_box_spline_patch_weights(st.x(), st.y(), b, k);
+        patch.noalias() = b.lazyProduct(P.topRows<12>());
     }
     to_ptex<3>(patch, J, out);
     out.bottomRows(6 - k).setZero();
@@ -1052,6 +1054,50 @@ void LimitBasis::evaluate(const InterleavedPoints& X, const SurfacePoint& point,
     LIMSURF_CHECK(X.rows() == impl_->topology.num_vertices(), InputError, "limit evaluation: ", X.rows(),
                   " positions for ", impl_->topology.num_vertices(), " vertices");
     impl_->evaluate(X, checked_point(point, impl_->quad, num_ptex_faces()), rows_of(order), out);
+}
+
+void LimitBasis::prefetch(const InterleavedPoints& X, const SurfacePoint& point, PrefetchStage stage) const noexcept {
+    const Impl& m = *impl_;
+    if (point.face < 0 || at(point.face) >= m.fast_index.size()) {
+        return;  // also every basis without fast patches (Doo–Sabin, C2g0: fast_index is empty)
+    }
+    const auto prefetch_rows = [&](const Index* vertices, std::size_t n) {
+        if (X.rows() != m.topology.num_vertices()) {
+            return;
+        }
+        for (std::size_t i = 0; i < n; ++i) {  // a row is 24 bytes: it may straddle two cache lines
+            const double* row = X.data() + 3 * vertices[i];
+            __builtin_prefetch(row);
+            __builtin_prefetch(row + 2);
+        }
+    };
+    const Index* entry = &m.fast_index[at(point.face)];
+    const std::atomic<Root*>* slot = &m.roots[at(point.face)];
+    if (stage == PrefetchStage::Lookup) {
+        __builtin_prefetch(entry);
+        __builtin_prefetch(slot);
+        return;
+    }
+    if (*entry < 0) {  // a face near an extraordinary vertex: its root (if built) and its support
+        const Root* root = slot->load(std::memory_order_acquire);
+        if (root == nullptr) {
+            return;
+        }
+        if (stage == PrefetchStage::Patch) {
+            __builtin_prefetch(root);
+            __builtin_prefetch(root->support.data());
+        } else if (root->support.size() <= static_cast<std::size_t>(max_local_points)) {
+            prefetch_rows(root->support.data(), root->support.size());
+        }
+        return;
+    }
+    const Impl::FastPatch& patch = m.fast[at(*entry)];
+    if (stage == PrefetchStage::Patch) {  // 16 indices and a rotation: 68 bytes, two cache lines
+        __builtin_prefetch(&patch);
+        __builtin_prefetch(reinterpret_cast<const char*>(&patch + 1) - 1);
+        return;
+    }
+    prefetch_rows(patch.points.data(), m.quad ? 16 : 12);
 }
 
 Eigen::Matrix<double, 6, 3> LimitBasis::evaluate(const Points& X, const SurfacePoint& point,

@@ -1,5 +1,7 @@
 #include "limsurf/limit/patch_basis.h"
 
+#include <algorithm>
+
 namespace limsurf {
 namespace detail {
 namespace {
@@ -109,7 +111,8 @@ void quadratic_bspline_patch_weights(double s, double t, Eigen::Matrix<double, 6
     detail::tensor_weights<3>(detail::quadratic_bspline_1d(s), detail::quadratic_bspline_1d(t), w);
 }
 
-void quartic_box_spline_patch_weights(double s, double t, Eigen::Matrix<double, 6, 12>& w) noexcept {
+void quartic_box_spline_patch_weights(double s, double t, Eigen::Matrix<double, 6, 12>& w, int rows) noexcept {
+    rows = std::clamp(rows, 1, 6);
     // The coefficient matrix as a fixed-size Eigen matrix (scaled by 1/12), built once.
     static const Eigen::Matrix<double, 15, 12, Eigen::RowMajor> coefficients = [] {
         Eigen::Matrix<double, 15, 12, Eigen::RowMajor> c;
@@ -147,14 +150,15 @@ void quartic_box_spline_patch_weights(double s, double t, Eigen::Matrix<double, 
     const double pt[5] = {1.0, t, t * t, t * t * t, t * t * t * t};
     Eigen::Matrix<double, 6, 15> d;
     for (int m = 0; m < 15; ++m) {
-        for (int r = 0; r < 6; ++r) {
+        for (int r = 0; r < rows; ++r) {
             d(r, m) = table.factor(r, m) * ps[table.ea[r][m]] * pt[table.eb[r][m]];
         }
     }
-    // Row-major accumulation: 90 AXPYs of length 12 (vectorised), cheaper than a general product.
+    // Row-major accumulation: up to 90 AXPYs of length 12 (vectorised), cheaper than a general
+    // product; each row sums its monomials in the same order whatever `rows` is.
     Eigen::Matrix<double, 6, 12, Eigen::RowMajor> sum = Eigen::Matrix<double, 6, 12, Eigen::RowMajor>::Zero();
     for (int m = 0; m < 15; ++m) {
-        for (int r = 0; r < 6; ++r) {
+        for (int r = 0; r < rows; ++r) {
             if (d(r, m) != 0.0) {
                 sum.row(r) += d(r, m) * coefficients.row(m);
             }
