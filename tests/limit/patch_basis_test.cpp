@@ -500,5 +500,42 @@ TEST(PatchBasis, QuarticLeadingRowsAreTheSameBitsWhateverIsAskedFor) {
     }
 }
 
+// The values path (points contracted with the monomials first) is the weights applied to the
+// points, up to rounding, for every row asked for; the rows not asked for are 0.
+TEST(PatchBasis, QuarticValuesAreTheWeightsApplied) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int sample = 0; sample < 200; ++sample) {
+        double s = uniform(rng);
+        double t = uniform(rng);
+        if (s + t > 1.0) {
+            s = 1.0 - s;
+            t = 1.0 - t;
+        }
+        Eigen::Matrix<double, 12, 3> P;
+        for (Eigen::Index i = 0; i < P.size(); ++i) {
+            P(i) = 10.0 * uniform(rng) - 5.0;
+        }
+        Weights<12> w;
+        quartic_box_spline_patch_weights(s, t, w);
+        const Eigen::Matrix<double, 6, 3> expected = w * P;
+        for (const int rows : {1, 3, 6}) {
+            Eigen::Matrix<double, 6, 3> values;
+            values.setConstant(7.0);
+            quartic_box_spline_patch_values(s, t, P, values, rows);
+            for (int r = 0; r < 6; ++r) {
+                for (int c = 0; c < 3; ++c) {
+                    if (r < rows) {
+                        ASSERT_NEAR(values(r, c), expected(r, c), 1e-13 * (1.0 + std::abs(expected(r, c))))
+                            << "row " << r << " of " << rows;
+                    } else {
+                        ASSERT_EQ(values(r, c), 0.0) << "row " << r << " of " << rows;
+                    }
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace limsurf

@@ -89,4 +89,11 @@ void quadratic_bspline_patch_weights(double s, double t, Eigen::Matrix<double, 6
 /// @see Stam 1998 "Evaluation of Loop subdivision surfaces", appendix
 void quartic_box_spline_patch_weights(double s, double t, Eigen::Matrix<double, 6, 12>& w, int rows = 6) noexcept;
 
+/// @brief The same patch applied to its 12 points @p P (12 × 3): value and derivatives (rows as
+///   above; the first @p rows computed, the others 0). Equal to w · P up to rounding, at about half
+///   the arithmetic: P is contracted with the monomial coefficients first (15 points), and the
+///   rows are sums over those instead of over 12 weights each.
+void quartic_box_spline_patch_values(double s, double t, const Eigen::Matrix<double, 12, 3>& P,
+                                     Eigen::Matrix<double, 6, 3>& out, int rows = 6) noexcept;
+
 }  // namespace limsurf

@@ -137,10 +137,9 @@ void patch_values(bool quad, const Eigen::Vector2d& st, const Eigen::Matrix2d& J
         Eigen::Matrix<double, 6, 16> b;
         cubic_bspline_patch_weights(st.x(), st.y(), b);
         patch.noalias() = b.lazyProduct(P.topRows<16>());
-    } else {
-        Eigen::Matrix<double, 6, 12> b;
-        quartic_box_spline_patch_weights(st.x(), st.y(), b, k);
-        patch.noalias() = b.lazyProduct(P.topRows<12>());
+    } else {  // the points contracted with the monomials first: half the arithmetic of the weights
+        const Eigen::Matrix<double, 12, 3> points = P.topRows<12>();
+        quartic_box_spline_patch_values(st.x(), st.y(), points, patch, k);
     }
     to_ptex<3>(patch, J, out);
     out.bottomRows(6 - k).setZero();
