@@ -7,7 +7,9 @@
 //               (its local patches are built lazily on first use: setup + evaluate);
 //               "warm" = a second pass over the same points with the patches cached;
 //               "weights" = the warm pass through LimitBasis::evaluate(point, weights,
-//               order) + LimitWeights::apply (what a user who needs the weights pays).
+//               order) + LimitWeights::apply (what a user who needs the weights pays);
+//               "store" = the warm pass as a batch loop: points ahead prefetched
+//               (prefetch_ahead), every point's rows kept in a reused array.
 //   OpenSubdiv: Far::TopologyRefiner + RefineAdaptive + PatchTableFactory
 //               (Gregory-basis end caps, double precision) + PatchMap; refined
 //               vertices by PrimvarRefiner, local (end-cap) points by the patch
@@ -235,6 +237,35 @@ void limsurf_warm(benchmark::State& state, const Mesh& mesh, DerivativeOrder ord
     report(state, mesh, sum);
 }
 
+/// The warm pass of limsurf_warm, but as a batch loop that keeps every result: the points ahead
+/// are prefetched (prefetch_ahead, as evaluate_points and the Python module do) and each point's
+/// rows are written into a reused N × 3·rows array (faulted in before the timer), as Python's
+/// evaluate(..., out=) does into its arrays — the C++ side of bench/python_eval.py.
+void limsurf_store(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
+    if (!mesh.warm) {
+        mesh.warm = std::make_unique<limsurf::LimitBasis>(mesh.topology, mesh.scheme);
+    }
+    const int rows = rows_of(order);
+    limsurf::PointValues values(static_cast<Eigen::Index>(mesh.points.size()), 3 * rows);
+    const auto pass = [&] {
+        limsurf::LimitPoint point;
+        const auto n = static_cast<limsurf::Index>(mesh.points.size());
+        for (limsurf::Index i = 0; i < n; ++i) {
+            limsurf::prefetch_ahead(*mesh.warm, mesh.interleaved, mesh.points, i, n);
+            mesh.warm->evaluate(mesh.interleaved, mesh.points[static_cast<std::size_t>(i)], point, order);
+            for (int r = 0; r < rows; ++r) {
+                values.block<1, 3>(i, 3 * r) = point.d.row(r);
+            }
+        }
+    };
+    pass();  // warms the basis and faults the array in
+    for (auto _ : state) {
+        pass();
+        benchmark::ClobberMemory();
+    }
+    report(state, mesh, values.sum());
+}
+
 /// Warm evaluation as one batch (limit/batch_evaluation.h) on state.range(0) threads: the
 /// multi-threaded form of limsurf_warm (same points, same basis, results independent of threads).
 void limsurf_batch(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
@@ -416,6 +447,13 @@ void BM_limsurf_batch_Loop_d1(benchmark::State& s) {
     limsurf_batch(s, loop(), DerivativeOrder::First);
 }
 
+void BM_limsurf_store_CCsparse_d1(benchmark::State& s) {
+    limsurf_store(s, cc_sparse(), DerivativeOrder::First);
+}
+void BM_limsurf_store_CCsparse_d2(benchmark::State& s) {
+    limsurf_store(s, cc_sparse(), DerivativeOrder::Second);
+}
+
 void BM_limsurf_first_CCdense_d1(benchmark::State& s) {
     limsurf_first(s, cc_dense(), DerivativeOrder::First);
 }
@@ -526,6 +564,9 @@ LIMSURF_MESH(Loop);
 LIMSURF_ONCE(BM_limsurf_batch_CCdense_d1)->ArgName("threads")->Arg(1)->Arg(2);
 LIMSURF_ONCE(BM_limsurf_batch_CCsparse_d1)->ArgName("threads")->Arg(1)->Arg(2);
 LIMSURF_ONCE(BM_limsurf_batch_Loop_d1)->ArgName("threads")->Arg(1)->Arg(2);
+// Warm passes that keep their results (bench/python_eval.py's C++ side).
+LIMSURF_ONCE(BM_limsurf_store_CCsparse_d1);
+LIMSURF_ONCE(BM_limsurf_store_CCsparse_d2);
 
 int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);

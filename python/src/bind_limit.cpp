@@ -14,6 +14,7 @@
 #include "arrays.h"
 #include "common.h"
 #include "limsurf/core/parallel.h"
+#include "limsurf/limit/batch_evaluation.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/limit/surface_frame.h"
 #include "limsurf/quadrature/sampler.h"
@@ -226,14 +227,8 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
         parallel_ranges(static_cast<Index>(n), threads, [&](Index begin, Index end) {
             LimitPoint values;
             for (Index i = begin; i < end; ++i) {
-                if (interleave) {  // as prefetch_ahead (limit/batch_evaluation.h): the chain for points ahead
-                    using Stage = LimitBasis::PrefetchStage;
-                    for (const auto& [k, stage] : {std::pair{3, Stage::Lookup}, std::pair{2, Stage::Patch},
-                                                   std::pair{1, Stage::ControlPoints}}) {
-                        if (i + k < end) {
-                            b.basis.prefetch(interleaved, points.unchecked(i + k), stage);
-                        }
-                    }
+                if (interleave) {  // the points ahead, as evaluate_points does
+                    prefetch_ahead(b.basis, interleaved, i, end, [&](Index k) { return points.unchecked(k); });
                 }
                 const bool ok = failure.evaluate(points, i, [&](const SurfacePoint& p) {
                     if (interleave) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -27,10 +28,26 @@ using PointValues = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
                                           std::span<const SurfacePoint> points,
                                           DerivativeOrder order = DerivativeOrder::First, int num_threads = 0);
 
-/// @brief The prefetches a loop over @p points makes before it evaluates point @p i: LimitBasis::
-///   prefetch's three stages for points i + 3, i + 2 and i + 1 (those before @p end). Changes no
-///   result; evaluate_points calls it, and loops of their own (the Python module's) may.
-void prefetch_ahead(const LimitBasis& basis, const InterleavedPoints& X, std::span<const SurfacePoint> points, Index i,
-                    Index end) noexcept;
+/// @brief The prefetches a loop makes before it evaluates point @p i of [.., @p end): LimitBasis::
+///   prefetch's three stages for points i + 3, i + 2 and i + 1 (those before @p end), each point
+///   given by @p point_at(k) (a SurfacePoint; it need not be checked, prefetch ignores what it cannot
+///   use). Changes no result; evaluate_points and the Python module's evaluate call it.
+template <class PointAt>
+void prefetch_ahead(const LimitBasis& basis, const InterleavedPoints& X, Index i, Index end,
+                    const PointAt& point_at) noexcept {
+    using Stage = LimitBasis::PrefetchStage;
+    constexpr std::pair<Index, Stage> chain[] = {{3, Stage::Lookup}, {2, Stage::Patch}, {1, Stage::ControlPoints}};
+    for (const auto& [ahead, stage] : chain) {
+        if (i + ahead < end) {
+            basis.prefetch(X, point_at(i + ahead), stage);
+        }
+    }
+}
+
+/// prefetch_ahead over a span of points.
+inline void prefetch_ahead(const LimitBasis& basis, const InterleavedPoints& X, std::span<const SurfacePoint> points,
+                           Index i, Index end) noexcept {
+    prefetch_ahead(basis, X, i, end, [&](Index k) { return points[static_cast<std::size_t>(k)]; });
+}
 
 }  // namespace limsurf

@@ -30,19 +30,6 @@ void check_point(const LimitBasis& basis, const SurfacePoint& p, std::size_t i) 
 
 }  // namespace
 
-void prefetch_ahead(const LimitBasis& basis, const InterleavedPoints& X, std::span<const SurfacePoint> points, Index i,
-                    Index end) noexcept {
-    using Stage = LimitBasis::PrefetchStage;
-    const auto ahead = [&](Index k, Stage stage) {
-        if (i + k < end) {
-            basis.prefetch(X, points[static_cast<std::size_t>(i + k)], stage);
-        }
-    };
-    ahead(3, Stage::Lookup);
-    ahead(2, Stage::Patch);
-    ahead(1, Stage::ControlPoints);
-}
-
 PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<const SurfacePoint> points,
                             DerivativeOrder order, int num_threads) {
     LIMSURF_CHECK(X.rows() == basis.topology().num_vertices() && X.cols() == 3, InputError,
