@@ -89,10 +89,8 @@ constexpr int box_spline_coefficients[12][15] = {
 /// Derivative orders (∂s, ∂t) of the six output rows.
 constexpr int row_orders[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
 
-/// x^n for 0 <= n <= 4.
-
 /// a (a-1) ... (a-k+1), the factor that k derivatives bring down from x^a (0 when k > a).
-double falling_factorial(int a, int k) noexcept {
+constexpr double falling_factorial(int a, int k) noexcept {
     double r = 1.0;
     for (int i = 0; i < k; ++i) {
         r *= a - i;
@@ -129,37 +127,54 @@ const Eigen::Matrix<double, 15, 12, Eigen::RowMajor>& box_spline_matrix() {
     return coefficients;
 }
 
-/// The first @p rows derivative rows of the 15 monomials at (s, t): row r, monomial m is
-/// factor(r, m) · s^ea(r, m) · t^eb(r, m) (0 where the derivative vanishes), tabulated once.
-Eigen::Matrix<double, 6, 15> monomial_rows(double s, double t, int rows) {
-    struct Table {
-        Eigen::Matrix<double, 6, 15> factor;
-        int ea[6][15];
-        int eb[6][15];
-    };
-    static const Table table = [] {
-        Table tb{};
-        for (int r = 0; r < 6; ++r) {
-            const int ds = row_orders[r][0];
-            const int dt = row_orders[r][1];
-            for (int m = 0; m < 15; ++m) {
-                const int a = monomial_exponents[m][0];
-                const int b = monomial_exponents[m][1];
-                const bool vanishes = ds > a || dt > b;
-                tb.factor(r, m) = vanishes ? 0.0 : falling_factorial(a, ds) * falling_factorial(b, dt);
-                tb.ea[r][m] = vanishes ? 0 : a - ds;
-                tb.eb[r][m] = vanishes ? 0 : b - dt;
-            }
+/// Derivative row r of monomial m is factor[r][m] · s^ea[r][m] · t^eb[r][m] (factor 0 where the
+/// derivative vanishes), tabulated at compile time.
+struct MonomialTable {
+    double factor[6][15];
+    int ea[6][15];
+    int eb[6][15];
+};
+constexpr MonomialTable monomial_table = [] {
+    MonomialTable tb{};
+    for (int r = 0; r < 6; ++r) {
+        const int ds = row_orders[r][0];
+        const int dt = row_orders[r][1];
+        for (int m = 0; m < 15; ++m) {
+            const int a = monomial_exponents[m][0];
+            const int b = monomial_exponents[m][1];
+            const bool vanishes = ds > a || dt > b;
+            tb.factor[r][m] = vanishes ? 0.0 : falling_factorial(a, ds) * falling_factorial(b, dt);
+            tb.ea[r][m] = vanishes ? 0 : a - ds;
+            tb.eb[r][m] = vanishes ? 0 : b - dt;
         }
-        return tb;
-    }();
+    }
+    return tb;
+}();
+
+/// The first Rows rows of monomial_rows: fully unrolled over a compile-time table, so every
+/// power is a register and every factor a constant.
+template <int Rows>
+void fill_monomial_rows(const double (&ps)[5], const double (&pt)[5], Eigen::Matrix<double, 6, 15>& d) {
+#pragma GCC unroll 15
+    for (int m = 0; m < 15; ++m) {
+#pragma GCC unroll 6
+        for (int r = 0; r < Rows; ++r) {
+            d(r, m) = monomial_table.factor[r][m] * ps[monomial_table.ea[r][m]] * pt[monomial_table.eb[r][m]];
+        }
+    }
+}
+
+/// The first @p rows (1, 3 or 6) derivative rows of the 15 monomials at (s, t).
+Eigen::Matrix<double, 6, 15> monomial_rows(double s, double t, int rows) {
     const double ps[5] = {1.0, s, s * s, s * s * s, s * s * s * s};
     const double pt[5] = {1.0, t, t * t, t * t * t, t * t * t * t};
     Eigen::Matrix<double, 6, 15> d;
-    for (int m = 0; m < 15; ++m) {
-        for (int r = 0; r < rows; ++r) {
-            d(r, m) = table.factor(r, m) * ps[table.ea[r][m]] * pt[table.eb[r][m]];
-        }
+    if (rows <= 1) {
+        fill_monomial_rows<1>(ps, pt, d);
+    } else if (rows <= 3) {
+        fill_monomial_rows<3>(ps, pt, d);
+    } else {
+        fill_monomial_rows<6>(ps, pt, d);
     }
     return d;
 }
