@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -477,17 +478,19 @@ TEST(PatchBasis, QuarticBoxSplineEqualsThePatchesOfTheLoopSubdividedNet) {
     }
 }
 
+// A uniformly random (s, t) of the triangle s, t >= 0, s + t <= 1.
+std::pair<double, double> random_triangle_point(std::mt19937& rng) {
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const double s = uniform(rng);
+    const double t = uniform(rng);
+    return s + t > 1.0 ? std::pair{1.0 - s, 1.0 - t} : std::pair{s, t};
+}
+
 // Asking for fewer rows computes the leading rows bit for bit as all six and leaves the others 0.
 TEST(PatchBasis, QuarticLeadingRowsAreTheSameBitsWhateverIsAskedFor) {
     std::mt19937 rng(5);
-    std::uniform_real_distribution<double> uniform(0.0, 1.0);
     for (int sample = 0; sample < 200; ++sample) {
-        double s = uniform(rng);
-        double t = uniform(rng);
-        if (s + t > 1.0) {
-            s = 1.0 - s;
-            t = 1.0 - t;
-        }
+        const auto [s, t] = random_triangle_point(rng);
         Weights<12> all;
         quartic_box_spline_patch_weights(s, t, all);
         for (const int rows : {1, 3}) {
@@ -506,12 +509,7 @@ TEST(PatchBasis, QuarticValuesAreTheWeightsApplied) {
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     for (int sample = 0; sample < 200; ++sample) {
-        double s = uniform(rng);
-        double t = uniform(rng);
-        if (s + t > 1.0) {
-            s = 1.0 - s;
-            t = 1.0 - t;
-        }
+        const auto [s, t] = random_triangle_point(rng);
         Eigen::Matrix<double, 12, 3> P;
         for (Eigen::Index i = 0; i < P.size(); ++i) {
             P(i) = 10.0 * uniform(rng) - 5.0;
