@@ -34,13 +34,15 @@ std::vector<SurfacePoint> random_points(const LimitBasis& basis, int count) {
     return points;
 }
 
+// Every scheme with a limit basis: Catmull–Clark (with creases, with n-gons), Loop (boundary),
+// Doo–Sabin and C2g0.
+const std::pair<const char*, SchemeKind> meshes_and_schemes[] = {
+    {"genus2", SchemeKind::CatmullClark},     {"cube_creases", SchemeKind::CatmullClark},
+    {"cube_ngons", SchemeKind::CatmullClark}, {"disk_ev7_tris", SchemeKind::Loop},
+    {"dodecahedron", SchemeKind::DooSabin},   {"tetra_1", SchemeKind::C2g0}};
+
 TEST(BatchEvaluation, EqualsPointByPointEvaluationForAnyThreadCount) {
-    const std::pair<const char*, SchemeKind> cases[] = {{"genus2", SchemeKind::CatmullClark},
-                                                        {"cube_creases", SchemeKind::CatmullClark},
-                                                        {"disk_ev7_tris", SchemeKind::Loop},
-                                                        {"dodecahedron", SchemeKind::DooSabin},
-                                                        {"tetra_1", SchemeKind::C2g0}};
-    for (const auto& [name, scheme] : cases) {
+    for (const auto& [name, scheme] : meshes_and_schemes) {
         SCOPED_TRACE(name);
         const BuildResult built = read_mesh(find_bundled(name).path);
         const Points& X = built.mesh.positions();
@@ -103,13 +105,8 @@ TEST(BatchEvaluation, RefusesBadPointsNamingThem) {
 // basis (no local patch built yet) and a warm one, it reads nothing out of range and changes no
 // result. Run it under the asan preset to see an out-of-range read; here a crash fails it.
 TEST(BatchEvaluation, PrefetchAsksForNothingItCannotUse) {
-    const std::pair<const char*, SchemeKind> cases[] = {{"genus2", SchemeKind::CatmullClark},
-                                                        {"cube_ngons", SchemeKind::CatmullClark},
-                                                        {"disk_ev7_tris", SchemeKind::Loop},
-                                                        {"dodecahedron", SchemeKind::DooSabin},
-                                                        {"tetra_1", SchemeKind::C2g0}};
     using Stage = LimitBasis::PrefetchStage;
-    for (const auto& [name, scheme] : cases) {
+    for (const auto& [name, scheme] : meshes_and_schemes) {
         SCOPED_TRACE(name);
         const BuildResult built = read_mesh(find_bundled(name).path);
         const Points& X = built.mesh.positions();
