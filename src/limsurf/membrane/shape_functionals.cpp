@@ -1,12 +1,8 @@
 // Shape functionals and their exact gradients (c2g0-sphere-scheme-biomembranes §3; the header
 // gives the definitions). Per sample the integrand is a function of the position x and the
-// derivatives a = ∂u, b = ∂v, ∂uu, ∂uv, ∂vv; its derivatives with respect to those six rows (a
-// 6 × 3 "local gradient") are pulled back to the control points through the sample's limit
-// weights, the chain rule (3.10)–(3.11). Notation below: N = a × b (unnormalised normal),
-// S = N·N = EG − F², J = √S (area element), L = N·∂uu, Mn = N·∂uv, Nn = N·∂vv (the second
-// fundamental form times J), Q = G ∂uu − 2F ∂uv + E ∂vv and P = N·Q, so that
-//   H = −P / (2 J³)   (limit/surface_frame.h's sign: H = 1 on the unit sphere)
-//   K = (L Nn − Mn²) / S².
+// derivatives ∂u, ∂v, ∂uu, ∂uv, ∂vv; its derivatives with respect to those six rows (a 6 × 3
+// "local gradient", sample_integrands.h) are pulled back to the control points through the
+// sample's limit weights, the chain rule (3.10)–(3.11).
 #include "limsurf/membrane/shape_functionals.h"
 
 #include <algorithm>
@@ -21,6 +17,8 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/parallel.h"
+#include "limsurf/membrane/element_products.h"
+#include "limsurf/membrane/sample_integrands.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/volume/enclosed_volume.h"
 
@@ -28,122 +26,14 @@ namespace limsurf {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-using Local = Eigen::Matrix<double, 6, 3>;  // ∂(integrand)/∂(x, a, b, ∂uu, ∂uv, ∂vv), one row each
 
 constexpr std::size_t index_of(ShapeFunctional f) {
     return static_cast<std::size_t>(f);
 }
-
-/// One sample's integrands (times the quadrature weight) and, when asked, their local gradients.
-struct SampleTerms {
-    std::array<double, num_shape_functionals> value{};
-    std::array<Local, num_shape_functionals> local;
-    Vec3 normal_area = Vec3::Zero();  // w N: sums to ∫ n dA, the volume's dependence on the centroid
-};
-
-/// The integrands of every functional at one sample. @p wanted: which local gradients to fill;
-/// @p centroid: the mean of the control points, the origin of the quadrature volume. Returns false
-/// when the tangents are (nearly) parallel or a value is not finite.
-bool sample_terms(const Local& d, double weight, bool triangle, const Vec3& centroid,
-                  const std::array<bool, num_shape_functionals>& wanted, SampleTerms& out) {
-    // The volume 1/3 ∫ (x − c)·n dA about the control points' centroid c: equal to 1/3 ∫ x·n dA
-    // on a closed surface, but translation invariant even where the quadrature of ∫ n dA = 0 is
-    // not exact (near extraordinary vertices).
-    const Vec3 x = d.row(Value).transpose() - centroid;
-    const Vec3 a = d.row(Du).transpose();
-    const Vec3 b = d.row(Dv).transpose();
-    const Vec3 xuu = d.row(Duu).transpose();
-    const Vec3 xuv = d.row(Duv).transpose();
-    const Vec3 xvv = d.row(Dvv).transpose();
-    const Vec3 N = a.cross(b);
-    const double S = N.squaredNorm();
-    const double E = a.squaredNorm();
-    const double F = a.dot(b);
-    const double G = b.squaredNorm();
-    if (!(S > 1e-28 * E * G) || !std::isfinite(S)) {
-        return false;
-    }
-    const double J = std::sqrt(S);
-    const double L = N.dot(xuu);
-    const double Mn = N.dot(xuv);
-    const double Nn = N.dot(xvv);
-    const Vec3 Q = G * xuu - 2.0 * F * xuv + E * xvv;
-    const double P = N.dot(Q);
-    const double T = L * Nn - Mn * Mn;
-    const double w = weight;
-    out.normal_area = w * N;
-    // The harmonic energy's metric: an equilateral triangle (τ of (3.9)) or a unit square.
-    const double harmonic_scale = triangle ? 2.0 / std::sqrt(3.0) : 1.0;
-    const double harmonic_mixed = triangle ? -1.0 : 0.0;
-
-    auto& v = out.value;
-    v[index_of(ShapeFunctional::Area)] = J * w;
-    v[index_of(ShapeFunctional::Volume)] = x.dot(N) / 3.0 * w;
-    v[index_of(ShapeFunctional::MeanCurvature)] = -P / (2.0 * S) * w;
-    v[index_of(ShapeFunctional::Willmore)] = P * P / (4.0 * S * S * J) * w;
-    v[index_of(ShapeFunctional::Gaussian)] = T / (S * J) * w;
-    v[index_of(ShapeFunctional::Harmonic)] = harmonic_scale * (E + harmonic_mixed * F + G) * w;
-    for (const double value : v) {
-        if (!std::isfinite(value)) {
-            return false;
-        }
-    }
-
-    // Differentials shared by several functionals: dS = 2 N·dN with dN = da × b + a × db.
-    const Vec3 dS_da = 2.0 * b.cross(N);
-    const Vec3 dS_db = 2.0 * N.cross(a);
-    auto set = [&](ShapeFunctional f, const Vec3& dx, const Vec3& da, const Vec3& db, const Vec3& duu, const Vec3& duv,
-                   const Vec3& dvv) {
-        Local& g = out.local[index_of(f)];
-        g.row(Value) = w * dx.transpose();
-        g.row(Du) = w * da.transpose();
-        g.row(Dv) = w * db.transpose();
-        g.row(Duu) = w * duu.transpose();
-        g.row(Duv) = w * duv.transpose();
-        g.row(Dvv) = w * dvv.transpose();
-    };
-    const Vec3 zero = Vec3::Zero();
-    if (wanted[index_of(ShapeFunctional::Area)]) {  // J = √S
-        set(ShapeFunctional::Area, zero, dS_da / (2.0 * J), dS_db / (2.0 * J), zero, zero, zero);
-    }
-    if (wanted[index_of(ShapeFunctional::Volume)]) {  // x·(a × b) / 3
-        set(ShapeFunctional::Volume, N / 3.0, b.cross(x) / 3.0, x.cross(a) / 3.0, zero, zero, zero);
-    }
-    const bool need_P = wanted[index_of(ShapeFunctional::MeanCurvature)] || wanted[index_of(ShapeFunctional::Willmore)];
-    if (need_P) {
-        // dP = dN·Q + N·dQ, dQ = dG ∂uu − 2 dF ∂uv + dE ∂vv with dE = 2a·da, dF = b·da + a·db, dG = 2b·db.
-        const Vec3 dP_da = b.cross(Q) - 2.0 * Mn * b + 2.0 * Nn * a;
-        const Vec3 dP_db = Q.cross(a) + 2.0 * L * b - 2.0 * Mn * a;
-        const Vec3 dP_duu = G * N;
-        const Vec3 dP_duv = -2.0 * F * N;
-        const Vec3 dP_dvv = E * N;
-        if (wanted[index_of(ShapeFunctional::MeanCurvature)]) {  // −P / (2S)
-            const double cp = -1.0 / (2.0 * S);
-            const double cs = P / (2.0 * S * S);
-            set(ShapeFunctional::MeanCurvature, zero, cp * dP_da + cs * dS_da, cp * dP_db + cs * dS_db, cp * dP_duu,
-                cp * dP_duv, cp * dP_dvv);
-        }
-        if (wanted[index_of(ShapeFunctional::Willmore)]) {  // P² / (4 S^(5/2))
-            const double S52 = S * S * J;
-            const double cp = P / (2.0 * S52);
-            const double cs = -5.0 * P * P / (8.0 * S52 * S);
-            set(ShapeFunctional::Willmore, zero, cp * dP_da + cs * dS_da, cp * dP_db + cs * dS_db, cp * dP_duu,
-                cp * dP_duv, cp * dP_dvv);
-        }
-    }
-    if (wanted[index_of(ShapeFunctional::Gaussian)]) {  // T / S^(3/2), dT = Nn dL + L dNn − 2 Mn dMn
-        const Vec3 R = Nn * xuu + L * xvv - 2.0 * Mn * xuv;
-        const double ct = 1.0 / (S * J);
-        const double cs = -1.5 * T / (S * S * J);
-        set(ShapeFunctional::Gaussian, zero, ct * b.cross(R) + cs * dS_da, ct * R.cross(a) + cs * dS_db, ct * Nn * N,
-            ct * (-2.0 * Mn) * N, ct * L * N);
-    }
-    if (wanted[index_of(ShapeFunctional::Harmonic)]) {
-        set(ShapeFunctional::Harmonic, zero, harmonic_scale * (2.0 * a + harmonic_mixed * b),
-            harmonic_scale * (2.0 * b + harmonic_mixed * a), zero, zero, zero);
-    }
-    return true;
-}
+static_assert(index_of(ShapeFunctional::Area) == 0 && index_of(ShapeFunctional::Volume) == 1 &&
+                  index_of(ShapeFunctional::MeanCurvature) == 2 && index_of(ShapeFunctional::Willmore) == 3 &&
+                  index_of(ShapeFunctional::Gaussian) == 4 && index_of(ShapeFunctional::Harmonic) == 5,
+              "sample_integrands.h numbers the functionals in this order");
 
 }  // namespace
 
@@ -355,7 +245,6 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
         }
     }
 
-    const bool value_rows_needed = local_wanted[index_of(ShapeFunctional::Volume)];
     const std::size_t num_elements = element_face.size();
     const std::size_t num_slots = slot_vertex.size();
     // Per element: the six integrals; per slot: a 3-vector per requested functional, side by side.
@@ -370,10 +259,13 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     const Vec3 centroid = X.colwise().mean().transpose();
 
     parallel_ranges(static_cast<Index>(num_elements), options.num_threads, [&](Index begin, Index end) {
-        SampleTerms terms;
         Eigen::Matrix<double, Eigen::Dynamic, 3> element_points;  // slots × 3
-        Eigen::Matrix<double, Eigen::Dynamic, 3> derivatives;     // (6 × samples) × 3
-        Eigen::MatrixXd local;                                    // (6 × samples) × width
+        // Per element, sample_integrands.h's layouts: the forward product (6 n × 3), the values
+        // (6 × n), w N (3 × n), the local gradients (18 columns of 6 n) and the degeneracy flags.
+        std::vector<double> derivatives, values, normal_area, local, flags;
+        detail::SampleBatch batch;
+        std::copy(centroid.data(), centroid.data() + 3, batch.centroid);
+        batch.triangle = triangle;
         for (Index e = begin; e < end; ++e) {
             const auto ue = static_cast<std::size_t>(e);
             const ElementKernel& kernel = kernels[element_kernel[ue]];
@@ -384,40 +276,43 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
                 element_points.row(k) = X.row(slot_vertex[first_slot + static_cast<std::size_t>(k)]);
             }
             // All samples of the element at once: the positions and derivatives forwards, ...
-            derivatives.noalias() = kernel.rows * element_points;
-            local.resize(kernel.rows.rows(), static_cast<Eigen::Index>(width));
-            std::array<double, num_shape_functionals> sum{};
             const Eigen::Index n = kernel.num_samples();
-            for (Eigen::Index i = 0; i < n; ++i) {
-                Local d;
-                for (Eigen::Index r = 0; r < 6; ++r) {
-                    d.row(r) = derivatives.row(r * n + i);
-                }
-                if (!sample_terms(d, kernel.weights[static_cast<std::size_t>(i)], triangle, centroid, local_wanted,
-                                  terms)) {
-                    degenerate[ue] = element_face[ue];
-                    break;
-                }
-                for (std::size_t f = 0; f < sum.size(); ++f) {
-                    sum[f] += terms.value[f];
-                }
-                element_normal_area[ue] += terms.normal_area;
-                for (std::size_t f = 0; f < requested.size(); ++f) {
-                    for (Eigen::Index r = 0; r < 6; ++r) {
-                        local.block<1, 3>(r * n + i, static_cast<Eigen::Index>(3 * f)) =
-                            terms.local[requested[f]].row(r);
-                    }
+            const Eigen::Index rows = kernel.rows.rows();
+            const auto size = static_cast<std::size_t>(n);
+            derivatives.resize(3 * 6 * size);
+            detail::element_forward(kernel.rows.data(), rows, rows, num_element_slots, element_points.data(),
+                                    derivatives.data());
+            // ... the integrands and their local gradients, ...
+            values.resize(num_shape_functionals * size);
+            normal_area.resize(3 * size);
+            local.resize(3 * num_shape_functionals * 6 * size);
+            flags.resize(size);
+            batch.n = n;
+            batch.rows = derivatives.data();
+            batch.weights = kernel.weights.data();
+            if (detail::sample_integrands(batch, values.data(), normal_area.data(), local.data(), flags.data()) >= 0) {
+                degenerate[ue] = element_face[ue];
+                continue;
+            }
+            std::array<double, num_shape_functionals> sum{};  // sample by sample, as for any thread count
+            for (std::size_t f = 0; f < sum.size(); ++f) {
+                for (std::size_t i = 0; i < size; ++i) {
+                    sum[f] += values[f * size + i];
                 }
             }
             element_values[ue] = sum;
-            if (!requested.empty() && degenerate[ue] == invalid_index) {
-                // ... and the local gradients backwards through the same weights, per slot.
-                Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> target(
-                    &slot_gradient[first_slot * width], num_element_slots, static_cast<Eigen::Index>(width));
-                // Only the quadrature volume depends on the position itself: without it the value
-                // rows of the local gradients are 0 and a sixth of the product is skipped.
-                const Eigen::Index skip = value_rows_needed ? 0 : n;
-                target.noalias() = kernel.rows.bottomRows(6 * n - skip).transpose() * local.bottomRows(6 * n - skip);
+            for (std::size_t i = 0; i < size; ++i) {
+                element_normal_area[ue] += Vec3(normal_area[i], normal_area[size + i], normal_area[2 * size + i]);
+            }
+            // ... and backwards through the same weights, per slot: for each functional only the
+            // rows it depends on (the area, two of six; the position only for the quadrature volume).
+            for (std::size_t q = 0; q < requested.size(); ++q) {
+                const std::size_t f = requested[q];
+                const Eigen::Index first = detail::local_rows_first[f] * n;
+                const Eigen::Index last = detail::local_rows_last[f] * n;
+                detail::element_backward(
+                    kernel.rows.data() + first, rows, last - first, num_element_slots, &local[3 * f * 6 * size] + first,
+                    rows, 3, &slot_gradient[first_slot * width + 3 * q], static_cast<std::ptrdiff_t>(width));
             }
         }
     });
