@@ -337,20 +337,35 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     out.harmonic = total[index_of(ShapeFunctional::Harmonic)];
 
     for (const std::size_t f : requested) {
-        out.gradient[f].setZero(num_vertices, 3);
+        out.gradient[f].resize(num_vertices, 3);  // every entry is written below
     }
-    // One pass over the slots of each vertex (in element order) for every requested functional.
-    parallel_ranges(num_vertices, options.num_threads, [&](Index begin, Index end) {
-        for (Index v = begin; v < end; ++v) {
+    // One pass over the slots of each vertex (in element order) for every requested functional,
+    // summed from +0 in registers. A vertex's slots are scattered over the elements around it: the
+    // slots of the vertex two ahead are asked for early, so that their cache misses overlap.
+    parallel_ranges(requested.empty() ? 0 : num_vertices, options.num_threads, [&](Index begin, Index end) {
+        const auto slots_of = [&](Index v) {
             const auto uv = static_cast<std::size_t>(v);
-            for (std::size_t k = vertex_offsets[uv]; k < vertex_offsets[uv + 1]; ++k) {
-                const double* source = &slot_gradient[vertex_slots[k] * width];
-                for (std::size_t r = 0; r < requested.size(); ++r) {
-                    Points& g = out.gradient[requested[r]];
-                    g(v, 0) += source[3 * r];
-                    g(v, 1) += source[3 * r + 1];
-                    g(v, 2) += source[3 * r + 2];
+            return std::pair{vertex_offsets[uv], vertex_offsets[uv + 1]};
+        };
+        for (Index v = begin; v < end; ++v) {
+            if (v + 2 < end) {
+                const auto [first, last] = slots_of(v + 2);
+                for (std::size_t k = first; k < last; ++k) {
+                    const double* ahead = &slot_gradient[vertex_slots[k] * width];
+                    __builtin_prefetch(ahead);
+                    __builtin_prefetch(ahead + width - 1);  // the slot's last value: maybe the next line
                 }
+            }
+            std::array<double, 3 * num_shape_functionals> sum{};
+            const auto [first, last] = slots_of(v);
+            for (std::size_t k = first; k < last; ++k) {
+                const double* source = &slot_gradient[vertex_slots[k] * width];
+                for (std::size_t q = 0; q < width; ++q) {
+                    sum[q] += source[q];
+                }
+            }
+            for (std::size_t q = 0; q < width; ++q) {
+                out.gradient[requested[q / 3]](v, static_cast<Eigen::Index>(q % 3)) = sum[q];
             }
         }
     });
