@@ -6,45 +6,60 @@
 
 #include <array>
 
-// One copy of each function per instruction set, chosen at load time (GCC/Clang function
-// multi-versioning through an ifunc: x86-64 Linux only). Elsewhere the baseline copy alone.
-#if defined(__x86_64__) && defined(__linux__) && defined(__has_attribute)
-#if __has_attribute(target_clones)
-#define LIMSURF_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
-#endif
-#endif
-#ifndef LIMSURF_CLONES
-#define LIMSURF_CLONES
-#endif
+#include "limsurf/detail/target_clones.h"
 
 namespace limsurf::detail {
 
-LIMSURF_CLONES
+namespace {
+
+/// Eight doubles as one value (GCC/Clang vector types): lowered to the widest registers of the
+/// instruction set the function is compiled for (one AVX-512 register, two AVX2, four SSE2), each
+/// operation lane by lane, so that the sums are those of the scalar loop in every copy.
+typedef double Lanes __attribute__((vector_size(8 * sizeof(double))));
+
+/// Eight doubles from @p p, aligned or not (through a reference: a vector returned by value would
+/// depend on the instruction set's calling convention).
+[[gnu::always_inline]] inline void load(Lanes& v, const double* p) {
+    __builtin_memcpy(&v, p, sizeof v);
+}
+
+[[gnu::always_inline]] inline void store(double* p, const Lanes& v) {
+    __builtin_memcpy(p, &v, sizeof v);
+}
+
+}  // namespace
+
+LIMSURF_TARGET_CLONES
 void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
                      const double* __restrict P, double* __restrict out) noexcept {
-    constexpr std::ptrdiff_t block = 8;  // rows per pass, times three columns: 24 sums in flight
+    // 16 rows per pass, times three columns: six vector sums in flight.
+    constexpr std::ptrdiff_t block = 16;
     const double* P0 = P;
     const double* P1 = P + cols;
     const double* P2 = P + 2 * cols;
     std::ptrdiff_t r = 0;
     for (; r + block <= rows; r += block) {
-        std::array<double, block> s0{}, s1{}, s2{};
+        Lanes a0 = {}, a1 = {}, b0 = {}, b1 = {}, c0 = {}, c1 = {};
         for (std::ptrdiff_t j = 0; j < cols; ++j) {
-            const double* k = K + j * ld_k + r;
+            Lanes k0, k1;
+            load(k0, K + j * ld_k + r);
+            load(k1, K + j * ld_k + r + 8);
             const double p0 = P0[j], p1 = P1[j], p2 = P2[j];
-            for (std::ptrdiff_t l = 0; l < block; ++l) {
-                s0[l] += k[l] * p0;
-                s1[l] += k[l] * p1;
-                s2[l] += k[l] * p2;
-            }
+            a0 += k0 * p0;
+            a1 += k1 * p0;
+            b0 += k0 * p1;
+            b1 += k1 * p1;
+            c0 += k0 * p2;
+            c1 += k1 * p2;
         }
-        for (std::ptrdiff_t l = 0; l < block; ++l) {
-            out[r + l] = s0[l];
-            out[rows + r + l] = s1[l];
-            out[2 * rows + r + l] = s2[l];
-        }
+        store(out + r, a0);
+        store(out + r + 8, a1);
+        store(out + rows + r, b0);
+        store(out + rows + r + 8, b1);
+        store(out + 2 * rows + r, c0);
+        store(out + 2 * rows + r + 8, c1);
     }
-    for (; r < rows; ++r) {  // the last rows % 8, summed in the same order
+    for (; r < rows; ++r) {  // the last rows % 16, summed in the same order
         double s0 = 0.0, s1 = 0.0, s2 = 0.0;
         for (std::ptrdiff_t j = 0; j < cols; ++j) {
             const double k = K[j * ld_k + r];
@@ -69,7 +84,7 @@ inline double reduce(const std::array<double, lanes>& s) {
 
 }  // namespace
 
-LIMSURF_CLONES
+LIMSURF_TARGET_CLONES
 void element_backward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
                       const double* __restrict L, std::ptrdiff_t ld_l, std::ptrdiff_t width, double* __restrict out,
                       std::ptrdiff_t ld_out) noexcept {

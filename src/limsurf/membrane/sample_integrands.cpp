@@ -8,14 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__x86_64__) && defined(__linux__) && defined(__has_attribute)
-#if __has_attribute(target_clones)
-#define LIMSURF_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
-#endif
-#endif
-#ifndef LIMSURF_CLONES
-#define LIMSURF_CLONES
-#endif
+#include "limsurf/detail/target_clones.h"
 
 namespace limsurf::detail {
 namespace {
@@ -29,7 +22,7 @@ inline bool finite(double v) {
 
 }  // namespace
 
-LIMSURF_CLONES
+LIMSURF_TARGET_CLONES
 std::ptrdiff_t sample_integrands(const SampleBatch& batch, double* __restrict values, double* __restrict normal_area,
                                  double* __restrict local, double* __restrict degenerate) noexcept {
     const std::ptrdiff_t n = batch.n;
