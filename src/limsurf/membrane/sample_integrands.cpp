@@ -9,11 +9,20 @@
 #include <cmath>
 
 #include "limsurf/detail/target_clones.h"
+#include "limsurf/membrane/shape_functionals.h"
 
 namespace limsurf::detail {
 namespace {
 
-enum Functional : int { Area = 0, Volume, MeanCurvature, Willmore, Gaussian, Harmonic };
+// The functionals' indices, from the public enum (the outputs are laid out in its order).
+constexpr int functional_index(ShapeFunctional f) {
+    return static_cast<int>(f);
+}
+constexpr int Area = functional_index(ShapeFunctional::Area), Volume = functional_index(ShapeFunctional::Volume),
+              MeanCurvature = functional_index(ShapeFunctional::MeanCurvature),
+              Willmore = functional_index(ShapeFunctional::Willmore),
+              Gaussian = functional_index(ShapeFunctional::Gaussian),
+              Harmonic = functional_index(ShapeFunctional::Harmonic);
 
 /// |v| ≤ the largest double: false for ±∞ and NaN, without a call.
 inline bool finite(double v) {
