@@ -197,8 +197,8 @@ std::vector<char> trusted_children(const Topology& parent, const Level& level, S
     return out;
 }
 
-/// Facets, each with its form and its points: a block per classifying worker, one for the
-/// facets of subdivided elements.
+/// Facets, each with its form and its points, while they are collected: a block per classifying
+/// worker, one for the facets of subdivided elements.
 struct FacetBlock {
     std::vector<std::uint32_t> form;  ///< per facet: index into Impl::forms (its type while classifying)
     std::vector<Index> offset{0};     ///< per facet + 1: offsets into points
@@ -210,6 +210,71 @@ struct FacetBlock {
         offset.push_back(static_cast<Index>(points.size()));
     }
 };
+
+/// The facets as evaluated, in fixed chunks of facets_per_chunk: a chunk reads its points into a
+/// table of its own (each point once) and adds its facets' gradients there, so that its scatter
+/// stays in cache and no two chunks write the same memory; a point's gradient is then the sum of
+/// its entries in the chunks' tables, in chunk order. The chunks do not depend on the number of
+/// threads, so neither do the bits of the volume or of its gradient.
+struct FacetTable {
+    static constexpr Index facets_per_chunk = 1024;
+    std::vector<std::uint32_t> form;     ///< per facet: index into Impl::forms
+    std::vector<Index> offset{0};        ///< per facet + 1: into local
+    std::vector<std::uint32_t> local;    ///< per facet point: its row in the chunk's table
+    std::vector<Index> chunk_offset{0};  ///< per chunk + 1: into chunk_points
+    std::vector<Index> chunk_points;     ///< rows of the point table (control, then derived points)
+    std::vector<Index> row_offset;       ///< per point-table row + 1: into row_entries
+    std::vector<Index> row_entries;      ///< the row's entries in chunk_points, in chunk order
+
+    [[nodiscard]] Index num_facets() const { return static_cast<Index>(form.size()); }
+    [[nodiscard]] Index num_chunks() const { return static_cast<Index>(chunk_offset.size()) - 1; }
+    /// Lays out @p blocks' facets in order; their points are rows < @p num_rows.
+    void lay_out(const std::vector<FacetBlock>& blocks, Index num_rows);
+};
+
+void FacetTable::lay_out(const std::vector<FacetBlock>& blocks, Index num_rows) {
+    std::vector<Index> slot_of(at(num_rows), invalid_index);
+    const auto close_chunk = [&] {
+        for (std::size_t k = at(chunk_offset.back()); k < chunk_points.size(); ++k) {
+            slot_of[at(chunk_points[k])] = invalid_index;
+        }
+        chunk_offset.push_back(static_cast<Index>(chunk_points.size()));
+    };
+    for (const FacetBlock& block : blocks) {
+        for (Index f = 0; f < block.size(); ++f) {
+            if (num_facets() > 0 && num_facets() % facets_per_chunk == 0) {
+                close_chunk();
+            }
+            form.push_back(block.form[at(f)]);
+            const Index first = chunk_offset.back();
+            for (Index k = block.offset[at(f)]; k < block.offset[at(f) + 1]; ++k) {
+                Index& slot = slot_of[at(block.points[at(k)])];
+                if (slot == invalid_index) {
+                    slot = static_cast<Index>(chunk_points.size()) - first;
+                    chunk_points.push_back(block.points[at(k)]);
+                }
+                local.push_back(static_cast<std::uint32_t>(slot));
+            }
+            offset.push_back(static_cast<Index>(local.size()));
+        }
+    }
+    if (num_facets() > 0) {
+        close_chunk();
+    }
+    // The transpose: entries of each row, in chunk order.
+    row_offset.assign(at(num_rows) + 1, 0);
+    for (const Index r : chunk_points) {
+        ++row_offset[at(r) + 1];
+    }
+    for (std::size_t r = 0; r < at(num_rows); ++r) {
+        row_offset[r + 1] += row_offset[r];
+    }
+    row_entries.resize(chunk_points.size());
+    std::vector<Index> fill(row_offset.begin(), row_offset.end() - 1);
+    for (std::size_t k = 0; k < chunk_points.size(); ++k) {
+        row_entries[at(fill[at(chunk_points[k])]++)] = static_cast<Index>(k);
+    }
+}
 
 /// Workers for @p items items: the requested number (0: hardware concurrency), at most one per 4096 items.
 unsigned worker_count(int requested, Index items) {
@@ -246,7 +311,7 @@ struct EnclosedVolume::Impl {
     VolumeStatistics statistics;
     std::vector<VolumeForm> forms;
     std::map<int, std::size_t> form_of_type;
-    std::vector<FacetBlock> blocks;
+    FacetTable facets;
     /// The refined points facets need, as rows of the refinement steps of the local copy:
     /// level-1 points = first_level · X (n1 × V), level-2 points = second_level · level-1 points.
     SparseMatrix first_level;
@@ -396,10 +461,10 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
     // Classify the elements in parallel (read-only walks), then append their facets in order.
     const Index count = detail::num_facet_elements(topology, scheme);
     const unsigned threads = worker_count(volume_options.num_threads, count);
-    d.blocks.resize(threads);
+    std::vector<FacetBlock> blocks(threads);
     std::vector<std::vector<Index>> untyped_parts(threads);
     run_parallel(threads, [&](unsigned w) {
-        FacetBlock& block = d.blocks[w];
+        FacetBlock& block = blocks[w];
         const Index begin = count * static_cast<Index>(w) / static_cast<Index>(threads);
         const Index end = count * static_cast<Index>(w + 1) / static_cast<Index>(threads);
         for (Index e = begin; e < end; ++e) {
@@ -413,10 +478,10 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
     // Types to forms (loading or generating each form once).
     std::vector<Index> untyped;
     for (unsigned w = 0; w < threads; ++w) {
-        for (std::uint32_t& form : d.blocks[w].form) {
+        for (std::uint32_t& form : blocks[w].form) {
             form = d.cached_form_index(static_cast<int>(form));
         }
-        d.statistics.direct_facets += d.blocks[w].size();
+        d.statistics.direct_facets += blocks[w].size();
         untyped.insert(untyped.end(), untyped_parts[w].begin(), untyped_parts[w].end());
     }
     d.statistics.subdivided_elements = static_cast<Index>(untyped.size());
@@ -428,12 +493,13 @@ EnclosedVolume::EnclosedVolume(const Topology& topology, SchemeKind scheme, cons
             d.statistics.subdivided_facets = 0;
             done = d.subdivide(topology, untyped, radius, block);
             if (done) {
-                d.blocks.push_back(std::move(block));
+                blocks.push_back(std::move(block));
             }
         }
         LIMSURF_CHECK(done, UnsupportedError,
                       "exact volume: could not isolate the irregular elements (internal error)");
     }
+    d.facets.lay_out(blocks, d.num_vertices + static_cast<Index>(d.first_level.rows() + d.second_level.rows()));
 }
 
 EnclosedVolume::~EnclosedVolume() = default;
@@ -465,66 +531,79 @@ double EnclosedVolume::Impl::evaluate(const Points& X, Points* gradient) const {
     if (n2 > 0) {
         all.bottomRows(n2) = second_level * all.middleRows(V, n1);
     }
-    const unsigned threads = worker_count(options.num_threads, V);
-    std::vector<RowPoints> grads(gradient != nullptr ? threads : 0);
-    for (RowPoints& g : grads) {
-        g.setZero(V + D, 3);
-    }
     const double* table = all.data();
-    // The volume is summed in fixed chunks of facets, added in order: its bits do not depend on the
-    // number of threads (the gradient's per-thread tables do, in the last bits).
-    constexpr Index chunk = 1024;
-    double volume = 0.0;
-    for (const FacetBlock& block : blocks) {
-        const Index n = block.size();
-        const Index num_chunks = (n + chunk - 1) / chunk;
-        std::vector<double> chunk_sums(at(num_chunks), 0.0);
-        const unsigned workers = std::min(
-            {threads, worker_count(options.num_threads, n), static_cast<unsigned>(std::max<Index>(num_chunks, 1))});
-        run_parallel(workers, [&](unsigned w) {
-            const Index first_chunk = num_chunks * static_cast<Index>(w) / static_cast<Index>(workers);
-            const Index last_chunk = num_chunks * static_cast<Index>(w + 1) / static_cast<Index>(workers);
-            std::vector<double> p;
-            std::vector<double> g;
-            for (Index c = first_chunk; c < last_chunk; ++c) {
-                double sum = 0.0;
-                for (Index f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
-                    const VolumeForm& form = forms[block.form[at(f)]];
-                    const Index* facet = block.points.data() + block.offset[at(f)];
-                    const auto m = at(form.size);
-                    p.resize(3 * m);
-                    for (std::size_t a = 0; a < m; ++a) {
-                        const double* q = table + 3 * at(facet[a]);
-                        p[3 * a] = q[0];
-                        p[3 * a + 1] = q[1];
-                        p[3 * a + 2] = q[2];
-                    }
-                    if (gradient == nullptr) {
-                        sum += form.evaluate(p.data(), nullptr);
-                        continue;
-                    }
-                    g.assign(p.size(), 0.0);
-                    sum += form.evaluate(p.data(), g.data());
-                    double* out = grads[w].data();
-                    for (std::size_t a = 0; a < m; ++a) {
-                        double* row = out + 3 * at(facet[a]);
-                        row[0] += g[3 * a];
-                        row[1] += g[3 * a + 1];
-                        row[2] += g[3 * a + 2];
-                    }
-                }
-                chunk_sums[at(c)] = sum;
+    // Per chunk: its points' rows of `all`, its facets' volumes summed in facet order, and its
+    // points' gradients summed in facet order into its own rows of chunk_gradient.
+    const Index num_chunks = facets.num_chunks();
+    std::vector<double> chunk_sums(at(num_chunks), 0.0);
+    std::vector<double> chunk_gradient(gradient != nullptr ? 3 * facets.chunk_points.size() : 0, 0.0);
+    const unsigned workers = std::min(worker_count(options.num_threads, facets.num_facets()),
+                                      static_cast<unsigned>(std::max<Index>(num_chunks, 1)));
+    run_parallel(workers, [&](unsigned w) {
+        const Index first_chunk = num_chunks * static_cast<Index>(w) / static_cast<Index>(workers);
+        const Index last_chunk = num_chunks * static_cast<Index>(w + 1) / static_cast<Index>(workers);
+        std::vector<double> points;  // the chunk's rows of `all`
+        std::vector<double> p;
+        std::vector<double> g;
+        for (Index c = first_chunk; c < last_chunk; ++c) {
+            const Index first_point = facets.chunk_offset[at(c)];
+            const Index num_points = facets.chunk_offset[at(c) + 1] - first_point;
+            points.resize(3 * at(num_points));
+            for (Index k = 0; k < num_points; ++k) {
+                const double* q = table + 3 * at(facets.chunk_points[at(first_point + k)]);
+                std::copy(q, q + 3, points.begin() + 3 * k);
             }
-        });
-        for (const double s : chunk_sums) {
-            volume += s;
+            double* chunk_g = gradient != nullptr ? chunk_gradient.data() + 3 * at(first_point) : nullptr;
+            double sum = 0.0;
+            const Index last_facet = std::min(facets.num_facets(), (c + 1) * FacetTable::facets_per_chunk);
+            for (Index f = c * FacetTable::facets_per_chunk; f < last_facet; ++f) {
+                const VolumeForm& form = forms[facets.form[at(f)]];
+                const std::uint32_t* local = facets.local.data() + facets.offset[at(f)];
+                const auto m = at(form.size);
+                p.resize(3 * m);
+                for (std::size_t a = 0; a < m; ++a) {
+                    std::copy_n(points.begin() + 3 * local[a], 3, p.begin() + 3 * a);
+                }
+                if (chunk_g == nullptr) {
+                    sum += form.evaluate(p.data(), nullptr);
+                    continue;
+                }
+                g.assign(p.size(), 0.0);
+                sum += form.evaluate(p.data(), g.data());
+                for (std::size_t a = 0; a < m; ++a) {
+                    double* row = chunk_g + 3 * local[a];
+                    row[0] += g[3 * a];
+                    row[1] += g[3 * a + 1];
+                    row[2] += g[3 * a + 2];
+                }
+            }
+            chunk_sums[at(c)] = sum;
         }
+    });
+    double volume = 0.0;
+    for (const double s : chunk_sums) {
+        volume += s;
     }
     if (gradient != nullptr) {
-        for (unsigned w = 1; w < threads; ++w) {
-            grads[0] += grads[w];
-        }
-        RowPoints& g = grads[0];
+        // Each row from +0, its chunks in order.
+        RowPoints g(V + D, 3);
+        const unsigned row_workers = worker_count(options.num_threads, V + D);
+        run_parallel(row_workers, [&](unsigned w) {
+            const Index begin = (V + D) * static_cast<Index>(w) / static_cast<Index>(row_workers);
+            const Index end = (V + D) * static_cast<Index>(w + 1) / static_cast<Index>(row_workers);
+            for (Index r = begin; r < end; ++r) {
+                double sum[3] = {0.0, 0.0, 0.0};
+                for (Index k = facets.row_offset[at(r)]; k < facets.row_offset[at(r) + 1]; ++k) {
+                    const double* entry = chunk_gradient.data() + 3 * at(facets.row_entries[at(k)]);
+                    sum[0] += entry[0];
+                    sum[1] += entry[1];
+                    sum[2] += entry[2];
+                }
+                g(r, 0) = sum[0];
+                g(r, 1) = sum[1];
+                g(r, 2) = sum[2];
+            }
+        });
         if (n2 > 0) {
             g.middleRows(V, n1) += second_level.transpose() * g.bottomRows(n2);
         }

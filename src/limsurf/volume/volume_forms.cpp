@@ -1,11 +1,11 @@
 // Shipped and on-demand volume forms (volume_forms.h).
 #include "limsurf/volume/volume_forms.h"
 
-#include <array>
-#include <cmath>
 #include <utility>
 
 #include "limsurf/core/error.h"
+#include "limsurf/detail/target_clones.h"
+#include "limsurf/detail/vector_lanes.h"
 #include "limsurf/volume/facet_ring.h"
 #include "limsurf/volume/form_generator.h"
 #include "limsurf/volume/shipped_forms.h"
@@ -31,146 +31,83 @@ std::vector<double> shipped_coefficients(const ShippedForm& form) {
     return {form.coefficients, form.coefficients + count};
 }
 
-/// The uniform cubic B-spline basis at the five Gauss–Legendre nodes of [0, 1]: values, derivatives.
-struct BicubicRule {
-    std::array<double, 5> weight{};
-    std::array<std::array<double, 4>, 5> value{};
-    std::array<std::array<double, 4>, 5> slope{};
-    BicubicRule() {
-        const double a = std::sqrt(5.0 - 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
-        const double b = std::sqrt(5.0 + 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
-        const double wa = (322.0 + 13.0 * std::sqrt(70.0)) / 900.0;
-        const double wb = (322.0 - 13.0 * std::sqrt(70.0)) / 900.0;
-        const std::array<double, 5> x{-b, -a, 0.0, a, b};
-        const std::array<double, 5> w{wb, wa, 128.0 / 225.0, wa, wb};
-        for (std::size_t q = 0; q < 5; ++q) {
-            const double s = 0.5 * (x[q] + 1.0);
-            weight[q] = 0.5 * w[q];
-            const double t = 1.0 - s;
-            value[q] = {t * t * t / 6.0, (3.0 * s * s * s - 6.0 * s * s + 4.0) / 6.0,
-                        (-3.0 * s * s * s + 3.0 * s * s + 3.0 * s + 1.0) / 6.0, s * s * s / 6.0};
-            slope[q] = {-t * t / 2.0, (9.0 * s * s - 12.0 * s) / 6.0, (-9.0 * s * s + 6.0 * s + 3.0) / 6.0,
-                        s * s / 2.0};
+/// evaluate_by_pairs() for facets of m points, rows of 8 × Blocks weights: the pairs' cross
+/// products in lexicographic order, each added to the gradient's 3 × 8 Blocks sums (one per
+/// point and coordinate, from +0, in pair order), then the volume ⅓ Σ_i p_i · G_i in point order.
+template <int Blocks>
+[[gnu::always_inline]] inline double pair_form_volume(int m, const double* __restrict w, const double* __restrict p,
+                                                      double* __restrict gradient) {
+    constexpr int lanes = 8 * Blocks;
+    double x[lanes] = {};
+    double y[lanes] = {};
+    double z[lanes] = {};
+    for (int i = 0; i < m; ++i) {
+        x[i] = p[3 * i];
+        y[i] = p[3 * i + 1];
+        z[i] = p[3 * i + 2];
+    }
+    Lanes gx[Blocks] = {};
+    Lanes gy[Blocks] = {};
+    Lanes gz[Blocks] = {};
+    for (int j = 0; j + 1 < m; ++j) {
+        for (int k = j + 1; k < m; ++k, w += lanes) {
+            const double cx = y[j] * z[k] - z[j] * y[k];
+            const double cy = z[j] * x[k] - x[j] * z[k];
+            const double cz = x[j] * y[k] - y[j] * x[k];
+#pragma GCC unroll 4  // completely: the sums stay in registers
+            for (int b = 0; b < Blocks; ++b) {
+                Lanes row;
+                load(row, w + 8 * b);
+                gx[b] += row * cx;
+                gy[b] += row * cy;
+                gz[b] += row * cz;
+            }
         }
     }
-};
+    double g[3][lanes];
+    for (int b = 0; b < Blocks; ++b) {
+        store(g[0] + 8 * b, gx[b]);
+        store(g[1] + 8 * b, gy[b]);
+        store(g[2] + 8 * b, gz[b]);
+    }
+    double sum = 0.0;
+    for (int i = 0; i < m; ++i) {
+        sum += x[i] * g[0][i] + y[i] * g[1][i] + z[i] * g[2][i];
+    }
+    if (gradient != nullptr) {
+        for (int i = 0; i < m; ++i) {
+            gradient[3 * i] += g[0][i];
+            gradient[3 * i + 1] += g[1][i];
+            gradient[3 * i + 2] += g[2][i];
+        }
+    }
+    return sum / 3.0;
+}
 
-/// Grid position (a, b), a along s = c0 -> c1, of each canonical point of the regular
-/// Catmull–Clark facet (facet_ring.h): the facet spans a, b in 1..2.
-constexpr std::array<std::array<int, 2>, 16> bicubic_grid{{{1, 1},
-                                                           {2, 1},
-                                                           {2, 2},
-                                                           {1, 2},
-                                                           {0, 2},
-                                                           {0, 1},
-                                                           {0, 0},
-                                                           {1, 0},
-                                                           {2, 0},
-                                                           {3, 0},
-                                                           {3, 1},
-                                                           {3, 2},
-                                                           {3, 3},
-                                                           {2, 3},
-                                                           {1, 3},
-                                                           {0, 3}}};
-
-/// ⅓∫ x·(x_s × x_t) over the bicubic patch of the 16 canonical points @p p, and its gradient:
-/// δV = ⅓∫ δx·n + δx_s·(x_t × x) + δx_t·(x × x_s) with n = x_s × x_t.
-double bicubic_volume(const double* p, double* gradient) {
-    static const BicubicRule rule;
-    double P[4][4][3];  // [b][a][coordinate]
-    for (std::size_t i = 0; i < 16; ++i) {
-        const auto [a, b] = bicubic_grid[i];
-        for (int c = 0; c < 3; ++c) {
-            P[b][a][c] = p[3 * i + static_cast<std::size_t>(c)];
-        }
+/// The pair-weight kernel, compiled per instruction set (target_clones.h); @p lanes is 8, 16, 24
+/// or 32.
+LIMSURF_TARGET_CLONES
+double pair_form_kernel(int m, int lanes, const double* w, const double* p, double* gradient) noexcept {
+    switch (lanes) {
+    case 8:
+        return pair_form_volume<1>(m, w, p, gradient);
+    case 16:
+        return pair_form_volume<2>(m, w, p, gradient);
+    case 24:
+        return pair_form_volume<3>(m, w, p, gradient);
+    default:
+        return pair_form_volume<4>(m, w, p, gradient);
     }
-    // Along s: A[q][b] = Σ_a N_a(s_q) P[b][a], As[q][b] = Σ_a N'_a(s_q) P[b][a].
-    double A[5][4][3] = {};
-    double As[5][4][3] = {};
-    for (std::size_t q = 0; q < 5; ++q) {
-        for (int b = 0; b < 4; ++b) {
-            for (int a = 0; a < 4; ++a) {
-                const double n = rule.value[q][static_cast<std::size_t>(a)];
-                const double d = rule.slope[q][static_cast<std::size_t>(a)];
-                for (int c = 0; c < 3; ++c) {
-                    A[q][b][c] += n * P[b][a][c];
-                    As[q][b][c] += d * P[b][a][c];
-                }
-            }
-        }
-    }
-    double volume = 0.0;
-    // Per node: the vectors multiplying N_a N_b (gv), N'_a N_b (gs) and N_a N'_b (gt) in δV.
-    double gv[5][5][3];
-    double gs[5][5][3];
-    double gt[5][5][3];
-    for (std::size_t q = 0; q < 5; ++q) {
-        for (std::size_t r = 0; r < 5; ++r) {
-            double x[3] = {};
-            double xs[3] = {};
-            double xt[3] = {};
-            for (std::size_t b = 0; b < 4; ++b) {
-                const double n = rule.value[r][b];
-                const double d = rule.slope[r][b];
-                for (int c = 0; c < 3; ++c) {
-                    x[c] += n * A[q][b][c];
-                    xs[c] += n * As[q][b][c];
-                    xt[c] += d * A[q][b][c];
-                }
-            }
-            const double w = rule.weight[q] * rule.weight[r] / 3.0;
-            const double n[3] = {xs[1] * xt[2] - xs[2] * xt[1], xs[2] * xt[0] - xs[0] * xt[2],
-                                 xs[0] * xt[1] - xs[1] * xt[0]};
-            volume += w * (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]);
-            if (gradient != nullptr) {
-                gv[q][r][0] = w * n[0];
-                gv[q][r][1] = w * n[1];
-                gv[q][r][2] = w * n[2];
-                gs[q][r][0] = w * (xt[1] * x[2] - xt[2] * x[1]);
-                gs[q][r][1] = w * (xt[2] * x[0] - xt[0] * x[2]);
-                gs[q][r][2] = w * (xt[0] * x[1] - xt[1] * x[0]);
-                gt[q][r][0] = w * (x[1] * xs[2] - x[2] * xs[1]);
-                gt[q][r][1] = w * (x[2] * xs[0] - x[0] * xs[2]);
-                gt[q][r][2] = w * (x[0] * xs[1] - x[1] * xs[0]);
-            }
-        }
-    }
-    if (gradient == nullptr) {
-        return volume;
-    }
-    // G[b][a] = Σ_q Σ_r N_a(s_q) N_b(t_r) gv + N'_a(s_q) N_b(t_r) gs + N_a(s_q) N'_b(t_r) gt, first over r.
-    double H[5][4][3] = {};   // Σ_r N_b(t_r) gv   (multiplies N_a)
-    double Hs[5][4][3] = {};  // Σ_r N_b(t_r) gs   (multiplies N'_a)
-    for (std::size_t q = 0; q < 5; ++q) {
-        for (std::size_t r = 0; r < 5; ++r) {
-            for (std::size_t b = 0; b < 4; ++b) {
-                const double n = rule.value[r][b];
-                const double d = rule.slope[r][b];
-                for (int c = 0; c < 3; ++c) {
-                    H[q][b][c] += n * gv[q][r][c] + d * gt[q][r][c];
-                    Hs[q][b][c] += n * gs[q][r][c];
-                }
-            }
-        }
-    }
-    for (std::size_t i = 0; i < 16; ++i) {
-        const auto [a, b] = bicubic_grid[i];
-        for (std::size_t q = 0; q < 5; ++q) {
-            const double n = rule.value[q][static_cast<std::size_t>(a)];
-            const double d = rule.slope[q][static_cast<std::size_t>(a)];
-            for (int c = 0; c < 3; ++c) {
-                gradient[3 * i + static_cast<std::size_t>(c)] += n * H[q][b][c] + d * Hs[q][b][c];
-            }
-        }
-    }
-    return volume;
 }
 
 }  // namespace
 
 double VolumeForm::evaluate(const double* p, double* gradient) const {
-    return bicubic ? bicubic_volume(p, gradient) : evaluate_by_coefficients(p, gradient);
+    return lanes > 0 ? evaluate_by_pairs(p, gradient) : evaluate_by_coefficients(p, gradient);
+}
+
+double VolumeForm::evaluate_by_pairs(const double* p, double* gradient) const {
+    return pair_form_kernel(size, lanes, pair_weights.data(), p, gradient);
 }
 
 double VolumeForm::evaluate_by_coefficients(const double* p, double* gradient) const {
@@ -234,8 +171,28 @@ VolumeForm make_volume_form(SchemeKind scheme, int type, std::vector<double> coe
             }
         }
     }
+    if (m <= max_pair_form_points) {
+        // W[t][i] = ∂²vol / ∂p_i ∂(p_j × p_k): the coefficient of the triple {i, j, k}, its sign
+        // that of the permutation taking (i, j, k) to increasing order.
+        form.lanes = (m + 7) / 8 * 8;
+        const auto lanes = static_cast<std::size_t>(form.lanes);
+        form.pair_weights.assign(static_cast<std::size_t>(m * (m - 1) / 2) * lanes, 0.0);
+        const auto c = [&](int a, int b, int d) {
+            return coefficients[static_cast<std::size_t>(alternating_index(m, a, b, d))];
+        };
+        std::size_t t = 0;
+        for (int j = 0; j + 1 < m; ++j) {
+            for (int k = j + 1; k < m; ++k, ++t) {
+                for (int i = 0; i < m; ++i) {
+                    if (i != j && i != k) {
+                        form.pair_weights[t * lanes + static_cast<std::size_t>(i)] =
+                            i < j ? c(i, j, k) : (i < k ? -c(j, i, k) : c(j, k, i));
+                    }
+                }
+            }
+        }
+    }
     form.coefficients = std::move(coefficients);
-    form.bicubic = scheme == SchemeKind::CatmullClark && type == 4;
     return form;
 }
 
