@@ -35,10 +35,20 @@ std::vector<double> random_values(std::size_t count, unsigned seed) {
 struct Shape {
     std::ptrdiff_t rows, cols, width;
 };
-// Row counts on either side of the eight lanes and of the 8-row blocks, a Loop element (96 rows of
-// 12 columns), a Catmull–Clark one (150 of 16), widths not a multiple of three, and empty ones.
-constexpr std::array<Shape, 9> shapes{
-    {{0, 3, 3}, {1, 1, 1}, {7, 5, 2}, {8, 12, 3}, {9, 13, 4}, {17, 2, 9}, {96, 12, 9}, {150, 16, 10}, {80, 0, 3}}};
+// Row and column counts on either side of the eight lanes and of the 16-row (forwards) and
+// 16-column (backwards) blocks, a Loop element (96 rows of 12 columns), a Catmull–Clark one (150 of
+// 16), a C2g0-sized one (40 columns), widths not a multiple of three, and empty ones.
+constexpr std::array<Shape, 11> shapes{{{0, 3, 3},
+                                        {1, 1, 1},
+                                        {7, 5, 2},
+                                        {8, 12, 3},
+                                        {9, 13, 4},
+                                        {17, 2, 9},
+                                        {96, 12, 9},
+                                        {150, 16, 10},
+                                        {33, 17, 5},
+                                        {80, 40, 3},
+                                        {80, 0, 3}}};
 
 TEST(ElementProducts, ForwardSumsEachEntryOverTheColumnsInOrder) {
     for (const Shape& s : shapes) {
@@ -65,32 +75,25 @@ TEST(ElementProducts, ForwardSumsEachEntryOverTheColumnsInOrder) {
     }
 }
 
-/// out(j, w) in element_products.h's documented order.
-double documented_dot(const double* k, const double* l, std::ptrdiff_t rows) {
-    std::array<double, 8> lane{};
-    const std::ptrdiff_t full = rows - rows % 8;
-    for (std::ptrdiff_t r = 0; r < full; ++r) {
-        lane[static_cast<std::size_t>(r % 8)] += k[r] * l[r];
-    }
-    double sum = ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
-    for (std::ptrdiff_t r = full; r < rows; ++r) {
-        sum += k[r] * l[r];
-    }
-    return sum;
-}
-
-TEST(ElementProducts, BackwardSumsInTheDocumentedOrderAndWritesOnlyItsColumns) {
+TEST(ElementProducts, BackwardSumsEachEntryOverTheRowsInOrderAndWritesOnlyItsColumns) {
     for (const Shape& s : shapes) {
         SCOPED_TRACE(testing::Message() << s.rows << " x " << s.cols << " x " << s.width);
-        const std::ptrdiff_t ld_k = s.rows + 1, ld_l = s.rows + 5, ld_out = s.width + 2;
-        const auto K = random_values(static_cast<std::size_t>(ld_k * s.cols), 3);
+        // K by rows, padded past a multiple of 8 with NaN: the padding is read, and must not reach out.
+        const std::ptrdiff_t ld_kt = (s.cols + 7) / 8 * 8 + 8, ld_l = s.rows + 5, ld_out = s.width + 2;
+        std::vector<double> Kt = random_values(static_cast<std::size_t>(ld_kt * s.rows), 3);
+        for (std::ptrdiff_t r = 0; r < s.rows; ++r) {
+            for (std::ptrdiff_t j = s.cols; j < ld_kt; ++j) {
+                Kt[static_cast<std::size_t>(r * ld_kt + j)] = std::numeric_limits<double>::quiet_NaN();
+            }
+        }
         const auto L = random_values(static_cast<std::size_t>(ld_l * s.width), 4);
         const double untouched = -7.25;
         std::vector<double> out(static_cast<std::size_t>(ld_out * s.cols), untouched);
-        element_backward(K.data(), ld_k, s.rows, s.cols, L.data(), ld_l, s.width, out.data(), ld_out);
-        const Eigen::Map<const Eigen::MatrixXd> k(K.data(), ld_k, s.cols);
+        element_backward(Kt.data(), ld_kt, s.rows, s.cols, L.data(), ld_l, s.width, out.data(), ld_out);
+        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        const Eigen::Map<const RowMajor> k(Kt.data(), s.rows, ld_kt);
         const Eigen::Map<const Eigen::MatrixXd> l(L.data(), ld_l, s.width);
-        const Eigen::MatrixXd expected = k.topRows(s.rows).transpose() * l.topRows(s.rows);
+        const Eigen::MatrixXd expected = k.leftCols(s.cols).transpose() * l.topRows(s.rows);
         for (std::ptrdiff_t j = 0; j < s.cols; ++j) {
             for (std::ptrdiff_t w = 0; w < ld_out; ++w) {
                 const double got = out[static_cast<std::size_t>(j * ld_out + w)];
@@ -98,9 +101,11 @@ TEST(ElementProducts, BackwardSumsInTheDocumentedOrderAndWritesOnlyItsColumns) {
                     EXPECT_EQ(got, untouched) << "a column beyond the width was written";
                     continue;
                 }
-                EXPECT_EQ(got, documented_dot(&K[static_cast<std::size_t>(j * ld_k)],
-                                              &L[static_cast<std::size_t>(w * ld_l)], s.rows))
-                    << "slot " << j << ", column " << w;
+                double sum = 0.0;  // the documented order
+                for (std::ptrdiff_t r = 0; r < s.rows; ++r) {
+                    sum += Kt[static_cast<std::size_t>(r * ld_kt + j)] * L[static_cast<std::size_t>(w * ld_l + r)];
+                }
+                EXPECT_EQ(got, sum) << "slot " << j << ", column " << w;
                 EXPECT_NEAR(got, expected(j, w), 1e-14 * static_cast<double>(s.rows + 1));
             }
         }

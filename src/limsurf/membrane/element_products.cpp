@@ -1,33 +1,16 @@
 // element_products.h. The loops are written so that the compiler vectorises them without
-// reassociating anything: the forward pass across rows (independent sums), the backward pass across
-// the eight partial sums of each dot product. Both keep a few independent sums in flight, because
-// a sum of products is limited by the latency of the addition, not by the multiplications.
+// reassociating anything: the forward pass across K's rows, the backward pass across K's columns
+// (both independent sums, never a reduction across lanes). Both keep six vector sums in flight,
+// because a sum of products is limited by the latency of the addition, not by the multiplications.
 #include "limsurf/membrane/element_products.h"
 
+#include <algorithm>
 #include <array>
 
 #include "limsurf/detail/target_clones.h"
+#include "limsurf/detail/vector_lanes.h"
 
 namespace limsurf::detail {
-
-namespace {
-
-/// Eight doubles as one value (GCC/Clang vector types): lowered to the widest registers of the
-/// instruction set the function is compiled for (one AVX-512 register, two AVX2, four SSE2), each
-/// operation lane by lane, so that the sums are those of the scalar loop in every copy.
-typedef double Lanes __attribute__((vector_size(8 * sizeof(double))));
-
-/// Eight doubles from @p p, aligned or not (through a reference: a vector returned by value would
-/// depend on the instruction set's calling convention).
-[[gnu::always_inline]] inline void load(Lanes& v, const double* p) {
-    __builtin_memcpy(&v, p, sizeof v);
-}
-
-[[gnu::always_inline]] inline void store(double* p, const Lanes& v) {
-    __builtin_memcpy(p, &v, sizeof v);
-}
-
-}  // namespace
 
 LIMSURF_TARGET_CLONES
 void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
@@ -75,60 +58,71 @@ void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdi
 
 namespace {
 
-constexpr std::ptrdiff_t lanes = 8;
+/// Columns [first, first + 8 Blocks) of out = Kᵀ L for W columns of L: W × Blocks vector sums,
+/// one row of K and W entries of L at a time.
+template <int Blocks, int W>
+[[gnu::always_inline]] inline void backward_pass(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
+                                                 std::ptrdiff_t first, std::ptrdiff_t cols, const double* __restrict L,
+                                                 std::ptrdiff_t ld_l, double* __restrict out, std::ptrdiff_t ld_out) {
+    // The small loops unrolled completely, so that the sums stay in registers.
+    Lanes sum[W][Blocks] = {};
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        Lanes k[Blocks];
+#pragma GCC unroll 2
+        for (int b = 0; b < Blocks; ++b) {
+            load(k[b], Kt + r * ld_kt + first + 8 * b);
+        }
+#pragma GCC unroll 3
+        for (int w = 0; w < W; ++w) {
+            const double l = L[w * ld_l + r];
+#pragma GCC unroll 2
+            for (int b = 0; b < Blocks; ++b) {
+                sum[w][b] += k[b] * l;
+            }
+        }
+    }
+    double lanes[W][8 * Blocks];
+    for (int w = 0; w < W; ++w) {
+        for (int b = 0; b < Blocks; ++b) {
+            store(lanes[w] + 8 * b, sum[w][b]);
+        }
+    }
+    const std::ptrdiff_t count = std::min<std::ptrdiff_t>(8 * Blocks, cols - first);
+    for (std::ptrdiff_t j = 0; j < count; ++j) {
+        for (int w = 0; w < W; ++w) {
+            out[(first + j) * ld_out + w] = lanes[w][j];
+        }
+    }
+}
 
-/// The documented reduction of eight partial sums.
-inline double reduce(const std::array<double, lanes>& s) {
-    return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+/// All columns of out, for W columns of L: 16 columns of K per pass, then 8.
+template <int W>
+[[gnu::always_inline]] inline void backward_columns(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
+                                                    std::ptrdiff_t cols, const double* L, std::ptrdiff_t ld_l,
+                                                    double* out, std::ptrdiff_t ld_out) {
+    std::ptrdiff_t first = 0;
+    for (; first + 8 < cols; first += 16) {
+        backward_pass<2, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+    }
+    if (first < cols) {
+        backward_pass<1, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+    }
 }
 
 }  // namespace
 
 LIMSURF_TARGET_CLONES
-void element_backward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
+void element_backward(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows, std::ptrdiff_t cols,
                       const double* __restrict L, std::ptrdiff_t ld_l, std::ptrdiff_t width, double* __restrict out,
                       std::ptrdiff_t ld_out) noexcept {
-    const std::ptrdiff_t full = rows - rows % lanes;
-    for (std::ptrdiff_t j = 0; j < cols; ++j) {
-        const double* k = K + j * ld_k;
-        double* o = out + j * ld_out;
-        std::ptrdiff_t w = 0;
-        for (; w + 3 <= width; w += 3) {  // three dot products sharing the loads of K's column
-            const double* a = L + w * ld_l;
-            const double* b = a + ld_l;
-            const double* c = b + ld_l;
-            std::array<double, lanes> sa{}, sb{}, sc{};
-            for (std::ptrdiff_t r = 0; r < full; r += lanes) {
-                for (std::ptrdiff_t l = 0; l < lanes; ++l) {
-                    sa[l] += k[r + l] * a[r + l];
-                    sb[l] += k[r + l] * b[r + l];
-                    sc[l] += k[r + l] * c[r + l];
-                }
-            }
-            double ta = reduce(sa), tb = reduce(sb), tc = reduce(sc);
-            for (std::ptrdiff_t r = full; r < rows; ++r) {
-                ta += k[r] * a[r];
-                tb += k[r] * b[r];
-                tc += k[r] * c[r];
-            }
-            o[w] = ta;
-            o[w + 1] = tb;
-            o[w + 2] = tc;
-        }
-        for (; w < width; ++w) {
-            const double* a = L + w * ld_l;
-            std::array<double, lanes> sa{};
-            for (std::ptrdiff_t r = 0; r < full; r += lanes) {
-                for (std::ptrdiff_t l = 0; l < lanes; ++l) {
-                    sa[l] += k[r + l] * a[r + l];
-                }
-            }
-            double ta = reduce(sa);
-            for (std::ptrdiff_t r = full; r < rows; ++r) {
-                ta += k[r] * a[r];
-            }
-            o[w] = ta;
-        }
+    std::ptrdiff_t w = 0;
+    for (; w + 3 <= width; w += 3) {  // three columns of L sharing the loads of K's rows
+        backward_columns<3>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
+    }
+    if (width - w == 2) {
+        backward_columns<2>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
+    } else if (width - w == 1) {
+        backward_columns<1>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
     }
 }
 

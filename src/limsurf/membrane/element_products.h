@@ -26,14 +26,13 @@ namespace limsurf::detail {
 void element_forward(const double* K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols, const double* P,
                      double* out) noexcept;
 
-/// out = Kᵀ · L, the backward pass.
-/// K: rows × cols, column-major, leading dimension ld_k ≥ rows; L: rows × width, column-major,
-/// leading dimension ld_l ≥ rows; out: cols × width, row-major, leading dimension ld_out ≥ width.
-/// out(j, w) = Σ_r K(r, j) L(r, w): eight partial sums, r ≡ 0 … 7 (mod 8) over the first
-/// 8 ⌊rows / 8⌋ rows, added pairwise ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)), then the
-/// remaining rows in order.
-/// Preconditions: rows, cols, width ≥ 0; out overlaps neither K nor L.
-void element_backward(const double* K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols, const double* L,
+/// out = Kᵀ · L, the backward pass, from K stored by rows.
+/// Kt: K (rows × cols) row-major, leading dimension ld_kt ≥ cols rounded up to a multiple of 8
+/// (the entries beyond cols are read but do not reach out); L: rows × width, column-major, leading
+/// dimension ld_l ≥ rows; out: cols × width, row-major, leading dimension ld_out ≥ width.
+/// out(j, w) = Σ_r K(r, j) L(r, w), summed over r = 0, 1, … from +0.
+/// Preconditions: rows, cols, width ≥ 0; out overlaps neither Kt nor L.
+void element_backward(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows, std::ptrdiff_t cols, const double* L,
                       std::ptrdiff_t ld_l, std::ptrdiff_t width, double* out, std::ptrdiff_t ld_out) noexcept;
 
 }  // namespace limsurf::detail

@@ -88,6 +88,9 @@ Points ShapeValues::helfrich_gradient(double spontaneous_curvature) const {
 struct ElementKernel {
     std::vector<double> weights;  // per sample: its parameter-domain quadrature weight
     Eigen::MatrixXd rows;         // (6 × samples) × slots
+    // The same, row-major with the slots padded with zeros to a multiple of 8: the backward product
+    // runs across the slots (element_products.h). Filled once per distinct kernel (intern).
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows_by_slot;
 
     [[nodiscard]] Eigen::Index num_samples() const { return static_cast<Eigen::Index>(weights.size()); }
 };
@@ -206,6 +209,9 @@ std::size_t ShapeFunctionals::Impl::intern(const ElementKernel& kernel, KernelIn
     }
     index.emplace(hash, kernels.size());
     kernels.push_back(kernel);
+    ElementKernel& added = kernels.back();
+    added.rows_by_slot.setZero(added.rows.rows(), (added.rows.cols() + 7) / 8 * 8);
+    added.rows_by_slot.leftCols(added.rows.cols()) = added.rows;
     return kernels.size() - 1;
 }
 
@@ -310,9 +316,11 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
                 const std::size_t f = requested[q];
                 const Eigen::Index first = detail::local_rows_first[f] * n;
                 const Eigen::Index last = detail::local_rows_last[f] * n;
-                detail::element_backward(
-                    kernel.rows.data() + first, rows, last - first, num_element_slots, &local[3 * f * 6 * size] + first,
-                    rows, 3, &slot_gradient[first_slot * width + 3 * q], static_cast<std::ptrdiff_t>(width));
+                const Eigen::Index ld = kernel.rows_by_slot.cols();
+                detail::element_backward(kernel.rows_by_slot.data() + first * ld, ld, last - first, num_element_slots,
+                                         &local[3 * f * 6 * size] + first, rows, 3,
+                                         &slot_gradient[first_slot * width + 3 * q],
+                                         static_cast<std::ptrdiff_t>(width));
             }
         }
     });
