@@ -226,9 +226,10 @@ void write_outputs(const MembraneCommandOptions& options, const ControlMesh& mes
 
 void print_progress(MembraneStage stage, const MembraneIteration& it) {
     std::ostringstream line;
-    line << std::setprecision(10) << to_string(stage) << " iteration " << std::setw(4) << it.iteration << "  objective "
-         << it.objective << std::setprecision(3) << std::scientific << "  violation " << it.constraint_violation
-         << "  dual " << it.dual_infeasibility << "  step " << it.step << '\n';
+    line << std::setprecision(10) << to_string(stage) << " iteration " << std::setw(4) << it.iteration
+         << (it.restoration ? "r" : " ") << " objective " << it.objective << std::setprecision(3) << std::scientific
+         << "  violation " << it.constraint_violation << "  dual " << it.dual_infeasibility << "  step " << it.step
+         << '\n';
     std::cerr << line.str() << std::flush;
 }
 

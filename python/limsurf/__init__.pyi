@@ -304,6 +304,7 @@ class MembraneIterationReport(TypedDict):
     constraint_violation: float
     dual_infeasibility: float
     step: float
+    restoration: bool  # Ipopt's restoration phase; the regular iteration leaving it repeats its last number
 
 @overload
 def shape_functionals(mesh: Mesh, scheme: MembraneScheme, *, X: ArrayLike | None = None, gradients: bool = True,

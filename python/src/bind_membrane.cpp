@@ -177,10 +177,10 @@ MembraneProgress progress_of(const std::optional<py::function>& callback, std::e
     return [&callback, &error](MembraneStage stage, const MembraneIteration& it) {
         const py::gil_scoped_acquire acquire;
         try {
-            const py::object answer =
-                (*callback)(py::dict("stage"_a = to_string(stage), "iteration"_a = it.iteration,
-                                     "objective"_a = it.objective, "constraint_violation"_a = it.constraint_violation,
-                                     "dual_infeasibility"_a = it.dual_infeasibility, "step"_a = it.step));
+            const py::object answer = (*callback)(py::dict(
+                "stage"_a = to_string(stage), "iteration"_a = it.iteration, "objective"_a = it.objective,
+                "constraint_violation"_a = it.constraint_violation, "dual_infeasibility"_a = it.dual_infeasibility,
+                "step"_a = it.step, "restoration"_a = it.restoration));
             return answer.is_none() || static_cast<bool>(py::bool_(answer));
         } catch (...) {
             error = std::current_exception();

@@ -92,19 +92,29 @@ def test_callback_sees_every_iteration_and_can_stop_the_solve(mesh_path):
     seen = []
     done = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=50,
                                      callback=lambda it: seen.append(it))
-    assert [it["iteration"] for it in seen] == sorted({it["iteration"] for it in seen})
+    # Numbered in order; the regular iteration leaving Ipopt's restoration phase repeats its last number.
+    assert seen[0]["iteration"] == 0
+    for before, it in zip(seen, seen[1:]):
+        leaving_restoration = before["restoration"] and not it["restoration"]
+        assert it["iteration"] == before["iteration"] + (0 if leaving_restoration else 1)
     assert all(it["stage"] == "shape" for it in seen)
-    assert set(seen[0]) == {"stage", "iteration", "objective", "constraint_violation", "dual_infeasibility", "step"}
+    assert set(seen[0]) == {"stage", "iteration", "objective", "constraint_violation", "dual_infeasibility", "step",
+                            "restoration"}
     assert done["iterations"] <= len(seen)
     stopped = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8,
                                         callback=lambda it: it["iteration"] < 3)
     assert not stopped["converged"] and stopped["iterations"] <= 4
     assert np.isfinite(stopped["positions"]).all()
     assert stopped["projected"] is False  # a stop asked for returns the last iterate as it is
-    # Cut short by max_iterations instead, the points returned hold the constraints when it could project.
-    # (12 iterations are still 2754 relative away: the last iterate as it is; 20 come near enough.)
-    far = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=12)
-    assert not far["converged"] and far["projected"] is False and far["max_relative_residual"] > 1
+    # Cut short by max_iterations instead, the points returned hold the constraints when it could project:
+    # after 3 iterations every iterate is still more than 0.1 (relative) away, beyond what is projected, so
+    # the last one comes back as it is; after 20 some came near enough. (Where the iterates go depends on
+    # the gradients' last bits; the premise is checked, so that a new path fails here and not obscurely.)
+    path = []
+    far = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=3,
+                                    callback=lambda it: path.append(it["constraint_violation"]))
+    assert min(path) > 0.1, f"the premise: no iterate near the constraints ({path})"
+    assert not far["converged"] and far["projected"] is False and far["max_relative_residual"] > 0.1
     short = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, max_iterations=20)
     assert not short["converged"] and short["projected"] is True
     assert short["max_relative_residual"] <= 1e-9 and "projected onto the constraints" in short["status"]

@@ -49,6 +49,10 @@ struct MembraneIteration {
     double constraint_violation = 0.0;  ///< max |constraint residual| relative to its target (inequality: excess)
     double dual_infeasibility = 0.0;
     double step = 0.0;  ///< the primal step size α
+    /// An iteration of Ipopt's feasibility restoration phase, entered when the line search finds no
+    /// acceptable step. Its iterations continue the numbering; the regular iteration that leaves it
+    /// repeats the number of its last one (Ipopt's own log: "8r", then "8").
+    bool restoration = false;
 };
 
 /// Options of minimize_membrane().

@@ -324,9 +324,9 @@ class MembraneNlp final : public Ipopt::TNLP {
         return true;
     }
 
-    bool intermediate_callback(Ipopt::AlgorithmMode, Ipopt::Index iter, Ipopt::Number obj_value, Ipopt::Number inf_pr,
-                               Ipopt::Number inf_du, Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number,
-                               Ipopt::Number alpha_pr, Ipopt::Index, const Ipopt::IpoptData*,
+    bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter, Ipopt::Number obj_value,
+                               Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number, Ipopt::Number, Ipopt::Number,
+                               Ipopt::Number, Ipopt::Number alpha_pr, Ipopt::Index, const Ipopt::IpoptData*,
                                Ipopt::IpoptCalculatedQuantities*) override {
         iterations_ = iter;
         if (fatal_) {
@@ -336,7 +336,8 @@ class MembraneNlp final : public Ipopt::TNLP {
             return true;
         }
         try {
-            const bool go_on = options_.on_iteration(MembraneIteration{iter, obj_value, inf_pr, inf_du, alpha_pr});
+            const bool go_on = options_.on_iteration(
+                MembraneIteration{iter, obj_value, inf_pr, inf_du, alpha_pr, mode == Ipopt::RestorationPhaseMode});
             stopped_by_caller_ = stopped_by_caller_ || !go_on;
             return go_on;
         } catch (...) {
