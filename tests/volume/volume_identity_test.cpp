@@ -243,7 +243,7 @@ TEST(VolumeIdentity, RefusesWhatHasNoVolumeForm) {
 }
 
 // The volume and its gradient are the same bits for any number of threads, on meshes large enough
-// for several workers (4096 facets each) both when classifying and when evaluating.
+// for several workers both when classifying and when evaluating.
 TEST(VolumeIdentity, ThreadsGiveTheSameBits) {
     for (const SchemeKind scheme : all_schemes) {
         ClosedMesh m = test::bipyramid(7);
