@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <string_view>
@@ -110,14 +111,9 @@ struct ShapeFunctionals::Impl {
     // the order of first appearance among its samples' limit weights.
     std::vector<std::size_t> element_slots;
     std::vector<Index> slot_vertex;
-    // Gather: the slots of vertex v, in element order: vertex_slots[vertex_offsets[v] .. +1).
-    std::vector<std::size_t> vertex_offsets;
-    std::vector<std::size_t> vertex_slots;
-    // The per-slot gradients of the last evaluate(), kept for the next one: tens of MB on large
-    // meshes, whose fresh allocation (page faults) cost more than the arithmetic and serialised
-    // the threads. A concurrent evaluate() that finds it in use allocates its own.
-    mutable std::mutex workspace_mutex;
-    mutable std::vector<double> workspace;
+    // Per vertex: the first element whose support holds it. A thread adds an element's gradient to
+    // the vertices whose first element lies in its range of elements, and keeps the rest for later.
+    std::vector<std::size_t> vertex_first_element;
 
     Impl(const LimitBasis& basis, const ShapeOptions& o)
         : options(o), scheme(basis.scheme()), triangle(basis.domain() == ParameterDomain::Triangle),
@@ -133,13 +129,13 @@ struct ShapeFunctionals::Impl {
             num_samples += piece.num_samples();
             add_elements(piece, index);
         }
-        build_gather();
+        find_first_elements();
     }
 
     using KernelIndex = std::unordered_multimap<std::size_t, std::size_t>;  // kernels by a hash of their bytes
     void add_elements(const LimitSampler& piece, KernelIndex& index);
     [[nodiscard]] std::size_t intern(const ElementKernel& kernel, KernelIndex& index);
-    void build_gather();
+    void find_first_elements();
     [[nodiscard]] ShapeValues evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const;
 };
 
@@ -215,19 +211,14 @@ std::size_t ShapeFunctionals::Impl::intern(const ElementKernel& kernel, KernelIn
     return kernels.size() - 1;
 }
 
-void ShapeFunctionals::Impl::build_gather() {
-    // Transpose: slots per vertex, in increasing slot (= element) order.
-    vertex_offsets.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
-    for (const Index v : slot_vertex) {
-        ++vertex_offsets[static_cast<std::size_t>(v) + 1];
-    }
-    for (std::size_t v = 0; v < static_cast<std::size_t>(num_vertices); ++v) {
-        vertex_offsets[v + 1] += vertex_offsets[v];
-    }
-    vertex_slots.resize(slot_vertex.size());
-    std::vector<std::size_t> fill(vertex_offsets.begin(), vertex_offsets.end() - 1);
-    for (std::size_t k = 0; k < slot_vertex.size(); ++k) {
-        vertex_slots[fill[static_cast<std::size_t>(slot_vertex[k])]++] = k;
+void ShapeFunctionals::Impl::find_first_elements() {
+    constexpr auto none = std::numeric_limits<std::size_t>::max();
+    vertex_first_element.assign(static_cast<std::size_t>(num_vertices), none);
+    for (std::size_t e = 0; e + 1 < element_slots.size(); ++e) {
+        for (std::size_t k = element_slots[e]; k < element_slots[e + 1]; ++k) {
+            std::size_t& first = vertex_first_element[static_cast<std::size_t>(slot_vertex[k])];
+            first = std::min(first, e);
+        }
     }
 }
 
@@ -252,14 +243,24 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     }
 
     const std::size_t num_elements = element_face.size();
-    const std::size_t num_slots = slot_vertex.size();
     // Per element: the six integrals; per slot: a 3-vector per requested functional, side by side.
     const std::size_t width = 3 * requested.size();
     std::vector<std::array<double, num_shape_functionals>> element_values(num_elements);
-    std::unique_lock<std::mutex> workspace_lock(workspace_mutex, std::try_to_lock);
-    std::vector<double> own_workspace;
-    std::vector<double>& slot_gradient = workspace_lock.owns_lock() ? workspace : own_workspace;
-    slot_gradient.resize(num_slots * width);  // every element writes its own slots below
+    ShapeValues out;
+    for (const std::size_t f : requested) {
+        out.gradient[f].setZero(num_vertices, 3);
+    }
+    // A vertex's gradient is the sum of its slots' in element order, from +0, for any number of
+    // threads: a range of elements adds its slots to the vertices whose first element it holds (so
+    // that every earlier slot of theirs is its own, added before), and keeps the slots of the other
+    // vertices, which are added after the threads have joined, range by range.
+    struct Deferred {
+        Index begin = 0;
+        std::vector<Index> vertices;
+        std::vector<double> gradients;  // width per vertex
+    };
+    std::mutex deferred_mutex;
+    std::vector<Deferred> deferred;
     std::vector<Index> degenerate(num_elements, invalid_index);
     std::vector<Vec3> element_normal_area(num_elements, Vec3::Zero());
     const Vec3 centroid = X.colwise().mean().transpose();
@@ -269,6 +270,8 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
         // Per element, sample_integrands.h's layouts: the forward product (6 n × 3), the values
         // (6 × n), w N (3 × n), the local gradients (18 columns of 6 n) and the degeneracy flags.
         std::vector<double> derivatives, values, normal_area, local, flags;
+        std::vector<double> element_gradient;  // slots × width, row-major
+        Deferred kept{begin, {}, {}};
         detail::SampleBatch batch;
         std::copy(centroid.data(), centroid.data() + 3, batch.centroid);
         batch.triangle = triangle;
@@ -312,25 +315,47 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
             }
             // ... and backwards through the same weights, per slot: for each functional only the
             // rows it depends on (the area, two of six; the position only for the quadrature volume).
+            element_gradient.resize(static_cast<std::size_t>(num_element_slots) * width);
             for (std::size_t q = 0; q < requested.size(); ++q) {
                 const std::size_t f = requested[q];
                 const Eigen::Index first = detail::local_rows_first[f] * n;
                 const Eigen::Index last = detail::local_rows_last[f] * n;
                 const Eigen::Index ld = kernel.rows_by_slot.cols();
                 detail::element_backward(kernel.rows_by_slot.data() + first * ld, ld, last - first, num_element_slots,
-                                         &local[3 * f * 6 * size] + first, rows, 3,
-                                         &slot_gradient[first_slot * width + 3 * q],
+                                         &local[3 * f * 6 * size] + first, rows, 3, &element_gradient[3 * q],
                                          static_cast<std::ptrdiff_t>(width));
             }
+            for (std::size_t k = 0; k < static_cast<std::size_t>(num_element_slots); ++k) {
+                const Index v = slot_vertex[first_slot + k];
+                const double* g = &element_gradient[k * width];
+                if (vertex_first_element[static_cast<std::size_t>(v)] < static_cast<std::size_t>(begin)) {
+                    kept.vertices.push_back(v);
+                    kept.gradients.insert(kept.gradients.end(), g, g + width);
+                    continue;
+                }
+                for (std::size_t q = 0; q < width; ++q) {
+                    out.gradient[requested[q / 3]](v, static_cast<Eigen::Index>(q % 3)) += g[q];
+                }
+            }
         }
+        const std::lock_guard<std::mutex> lock(deferred_mutex);
+        deferred.push_back(std::move(kept));
     });
+    std::sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.begin < b.begin; });
+    for (const Deferred& range : deferred) {
+        for (std::size_t i = 0; i < range.vertices.size(); ++i) {
+            for (std::size_t q = 0; q < width; ++q) {
+                out.gradient[requested[q / 3]](range.vertices[i], static_cast<Eigen::Index>(q % 3)) +=
+                    range.gradients[i * width + q];
+            }
+        }
+    }
     for (std::size_t e = 0; e < num_elements; ++e) {
         LIMSURF_CHECK_AT(degenerate[e] == invalid_index, NumericalError, face_element(degenerate[e]),
                          "the limit surface is degenerate (parallel tangents or non-finite curvature) on ptex face ",
                          degenerate[e]);
     }
 
-    ShapeValues out;
     std::array<double, num_shape_functionals> total{};
     for (const auto& values : element_values) {  // in element order: the same sum for any thread count
         for (std::size_t f = 0; f < total.size(); ++f) {
@@ -344,39 +369,6 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     out.gaussian = total[index_of(ShapeFunctional::Gaussian)];
     out.harmonic = total[index_of(ShapeFunctional::Harmonic)];
 
-    for (const std::size_t f : requested) {
-        out.gradient[f].resize(num_vertices, 3);  // every entry is written below
-    }
-    // One pass over the slots of each vertex (in element order) for every requested functional,
-    // summed from +0 in registers. A vertex's slots are scattered over the elements around it: the
-    // slots of the vertex two ahead are asked for early, so that their cache misses overlap.
-    parallel_ranges(requested.empty() ? 0 : num_vertices, options.num_threads, [&](Index begin, Index end) {
-        const auto slots_of = [&](Index v) {
-            const auto uv = static_cast<std::size_t>(v);
-            return std::pair{vertex_offsets[uv], vertex_offsets[uv + 1]};
-        };
-        for (Index v = begin; v < end; ++v) {
-            if (v + 2 < end) {
-                const auto [first, last] = slots_of(v + 2);
-                for (std::size_t k = first; k < last; ++k) {
-                    const double* ahead = &slot_gradient[vertex_slots[k] * width];
-                    __builtin_prefetch(ahead);
-                    __builtin_prefetch(ahead + width - 1);  // the slot's last value: maybe the next line
-                }
-            }
-            std::array<double, 3 * num_shape_functionals> sum{};
-            const auto [first, last] = slots_of(v);
-            for (std::size_t k = first; k < last; ++k) {
-                const double* source = &slot_gradient[vertex_slots[k] * width];
-                for (std::size_t q = 0; q < width; ++q) {
-                    sum[q] += source[q];
-                }
-            }
-            for (std::size_t q = 0; q < width; ++q) {
-                out.gradient[requested[q / 3]](v, static_cast<Eigen::Index>(q % 3)) = sum[q];
-            }
-        }
-    });
     if (local_wanted[index_of(ShapeFunctional::Volume)]) {
         // The centroid c = mean of X moves with every control point: ∂V/∂X_v −= ∫ n dA / (3 #V).
         Vec3 normal_area = Vec3::Zero();
