@@ -250,6 +250,10 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     for (const std::size_t f : requested) {
         out.gradient[f].setZero(num_vertices, 3);
     }
+    std::array<double*, 3 * num_shape_functionals> column{};  // of out's gradients, side by side as in a slot
+    for (std::size_t q = 0; q < width; ++q) {
+        column[q] = out.gradient[requested[q / 3]].col(static_cast<Eigen::Index>(q % 3)).data();
+    }
     // A vertex's gradient is the sum of its slots' in element order, from +0, for any number of
     // threads: a range of elements adds its slots to the vertices whose first element it holds (so
     // that every earlier slot of theirs is its own, added before), and keeps the slots of the other
@@ -334,7 +338,7 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
                     continue;
                 }
                 for (std::size_t q = 0; q < width; ++q) {
-                    out.gradient[requested[q / 3]](v, static_cast<Eigen::Index>(q % 3)) += g[q];
+                    column[q][v] += g[q];
                 }
             }
         }
@@ -345,8 +349,7 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     for (const Deferred& range : deferred) {
         for (std::size_t i = 0; i < range.vertices.size(); ++i) {
             for (std::size_t q = 0; q < width; ++q) {
-                out.gradient[requested[q / 3]](range.vertices[i], static_cast<Eigen::Index>(q % 3)) +=
-                    range.gradients[i * width + q];
+                column[q][range.vertices[i]] += range.gradients[i * width + q];
             }
         }
     }
