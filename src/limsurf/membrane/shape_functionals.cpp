@@ -254,7 +254,7 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     for (std::size_t q = 0; q < width; ++q) {
         column[q] = out.gradient[requested[q / 3]].col(static_cast<Eigen::Index>(q % 3)).data();
     }
-    // A vertex's gradient is the sum of its slots' in element order, from +0, for any number of
+    // A vertex's gradient is the sum of its slots' contributions in element order, from +0, for any number of
     // threads: a range of elements adds its slots to the vertices whose first element it holds (so
     // that every earlier slot of theirs is its own, added before), and keeps the slots of the other
     // vertices, which are added after the threads have joined, range by range.
