@@ -304,28 +304,46 @@ TEST(CliMembrane, ReportsWhetherTheLimitSurfacePassesThroughItself) {
 // 1.6e-3 of W0, below Ipopt's bound_push (1e-2). With the Willmore bound scaled by W0 the bound's slack
 // started outside it and Ipopt gave up the other constraints for good: after 150 iterations A, V, M were
 // off by O(1) (scaled violation 1.4) and E had fallen to 8π, the conformal round sphere's. Scaled by the
-// margin (shape_optimization.cpp), Ipopt keeps to the constraints while E falls.
+// margin (shape_optimization.cpp), and with Ipopt's filter capped at a violation of 0.1 (theta_max), the
+// iterates stay near the constraints while E falls; without the cap they went thousands away (up to 7e3
+// in the first iteration) and the 150 iterations ended at E 79.29, 2 % below E0.
 TEST(CliMembrane, RegularisationWithASmallMarginKeepsItsConstraints) {
     const fs::path start = test::test_data_dir() / "membrane" / "helfrich_v04_m18_tetra_3.obj";
     const fs::path obj = temp_dir() / "fig13_regularized.obj";
-    const auto out =
-        run_json({"membrane", start.string(), "--scheme", "c2g0", "--area", "12.566370614359172", "--reduced-volume",
-                  "0.4", "--reduced-mean-curvature", "1.8", "--regularize-harmonic", "0.08", "--max-iterations", "150",
-                  "--intersection-resolution", "4", "-o", obj.string(), "--json"});
+    const CliRun run =
+        limsurf({"membrane", start.string(), "--scheme", "c2g0", "--area", "12.566370614359172", "--reduced-volume",
+                 "0.4", "--reduced-mean-curvature", "1.8", "--regularize-harmonic", "0.08", "--max-iterations", "150",
+                 "--intersection-resolution", "4", "-o", obj.string(), "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto out = nlohmann::json::parse(run.out);
     ASSERT_TRUE(out.contains("regularization") && out.at("regularization").is_object());
     const auto& reg = out.at("regularization");
-    // 150 iterations do not converge; the point returned is the last iterate (W above its bound by
-    // 2.3e-3) projected onto the constraints: A, V, M to the tolerance and W at most W0 + ε (before
-    // the margin scaling Ipopt had left them for good: residual 1.4, W 122.8).
+    // Every regular iteration's scaled violation (the progress lines) is within the cap; the
+    // restoration phase, which has a filter of its own, did not run here.
+    std::istringstream progress(run.err);
+    int lines = 0;
+    for (std::string line; std::getline(progress, line);) {
+        if (line.rfind("regularization iteration", 0) != 0) {
+            continue;
+        }
+        ++lines;
+        std::istringstream fields(line);
+        std::string stage, word, iteration, objective_word, objective, violation_word, violation;
+        fields >> stage >> word >> iteration >> objective_word >> objective >> violation_word >> violation;
+        ASSERT_EQ(violation_word, "violation") << line;
+        EXPECT_NE(iteration.back(), 'r') << line;
+        EXPECT_LE(std::stod(violation), 0.1) << line;
+    }
+    EXPECT_EQ(lines, 151);
+    // 150 iterations do not converge; the point returned is one met within 1e-3 of the constraints,
+    // projected onto them: A, V, M to the tolerance and W at most W0 + ε.
     EXPECT_FALSE(reg.at("converged").get<bool>());
     EXPECT_TRUE(reg.at("projected").get<bool>());
     EXPECT_LT(number(reg, "max_relative_residual"), 1e-9) << reg.dump();
     EXPECT_LE(number(reg, "willmore"), (number(out, "willmore") + 0.08) * (1.0 + 1e-9));
-    // E falls. How far, in 150 iterations of a solve that does not converge, is at the mercy of
-    // rounding: 80.86 -> 68.97 with the gradients of 2026-12-04, 80.86 -> 79.29 with the same
-    // gradients summed in another order (2026-12-05); the iterates leave the constraints by up to
-    // 5e3 (scaled) in between, and the point returned is the best one found near them.
-    EXPECT_LT(number(reg, "harmonic"), number(out, "harmonic"));
+    // E falls by a tenth at least (80.86 -> 65.2 measured; how far exactly follows rounding, as in any
+    // solve that has not converged).
+    EXPECT_LT(number(reg, "harmonic"), 0.9 * number(out, "harmonic"));
     EXPECT_GE(number(reg, "harmonic"), 2.0 * number(reg, "area") * (1.0 - 1e-9));  // E >= 2A
     EXPECT_NE(reg.at("status").get<std::string>().find("projected onto the constraints"), std::string::npos);
     // The file holds the projected point.

@@ -480,7 +480,7 @@ class MembraneNlp final : public Ipopt::TNLP {
     int iterations_ = 0;
 };
 
-void set_options(Ipopt::IpoptApplication& app, const MembraneOptions& options) {
+void set_options(Ipopt::IpoptApplication& app, const MembraneProblem& problem, const MembraneOptions& options) {
     const Ipopt::SmartPtr<Ipopt::OptionsList> o = app.Options();
     o->SetIntegerValue("print_level", 0);
     o->SetStringValue("sb", "yes");
@@ -509,6 +509,17 @@ void set_options(Ipopt::IpoptApplication& app, const MembraneOptions& options) {
         o->SetIntegerValue("acceptable_iter", 15);
     } else {
         o->SetIntegerValue("acceptable_iter", 0);
+    }
+    if (problem.objective == MembraneObjective::Harmonic) {
+        // Ipopt's filter accepts trial points with a scaled constraint violation up to
+        // theta_max = theta_max_fact max(1, θ(x0)), by default 1e4. (3.12) starts at a minimiser of
+        // (3.1), θ(x0) ~ 1e-10, and E falls far faster off the constraints than on them (towards the
+        // round sphere's 8π): with the default, the iterates of Fig. 13's problem on F_tetra,3 went
+        // thousands away from the first iteration on and never came back (3000 iterations met no
+        // point within 1e-3 of the constraints below E0). Capped at 1e-1 they stay within it and E
+        // falls (80.86 -> 48.3 in those 3000 iterations); 1e-2 pinned F_tetra,4's iterates at the
+        // cap with steps of 1e-5 until Ipopt's restoration phase took over (docs/membrane.md).
+        o->SetNumericValue("theta_max_fact", 1e-1);
     }
 }
 
@@ -664,7 +675,7 @@ MembraneResult solve(const ShapeFunctionals& functionals, const Points& initial,
 
     Ipopt::SmartPtr<MembraneNlp> nlp = new MembraneNlp(functionals, initial, std::move(start), problem, options);
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-    set_options(*app, options);
+    set_options(*app, problem, options);
     Ipopt::ApplicationReturnStatus status = app->Initialize("");  // no ipopt.opt from the working directory
     LIMSURF_CHECK(status == Ipopt::Solve_Succeeded, NumericalError, "Ipopt did not initialise: ", describe(status));
     {
