@@ -293,7 +293,8 @@ TEST_F(MembraneOptimization, HelfrichHoldsTheMeanCurvature) {
 }
 
 // (3.12) with the paper's absolute ε: from a Canham solution, a small allowance in W buys a
-// lower harmonic energy, and W stays within the bound.
+// lower harmonic energy, and W stays within the bound; the iterates stay within the filter's cap
+// of 0.1 (shape_optimization.cpp; with Ipopt's default cap they reached 382 here).
 TEST_F(MembraneOptimization, HarmonicRegularisationLowersTheEnergyWithinTheWillmoreBound) {
     const MembraneResult& canham_solution = prolate_tetra_2();
     ASSERT_TRUE(canham_solution.converged);
@@ -303,10 +304,18 @@ TEST_F(MembraneOptimization, HarmonicRegularisationLowersTheEnergyWithinTheWillm
     problem.willmore_bound = canham_solution.values.willmore + epsilon;
     MembraneOptions options;
     options.objective_tolerance = 1e-10;
+    double worst_violation = 0.0;  // over the regular iterations: Ipopt's filter is capped at 0.1 for (3.12)
+    options.on_iteration = [&worst_violation](const MembraneIteration& it) {
+        if (!it.restoration) {
+            worst_violation = std::max(worst_violation, it.constraint_violation);
+        }
+        return true;
+    };
     const MembraneResult r = minimize_membrane(tetra_2().functionals, canham_solution.positions, problem, options);
-    std::printf("(3.12): E %.8f -> %.8f, W %.8f -> %.8f, %d iterations, %.2f s, %s\n", canham_solution.values.harmonic,
-                r.values.harmonic, canham_solution.values.willmore, r.values.willmore, r.iterations, r.seconds,
-                r.status.c_str());
+    EXPECT_LE(worst_violation, 0.1);
+    std::printf("(3.12): E %.8f -> %.8f, W %.8f -> %.8f, %d iterations, %.2f s, worst violation %.3g, %s\n",
+                canham_solution.values.harmonic, r.values.harmonic, canham_solution.values.willmore, r.values.willmore,
+                r.iterations, r.seconds, worst_violation, r.status.c_str());
     ASSERT_TRUE(r.converged) << r.status;
     expect_constraints(r, problem, 1e-9);
     EXPECT_LE(r.values.willmore, *problem.willmore_bound * (1.0 + 1e-9));
@@ -351,9 +360,8 @@ TEST_F(MembraneOptimization, AnUnfinishedSolveReturnsAFeasiblePointWhenItCan) {
         SCOPED_TRACE(testing::Message() << iterations << " iterations");
         MembraneOptions options;
         options.max_iterations = iterations;
-        const MembraneResult r =
-            minimize_membrane(tetra_2().functionals, stretched(tetra_2().mesh.positions(), 1.0, 1.0, 1.5), problem,
-                              options);
+        const MembraneResult r = minimize_membrane(
+            tetra_2().functionals, stretched(tetra_2().mesh.positions(), 1.0, 1.0, 1.5), problem, options);
         EXPECT_FALSE(r.converged);
         if (!r.projected) {
             continue;
