@@ -37,6 +37,9 @@ packages=(
     coinor-libipopt-dev evolver
     # plane elasticity: FreeFem++ as a test-only peer (body-fitted P2 homogenisation of the cell)
     freefem++
+    # test-only: qemu-user runs the kernels' SSE2 and AVX2 copies on any x86-64 machine
+    # (tests/membrane/same_bits_on_every_cpu.cmake)
+    qemu-user
 )
 
 # `setup.sh --fuzz` adds what the libFuzzer targets need (make fuzz).
