@@ -12,7 +12,7 @@
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/membrane/shape_functionals.h"
-#include "limsurf/refine/refine.h"
+#include "limsurf/refine/hierarchy.h"
 #include "limsurf/volume/enclosed_volume.h"
 #include "support/mesh_zoo.h"
 
@@ -49,14 +49,12 @@ Points perturbed(const Points& X) {
 
 void print_hashes(const char* name, SchemeKind scheme, int levels) {
     const ControlMesh mesh = read_mesh(test::find_bundled(name).path).mesh;
-    Topology topology = mesh.topology();
-    Points X = mesh.positions();
-    for (int l = 0; l < levels; ++l) {
-        Level level = refine(topology, scheme);
-        X = level.S0 * X;
-        topology = std::move(level.topology);
-    }
-    X = perturbed(X);
+    RefineOptions refine_options;
+    refine_options.scheme = scheme;
+    refine_options.levels = levels;
+    const FinestLevel finest = refine_finest(mesh.topology(), mesh.positions(), refine_options);
+    const Topology& topology = finest.topology;
+    const Points X = perturbed(finest.positions);
     const LimitBasis basis(topology, scheme);
     const ShapeFunctionals functionals(basis, ShapeOptions{.num_threads = 2});
     const ShapeValues values = functionals.evaluate_all(X);
