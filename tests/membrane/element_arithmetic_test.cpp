@@ -56,8 +56,11 @@ TEST(ElementProducts, ForwardSumsEachEntryOverTheColumnsInOrder) {
         const std::ptrdiff_t ld_k = s.rows + 3;  // a leading dimension beyond the rows
         const auto K = random_values(static_cast<std::size_t>(ld_k * s.cols), 1);
         const auto P = random_values(static_cast<std::size_t>(3 * s.cols), 2);
-        std::vector<double> out(static_cast<std::size_t>(3 * s.rows), std::nan(""));
-        element_forward(K.data(), ld_k, s.rows, s.cols, P.data(), out.data());
+        // out's leading dimension beyond its rows: the rows between are left as they are.
+        const std::ptrdiff_t ld_out = s.rows + 2;
+        const double untouched = -7.25;
+        std::vector<double> out(static_cast<std::size_t>(3 * ld_out), untouched);
+        element_forward(K.data(), ld_k, s.rows, s.cols, P.data(), out.data(), ld_out);
         const Eigen::Map<const Eigen::MatrixXd> k(K.data(), ld_k, s.cols);
         const Eigen::Map<const Eigen::MatrixXd> p(P.data(), s.cols, 3);
         const Eigen::MatrixXd expected = k.topRows(s.rows) * p;
@@ -67,9 +70,12 @@ TEST(ElementProducts, ForwardSumsEachEntryOverTheColumnsInOrder) {
                 for (std::ptrdiff_t j = 0; j < s.cols; ++j) {
                     sum += K[static_cast<std::size_t>(j * ld_k + r)] * P[static_cast<std::size_t>(c * s.cols + j)];
                 }
-                const double got = out[static_cast<std::size_t>(c * s.rows + r)];
+                const double got = out[static_cast<std::size_t>(c * ld_out + r)];
                 EXPECT_EQ(got, sum) << "row " << r << ", column " << c;
                 EXPECT_NEAR(got, expected(r, c), 1e-14 * static_cast<double>(s.cols + 1));
+            }
+            for (std::ptrdiff_t r = s.rows; r < ld_out; ++r) {
+                EXPECT_EQ(out[static_cast<std::size_t>(c * ld_out + r)], untouched) << "a row beyond rows was written";
             }
         }
     }

@@ -2,11 +2,16 @@
 // identities of homogeneity and rigid motions, Gauss–Bonnet, the exact volume forms as a witness
 // of the quadrature volume, round spheres against the analytic values (W = 4π, v = m = 1), the
 // harmonic energy's bound E >= 2A, determinism across thread counts, and bad input.
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
@@ -178,6 +183,44 @@ TEST_P(EveryScheme, DeterministicForAnyThreadCount) {
         for (const ShapeFunctional f : all_functionals) {
             EXPECT_EQ(at.value(f), reference.value(f)) << name_of(f) << ", " << threads << " threads";
             EXPECT_TRUE(at.gradient_of(f) == reference.gradient_of(f)) << name_of(f) << ", " << threads << " threads";
+        }
+    }
+}
+
+// A value or gradient is the same bits whichever others are asked for (evaluate() computes only
+// the local gradients asked for, and the positions at the samples only for the quadrature volume),
+// with the exact volume forms and with the quadrature volume: every functional alone, what the
+// Canham, Helfrich and (3.12) problems ask for, and the values alone.
+TEST_P(EveryScheme, AFunctionalDoesNotDependOnWhichOthersAreAskedFor) {
+    const Case c = GetParam();
+    const ControlMesh mesh = bundled(c.mesh);
+    const LimitBasis basis(mesh.topology(), c.scheme);
+    const Points X = perturbed(mesh.positions(), 17, 0.05);
+    using enum ShapeFunctional;
+    std::vector<std::vector<ShapeFunctional>> subsets{
+        {}, {Willmore, Area, Volume}, {Willmore, MeanCurvature, Area, Volume}, {Harmonic, Willmore, Area, Volume}};
+    for (const ShapeFunctional f : all_functionals) {
+        subsets.push_back({f});
+    }
+    for (const bool exact_volume : {true, false}) {
+        const ShapeFunctionals functionals(basis, ShapeOptions{.exact_volume = exact_volume});
+        const ShapeValues all = functionals.evaluate_all(X);
+        for (const auto& subset : subsets) {
+            const ShapeValues some = functionals.evaluate(X, subset);
+            for (const ShapeFunctional f : all_functionals) {
+                const bool asked = std::find(subset.begin(), subset.end(), f) != subset.end();
+                SCOPED_TRACE(testing::Message() << name_of(f) << (asked ? " (asked)" : "") << " of " << subset.size()
+                                                << ", exact volume " << exact_volume);
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(some.value(f)), std::bit_cast<std::uint64_t>(all.value(f)));
+                if (asked) {
+                    const Points& a = some.gradient_of(f);
+                    const Points& b = all.gradient_of(f);
+                    ASSERT_EQ(a.size(), b.size());
+                    EXPECT_EQ(std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())), 0);
+                } else {
+                    EXPECT_EQ(some.gradient_of(f).size(), 0);
+                }
+            }
         }
     }
 }

@@ -91,6 +91,7 @@ class ShapeFunctionals {
     ShapeFunctionals& operator=(const ShapeFunctionals&) = delete;
 
     /// @brief Every functional at @p X, and the gradients of those in @p gradients.
+    /// Each value and gradient is the same bits whichever others are asked for.
     /// @throws InputError when X does not have num_vertices() rows or has a non-finite entry
     /// @throws NumericalError when the surface is degenerate at a sample (parallel tangents),
     ///   naming the ptex face

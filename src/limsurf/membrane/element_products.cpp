@@ -14,7 +14,7 @@ namespace limsurf::detail {
 
 LIMSURF_TARGET_CLONES
 void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
-                     const double* __restrict P, double* __restrict out) noexcept {
+                     const double* __restrict P, double* __restrict out, std::ptrdiff_t ld_out) noexcept {
     // 16 rows per pass, times three columns: six vector sums in flight.
     constexpr std::ptrdiff_t block = 16;
     const double* P0 = P;
@@ -37,10 +37,10 @@ void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdi
         }
         store(out + r, a0);
         store(out + r + 8, a1);
-        store(out + rows + r, b0);
-        store(out + rows + r + 8, b1);
-        store(out + 2 * rows + r, c0);
-        store(out + 2 * rows + r + 8, c1);
+        store(out + ld_out + r, b0);
+        store(out + ld_out + r + 8, b1);
+        store(out + 2 * ld_out + r, c0);
+        store(out + 2 * ld_out + r + 8, c1);
     }
     for (; r < rows; ++r) {  // the last rows % 16, summed in the same order
         double s0 = 0.0, s1 = 0.0, s2 = 0.0;
@@ -51,8 +51,8 @@ void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdi
             s2 += k * P2[j];
         }
         out[r] = s0;
-        out[rows + r] = s1;
-        out[2 * rows + r] = s2;
+        out[ld_out + r] = s1;
+        out[2 * ld_out + r] = s2;
     }
 }
 

@@ -20,11 +20,11 @@ namespace limsurf::detail {
 
 /// out = K · P, the forward pass.
 /// K: rows × cols, column-major, leading dimension ld_k ≥ rows; P: cols × 3, column-major
-/// (leading dimension cols); out: rows × 3, column-major (leading dimension rows).
+/// (leading dimension cols); out: rows × 3, column-major, leading dimension ld_out ≥ rows.
 /// out(r, c) = Σ_j K(r, j) P(j, c), summed over j = 0, 1, … from +0.
 /// Preconditions: rows, cols ≥ 0; out overlaps neither K nor P.
 void element_forward(const double* K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols, const double* P,
-                     double* out) noexcept;
+                     double* out, std::ptrdiff_t ld_out) noexcept;
 
 /// out = Kᵀ · L, the backward pass, from K stored by rows.
 /// Kt: K (rows × cols) row-major, leading dimension ld_kt ≥ cols rounded up to a multiple of 8

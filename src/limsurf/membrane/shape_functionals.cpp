@@ -235,6 +235,8 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     if (volume_by_forms) {
         local_wanted[index_of(ShapeFunctional::Volume)] = false;
     }
+    // The positions at the samples are needed for the quadrature volume only.
+    const bool value_rows = !volume_by_forms;
     std::vector<std::size_t> requested;  // functionals with a local gradient, in enum order
     for (std::size_t f = 0; f < wanted.size(); ++f) {
         if (local_wanted[f]) {
@@ -293,8 +295,16 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
             const Eigen::Index rows = kernel.rows.rows();
             const auto size = static_cast<std::size_t>(n);
             derivatives.resize(3 * 6 * size);
-            detail::element_forward(kernel.rows.data(), rows, rows, num_element_slots, element_points.data(),
-                                    derivatives.data());
+            if (value_rows) {
+                detail::element_forward(kernel.rows.data(), rows, rows, num_element_slots, element_points.data(),
+                                        derivatives.data(), rows);
+            } else {  // the derivatives only: the rows after the n value rows, which are left zero
+                for (std::size_t c = 0; c < 3; ++c) {
+                    std::fill_n(derivatives.begin() + static_cast<std::ptrdiff_t>(c * 6 * size), size, 0.0);
+                }
+                detail::element_forward(kernel.rows.data() + n, rows, rows - n, num_element_slots,
+                                        element_points.data(), derivatives.data() + n, rows);
+            }
             // ... the integrands and their local gradients, ...
             values.resize(num_shape_functionals * size);
             normal_area.resize(3 * size);
@@ -314,8 +324,10 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
                 }
             }
             element_values[ue] = sum;
-            for (std::size_t i = 0; i < size; ++i) {
-                element_normal_area[ue] += Vec3(normal_area[i], normal_area[size + i], normal_area[2 * size + i]);
+            if (local_wanted[index_of(ShapeFunctional::Volume)]) {  // for the centroid's term below
+                for (std::size_t i = 0; i < size; ++i) {
+                    element_normal_area[ue] += Vec3(normal_area[i], normal_area[size + i], normal_area[2 * size + i]);
+                }
             }
             // ... and backwards through the same weights, per slot: for each functional only the
             // rows it depends on (the area, two of six; the position only for the quadrature volume).
