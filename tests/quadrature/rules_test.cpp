@@ -1,14 +1,19 @@
 // Quadrature rules: exactness on every monomial up to the degree, the weight sums,
-// positivity and interior points, symmetry of the tabulated triangle rules, and
-// that the degree is not overstated.
+// positivity and interior points, symmetry of the tabulated triangle rules, that the
+// degree is not overstated, and Gauss–Legendre's values correctly rounded.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "limsurf/core/error.h"
 #include "limsurf/quadrature/rules.h"
+#include "support/paths.h"
 
 namespace limsurf {
 namespace {
@@ -123,6 +128,39 @@ TEST(QuadratureRules, GaussLegendreKnownValues) {
     EXPECT_EQ(three.u[1], 0.5);
     EXPECT_DOUBLE_EQ(three.weight[0], 5.0 / 18.0);
     EXPECT_DOUBLE_EQ(three.weight[1], 8.0 / 18.0);
+}
+
+// Every node and weight is the double nearest the exact value: 40-digit references from an
+// independent computation (tools/gauss_legendre_reference.py: mpmath's Legendre functions at 60
+// digits), read by strtod, which rounds correctly. The sizes are those where the earlier long-double
+// computation was one ulp off on x86-64 (n = 11, 29) and the largest (64).
+TEST(QuadratureRules, GaussLegendreIsCorrectlyRounded) {
+    std::ifstream file(test::test_data_dir() / "quadrature" / "gauss_legendre_40_digits.txt");
+    ASSERT_TRUE(file) << "tests/data/quadrature/gauss_legendre_40_digits.txt";
+    std::string line;
+    int checked = 0;
+    int rule_size = 0;
+    QuadratureRule rule;
+    while (std::getline(file, line)) {
+        if (line.empty() || line[0] == '#') {
+            continue;
+        }
+        std::istringstream fields(line);
+        int n = 0;
+        int i = 0;
+        std::string node;
+        std::string weight;
+        ASSERT_TRUE(fields >> n >> i >> node >> weight) << line;
+        if (n != rule_size) {
+            rule = gauss_legendre_1d(n);
+            rule_size = n;
+        }
+        const auto k = static_cast<std::size_t>(i);
+        EXPECT_EQ(rule.u[k], std::strtod(node.c_str(), nullptr)) << "node " << i << " of " << n;
+        EXPECT_EQ(rule.weight[k], std::strtod(weight.c_str(), nullptr)) << "weight " << i << " of " << n;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 11 + 29 + 64);
 }
 
 TEST(QuadratureRules, SquareRuleIsExactOnEveryMonomialUpToTheDegree) {

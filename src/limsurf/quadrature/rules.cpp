@@ -118,52 +118,120 @@ QuadratureRule expand_orbits(std::span<const OrbitEntry> orbits, int degree) {
     return rule;
 }
 
-/// Gauss–Legendre nodes mapped to [0, 1] (increasing) and their weights on [0, 1].
-/// Computed in long double and rounded once: the nodes near 0 are (1 - z)/2 with z
-/// close to 1, which would lose digits in double, and monomials of degree ~100 amplify
-/// any error in the nodes a hundredfold.
+/// A double-double number hi + lo, |lo| ≤ ulp(hi) / 2: 106 bits from double arithmetic alone
+/// (Dekker; Hida, Li & Bailey's QD library). Each product's rounding error comes from std::fma,
+/// which the C++ standard requires to round once, so these are exact transformations on every
+/// IEEE platform whatever the width of long double.
+struct DoubleDouble {
+    double hi = 0.0;
+    double lo = 0.0;
+};
+
+DoubleDouble two_sum(double a, double b) {
+    const double s = a + b;
+    const double bb = s - a;
+    return {s, (a - (s - bb)) + (b - bb)};
+}
+
+DoubleDouble quick_two_sum(double a, double b) {  // |a| ≥ |b|
+    const double s = a + b;
+    return {s, b - (s - a)};
+}
+
+DoubleDouble operator+(DoubleDouble x, DoubleDouble y) {
+    const DoubleDouble s = two_sum(x.hi, y.hi);
+    const DoubleDouble t = two_sum(x.lo, y.lo);
+    DoubleDouble r = quick_two_sum(s.hi, s.lo + t.hi);
+    return quick_two_sum(r.hi, r.lo + t.lo);
+}
+
+DoubleDouble operator-(DoubleDouble x) {
+    return {-x.hi, -x.lo};
+}
+
+DoubleDouble operator-(DoubleDouble x, DoubleDouble y) {
+    return x + -y;
+}
+
+DoubleDouble operator*(DoubleDouble x, DoubleDouble y) {
+    const double p = x.hi * y.hi;
+    const double e = std::fma(x.hi, y.hi, -p);
+    return quick_two_sum(p, e + (x.hi * y.lo + x.lo * y.hi));
+}
+
+DoubleDouble operator/(DoubleDouble x, DoubleDouble y) {
+    // Long division: three quotient digits, each from the remainder of the last.
+    const double q1 = x.hi / y.hi;
+    DoubleDouble r = x - y * DoubleDouble{q1};
+    const double q2 = r.hi / y.hi;
+    r = r - y * DoubleDouble{q2};
+    const double q3 = r.hi / y.hi;
+    const DoubleDouble q = quick_two_sum(q1, q2);
+    return q + DoubleDouble{q3};
+}
+
+DoubleDouble dd(double v) {
+    return {v, 0.0};
+}
+
+/// P_n(z) and P_n'(z) by the three-term recurrence, in double-double.
+void legendre(int n, DoubleDouble z, DoubleDouble& p, DoubleDouble& dp) {
+    DoubleDouble p0 = dd(1.0);
+    DoubleDouble p1 = z;
+    for (int k = 2; k <= n; ++k) {
+        const DoubleDouble p2 = (dd(2.0 * k - 1.0) * z * p1 - dd(k - 1.0) * p0) / dd(k);
+        p0 = p1;
+        p1 = p2;
+    }
+    p = p1;
+    dp = dd(n) * (z * p1 - p0) / (z * z - dd(1.0));
+}
+
+/// Gauss–Legendre nodes mapped to [0, 1] (increasing) and their weights on [0, 1], each the
+/// correctly rounded double of the exact value (checked against 40-digit references in
+/// tests/quadrature/rules_test.cpp). Newton's method in double finds each root of P_n to a few
+/// ulps, three more steps in double-double take it to ~1e-32, and the node (1 − z)/2, the weight
+/// 1/((1 − z²) P_n'(z)²) are formed in double-double and rounded once: the nodes near 0 are
+/// (1 − z)/2 with z close to 1, which would lose digits in double, and monomials of degree ~100
+/// amplify any error in the nodes a hundredfold. Until 2026-12-05 this ran in long double, which
+/// is x87's 64-bit significand on x86-64 (29 of the 4 160 values for n ≤ 64 one ulp off, from
+/// n = 11 on), 113 bits on AArch64 Linux and plain double on MSVC and macOS on Apple silicon —
+/// other digits on other machines; now every platform gets the same bits.
 void gauss_legendre_unit(int n, std::vector<double>& u, std::vector<double>& w) {
-    using Real = long double;
     u.assign(static_cast<std::size_t>(n), 0.0);
     w.assign(static_cast<std::size_t>(n), 0.0);
-    // P_n(z) and P_n'(z) by the three-term recurrence.
-    const auto legendre = [n](Real z, Real& p, Real& dp) {
-        Real p0 = 1.0L;
-        Real p1 = z;
-        for (int k = 2; k <= n; ++k) {
-            const Real p2 = ((2.0L * k - 1.0L) * z * p1 - (k - 1.0L) * p0) / k;
-            p0 = p1;
-            p1 = p2;
-        }
-        p = p1;
-        dp = n * (z * p1 - p0) / (z * z - 1.0L);
-    };
-    const Real pi = std::numbers::pi_v<Real>;
-    const Real tolerance = 4.0L * std::numeric_limits<Real>::epsilon();
+    const double pi = std::numbers::pi;
     for (int i = 0; i < (n + 1) / 2; ++i) {
-        // the i-th largest root; Tricomi's first-order guess lies in the basin of Newton's method
-        Real z = std::cos(pi * (i + 0.75L) / (n + 0.5L));
-        Real p = 0.0L;
-        Real dp = 0.0L;
-        for (int iteration = 0; iteration < 100; ++iteration) {
-            legendre(z, p, dp);
-            const Real step = p / dp;
-            z -= step;
-            if (std::abs(step) <= tolerance) {
-                break;
+        DoubleDouble z;
+        DoubleDouble p;
+        DoubleDouble dp;
+        if (2 * i + 1 == n) {
+            z = dd(0.0);  // the middle node, exactly
+        } else {
+            // the i-th largest root; Tricomi's first-order guess lies in the basin of Newton's method
+            double guess = std::cos(pi * (i + 0.75) / (n + 0.5));
+            for (int iteration = 0; iteration < 100; ++iteration) {
+                legendre(n, dd(guess), p, dp);
+                const double step = p.hi / dp.hi;
+                guess -= step;
+                if (std::abs(step) <= 4.0 * std::numeric_limits<double>::epsilon()) {
+                    break;
+                }
+            }
+            z = dd(guess);
+            for (int iteration = 0; iteration < 3; ++iteration) {  // quadratic: 1e-16 → 1e-32 and beyond
+                legendre(n, z, p, dp);
+                z = z - p / dp;
             }
         }
-        if (2 * i + 1 == n) {
-            z = 0.0L;  // the middle node, exactly
-        }
-        legendre(z, p, dp);
-        const Real weight = 1.0L / ((1.0L - z * z) * dp * dp);  // half of the weight on [-1, 1]
-        const auto lo = static_cast<std::size_t>(i);
-        const auto hi = static_cast<std::size_t>(n - 1 - i);
-        u[lo] = static_cast<double>((1.0L - z) / 2.0L);
-        u[hi] = static_cast<double>((1.0L + z) / 2.0L);
-        w[lo] = static_cast<double>(weight);
-        w[hi] = static_cast<double>(weight);
+        legendre(n, z, p, dp);
+        const DoubleDouble weight = dd(1.0) / ((dd(1.0) - z * z) * dp * dp);  // half of the weight on [-1, 1]
+        const DoubleDouble lo = (dd(1.0) - z) * dd(0.5);
+        const DoubleDouble hi = (dd(1.0) + z) * dd(0.5);
+        u[static_cast<std::size_t>(i)] = lo.hi + lo.lo;
+        u[static_cast<std::size_t>(n - 1 - i)] = hi.hi + hi.lo;
+        w[static_cast<std::size_t>(i)] = weight.hi + weight.lo;
+        w[static_cast<std::size_t>(n - 1 - i)] = weight.hi + weight.lo;
     }
 }
 
