@@ -99,6 +99,20 @@ TEST(BatchEvaluation, RefusesBadPointsNamingThem) {
     EXPECT_NE(message({{hole, 0.5, 0.5}}, X).find("point 0: ptex face " + std::to_string(hole) + " has no limit"),
               std::string::npos);
     EXPECT_NE(message({good}, X.topRows(3)).find("positions are 3 × 3"), std::string::npos);
+    // Checked on the batch's threads: the lowest bad point is named for any number of threads,
+    // also when a later range meets its own bad point first.
+    std::vector<SurfacePoint> many(1000, good);
+    many[300] = {inside, -1.0, 0.5};
+    many[900] = {inside, 2.0, 0.5};
+    for (const int threads : {1, 2, 3}) {
+        std::string what = "no error";
+        try {
+            (void)evaluate_points(basis, X, many, DerivativeOrder::First, threads);
+        } catch (const InputError& e) {
+            what = e.what();
+        }
+        EXPECT_NE(what.find("point 300: parameter (-1, 0.5) is outside"), std::string::npos) << threads << ": " << what;
+    }
 }
 
 // LimitBasis::prefetch is a hint: for any point, any stage, any X (wrong size included), on a fresh

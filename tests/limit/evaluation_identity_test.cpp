@@ -20,6 +20,7 @@
 #include "limsurf/refine/refine.h"
 #include "limsurf/scheme/tuned_weights.h"
 #include "support/mesh_zoo.h"
+#include "support/opensubdiv_shapes.h"
 
 namespace limsurf::test {
 namespace {
@@ -539,6 +540,41 @@ TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {
         }
     }
     EXPECT_THROW(LimitBasis(m.topology, SchemeKind::CatmullClark, m.options, w), UnsupportedError);
+}
+
+// has_limit_surface is the documented rule on every ptex face — not a hole, and under
+// BoundaryInterpolation::None no corner on the boundary with a boundary edge that is not infinitely
+// sharp — over OpenSubdiv's regression shapes (holes, creases, corners, boundaries; the peer tests
+// compare the same answer with Far's patches) under both boundary rules, on a fresh basis: regular
+// faces are answered from their fast patch, without the per-face root that holds the rule.
+TEST(LimitHoles, HasLimitSurfaceFollowsTheHoleAndBoundaryRule) {
+    int shapes = 0;
+    for (const OpenSubdivShape& shape : opensubdiv_shapes()) {
+        const bool pole = shape.name == "catmark_pole360" || shape.name == "loop_pole360";  // beyond the basis
+        if (!shape.refusal.empty() || pole ||
+            (shape.scheme != SchemeKind::CatmullClark && shape.scheme != SchemeKind::Loop)) {
+            continue;
+        }
+        const Topology t = read_mesh(shape.path).mesh.topology();
+        for (const BoundaryInterpolation boundary : {BoundaryInterpolation::None, BoundaryInterpolation::EdgeOnly}) {
+            SchemeOptions options;
+            options.boundary = boundary;
+            const LimitBasis basis(t, shape.scheme, options);
+            for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+                const Index f = basis.ptex_face(p).control_face;
+                bool expected = !t.is_hole(f);
+                for (const Index v : t.face_vertices(f)) {
+                    for (const Index e : t.vertex_edges(v)) {
+                        expected = expected && !(boundary == BoundaryInterpolation::None && t.is_boundary_edge(e) &&
+                                                 t.edge_sharpness(e) < infinite_sharpness);
+                    }
+                }
+                ASSERT_EQ(basis.has_limit_surface(p), expected) << shape.name << ", ptex face " << p;
+            }
+        }
+        ++shapes;
+    }
+    EXPECT_GT(shapes, 80);
 }
 
 INSTANTIATE_TEST_SUITE_P(Bundled, LimitIdentity, ::testing::ValuesIn(all_cases()), [](const auto& test_info) {

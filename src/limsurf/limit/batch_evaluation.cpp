@@ -1,7 +1,9 @@
 #include "limsurf/limit/batch_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <mutex>
 #include <type_traits>
 
 #include "limsurf/core/error.h"
@@ -28,6 +30,29 @@ void check_point(const LimitBasis& basis, const SurfacePoint& p, std::size_t i) 
                   " has no limit surface (a hole, or a boundary face under boundary interpolation none)");
 }
 
+/// check_point for every point, on the threads of the batch (a serial pass was ~10 % of a
+/// two-thread batch): each range stops at its first bad point, and the lowest of those is checked
+/// again to throw — the same point and message for any number of threads.
+void check_points(const LimitBasis& basis, std::span<const SurfacePoint> points, int num_threads) {
+    const auto n = static_cast<Index>(points.size());
+    std::mutex mutex;
+    Index first_bad = n;
+    parallel_ranges(n, num_threads, [&](Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) {
+            try {
+                check_point(basis, points[static_cast<std::size_t>(i)], static_cast<std::size_t>(i));
+            } catch (const InputError&) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                first_bad = std::min(first_bad, i);
+                return;
+            }
+        }
+    });
+    if (first_bad < n) {
+        check_point(basis, points[static_cast<std::size_t>(first_bad)], static_cast<std::size_t>(first_bad));
+    }
+}
+
 }  // namespace
 
 PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<const SurfacePoint> points,
@@ -35,11 +60,9 @@ PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<
     LIMSURF_CHECK(X.rows() == basis.topology().num_vertices() && X.cols() == 3, InputError,
                   "limit evaluation: positions are ", X.rows(), " × ", X.cols(), ", expected ",
                   basis.topology().num_vertices(), " × 3");
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        check_point(basis, points[i], i);
-    }
-    const int rows = rows_of(order);
     const auto n = static_cast<Index>(points.size());
+    check_points(basis, points, num_threads);
+    const int rows = rows_of(order);
     PointValues out(n, 3 * rows);
     const auto evaluate_all = [&](const auto& P) {
         parallel_ranges(n, num_threads, [&](Index begin, Index end) {

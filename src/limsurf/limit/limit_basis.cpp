@@ -996,6 +996,12 @@ bool LimitBasis::has_limit_surface(Index p) const {
     if (impl_->c2g0) {
         return true;  // closed meshes only
     }
+    if (!impl_->fast_index.empty() && impl_->fast_index[at(p)] >= 0) {
+        // A plain regular patch: interior corners, not a hole. Answered without its root, which
+        // evaluation never builds for such a face (root() would build one per face, under the
+        // mutex, on a first pass that checks every point; and read two scattered cache lines).
+        return true;
+    }
     return impl_->root(p).has_limit;
 }
 
