@@ -30,9 +30,9 @@ void check_point(const LimitBasis& basis, const SurfacePoint& p, std::size_t i) 
                   " has no limit surface (a hole, or a boundary face under boundary interpolation none)");
 }
 
-/// check_point for every point, on the threads of the batch (a serial pass was ~10 % of a
-/// two-thread batch): each range stops at its first bad point, and the lowest of those is checked
-/// again to throw — the same point and message for any number of threads.
+/// check_point for every point, on the threads of the batch (a serial pass before the evaluation
+/// held the other threads back): each range stops at its first bad point, and the lowest of those
+/// is checked again to throw — the same point and message for any number of threads.
 void check_points(const LimitBasis& basis, std::span<const SurfacePoint> points, int num_threads) {
     const auto n = static_cast<Index>(points.size());
     std::mutex mutex;
