@@ -28,7 +28,7 @@ half-turn neck of radius 0.08, and an inner sphere of radius r down to its south
 comparisons), .png/.svg (cross-sections of the limit surfaces through their centroid, plane y = const); the
 shapes and their limit tessellations (VTK, mean and Gaussian curvature) go to OUTDIR/shapes.
 
-  /usr/bin/python3 studies/membrane_figures.py build/release/cli/limsurf out/studies      # ~40 min on 2 cores
+  /usr/bin/python3 studies/membrane_figures.py build/release/cli/limsurf out/studies      # ~16 min on 2 cores
 
 Surface Evolver (when installed) solves the stomatocyte of v0 = 0.5 and the oblate shape of v0 = 0.6 from
 limsurf's shapes (run_evolver_from: the control mesh refined 1, 2 and 3 times by C2g0, 514, 2050 and 8194

@@ -13,6 +13,7 @@
 
 #include "arrays.h"
 #include "common.h"
+#include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/core/parallel.h"
 #include "limsurf/limit/batch_evaluation.h"
 #include "limsurf/limit/limit_basis.h"
@@ -168,7 +169,11 @@ constexpr const char* frame_names[] = {"normal", "mean_curvature", "gaussian_cur
 template <typename T>
 py::array_t<T> output_array(const py::dict& out, const char* key, py::ssize_t n, py::ssize_t cols) {
     if (!out.contains(key)) {
-        return cols == 0 ? py::array_t<T>(n) : py::array_t<T>({n, cols});
+        // Fresh and not yet written: advised for huge pages before the evaluation's threads first
+        // touch it (a million points' derivatives are six 24 MB arrays).
+        py::array_t<T> fresh = cols == 0 ? py::array_t<T>(n) : py::array_t<T>({n, cols});
+        limsurf::detail::advise_huge_pages(fresh.mutable_data(), static_cast<std::size_t>(fresh.nbytes()));
+        return fresh;
     }
     const py::object given = out[key];
     LIMSURF_CHECK(py::isinstance<py::array_t<T>>(given), InputError, "out['", key, "']: expected a ",

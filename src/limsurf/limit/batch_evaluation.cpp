@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/core/parallel.h"
 
 namespace limsurf {
@@ -64,6 +65,9 @@ PointValues evaluate_points(const LimitBasis& basis, const Points& X, std::span<
     check_points(basis, points, num_threads);
     const int rows = rows_of(order);
     PointValues out(n, 3 * rows);
+    // First written by the threads below: advised for huge pages, as the refinement's tables are
+    // (a million points with first derivatives are 72 MB, 18 000 first-touch faults on 4 KiB pages).
+    detail::advise_huge_pages(out.data(), sizeof(double) * static_cast<std::size_t>(out.size()));
     const auto evaluate_all = [&](const auto& P) {
         parallel_ranges(n, num_threads, [&](Index begin, Index end) {
             LimitPoint point;  // reused: its scratch weights allocate once per thread, not per point
