@@ -57,7 +57,7 @@ TEST(LimitSelfIntersections, APulledSurfaceMeetsItselfAtEveryResolution) {
     const BuildResult built = read_mesh(test::mesh_dir() / "icosahedron.obj");
     const LimitBasis basis(built.mesh.topology(), SchemeKind::Loop);
     Points X = built.mesh.positions();
-    X.row(0) = -3.0 * X.row(0) + 0.3 * X.row(5);  // as in tests/unit/mesh/self_intersection_cgal_test.cpp
+    X.row(0) = -3.0 * X.row(0) + 0.3 * X.row(5);  // as in tests/mesh/self_intersection_cgal_test.cpp
     for (const int resolution : {3, 6, 16}) {
         SelfIntersectionOptions options;
         options.resolution = resolution;

@@ -233,7 +233,7 @@ TEST(CliMembrane, AnUnfinishedSolveExitsZeroWithConvergedFalseAndAWarning) {
 }
 
 /// The icosahedron with vertex 0 pulled through the middle to 3 radii beyond the far side (x0 → −3 x0 +
-/// 0.3 x5): its Loop limit surface passes through itself (tests/unit/mesh/self_intersection_cgal_test.cpp
+/// 0.3 x5): its Loop limit surface passes through itself (tests/mesh/self_intersection_cgal_test.cpp
 /// checks the same surface's tessellation against CGAL).
 fs::path pulled_icosahedron() {
     std::ifstream in(mesh("icosahedron"));

@@ -10,7 +10,7 @@
 //     plane with the edge and on the same side of it (the mesh folds back onto itself).
 // Predicates are orientation determinants in double precision (no exact arithmetic): a pair that
 // touches within rounding (a vertex exactly on the other triangle) may be classed either way; pairs
-// that cross by more than rounding are classed as CGAL classes them (tests/unit/mesh compares the two).
+// that cross by more than rounding are classed as CGAL classes them (tests/mesh compares the two).
 //
 // The search is a uniform grid of cells about the size of the mesh's larger triangles: each
 // triangle is listed in the cells its bounding box overlaps, and a pair is tested in the one cell
