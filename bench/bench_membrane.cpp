@@ -7,9 +7,12 @@
 //   ShapeEval/scheme/threads   evaluate(X, {W, A, V, M}) (counters: vertices, samples)
 //   ShapeSetup/scheme          ShapeFunctionals construction (sampler with second derivatives)
 //   scheme: 0 C2g0 (tetra_4 refined twice: 8194 vertices), 1 Loop (icosahedron refined 5 times:
-//           10242 vertices), 2 Catmull–Clark (sphere_quads refined 3 times: 6146 vertices)
+//           10242 vertices), 2 Catmull–Clark (sphere_quads refined 3 times: 6146 vertices),
+//           3 Catmull–Clark at more than 10k vertices (genus2 refined 4 times: 12798 vertices; its
+//           own shape, not projected onto the sphere)
 #include <array>
 #include <string>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 
@@ -27,24 +30,29 @@ struct Mesh {
     SchemeKind scheme;
 };
 
-Mesh refined(const char* name, SchemeKind scheme, int levels) {
+Mesh refined(const char* name, SchemeKind scheme, int levels, bool onto_sphere = true) {
     const auto built = limsurf::read_mesh(std::string(LIMSURF_MESH_DIR) + "/" + name);
     limsurf::RefineOptions options;
     options.scheme = scheme;
     options.levels = levels;
     const limsurf::Hierarchy h(built.mesh.topology(), options);
-    return {h.topology(levels), h.positions(levels, built.mesh.positions()).rowwise().normalized(), scheme};
+    limsurf::Points X = h.positions(levels, built.mesh.positions());
+    if (onto_sphere) {
+        X.rowwise().normalize();
+    }
+    return {h.topology(levels), std::move(X), scheme};
 }
 
 const Mesh& mesh(int which) {
     static const Mesh c2g0 = refined("tetra_4.obj", SchemeKind::C2g0, 2);
     static const Mesh loop = refined("icosahedron.obj", SchemeKind::Loop, 5);
     static const Mesh cc = refined("sphere_quads.obj", SchemeKind::CatmullClark, 3);
-    return which == 0 ? c2g0 : which == 1 ? loop : cc;
+    static const Mesh cc_genus2 = refined("genus2.obj", SchemeKind::CatmullClark, 4, false);
+    return which == 0 ? c2g0 : which == 1 ? loop : which == 2 ? cc : cc_genus2;
 }
 
 const char* scheme_label(int which) {
-    return which == 0 ? "c2g0" : which == 1 ? "loop" : "catmull-clark";
+    return which == 0 ? "c2g0" : which == 1 ? "loop" : which == 2 ? "catmull-clark" : "catmull-clark genus2";
 }
 
 void ShapeEval(benchmark::State& state) {
@@ -63,7 +71,7 @@ void ShapeEval(benchmark::State& state) {
     state.counters["samples"] = static_cast<double>(functionals.num_samples());
     state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
 }
-BENCHMARK(ShapeEval)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(ShapeEval)->ArgsProduct({{0, 1, 2, 3}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void ShapeSetup(benchmark::State& state) {
     const Mesh& m = mesh(static_cast<int>(state.range(0)));
@@ -73,7 +81,7 @@ void ShapeSetup(benchmark::State& state) {
     }
     state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
 }
-BENCHMARK(ShapeSetup)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(ShapeSetup)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
