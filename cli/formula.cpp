@@ -22,6 +22,11 @@ Eigen::VectorXd evaluate_formula(const std::string& what, const std::string& exp
         parser.DefineVar("z", &z);
         parser.DefineConst("pi", std::numbers::pi);
         parser.SetExpr(expression);
+        // muParser reads "a, b" as several expressions and Eval() returns the last: a user who
+        // wrote a vector, or a decimal comma, would get a silently different function.
+        (void)parser.Eval();  // parses; the value at the origin is not used
+        LIMSURF_CHECK(parser.GetNumResults() == 1, InputError, what, " '", expression, "' has ", parser.GetNumResults(),
+                      " comma-separated values: give one expression (decimal point: '.')");
         for (Eigen::Index v = 0; v < X.rows(); ++v) {
             x = X(v, 0);
             y = X(v, 1);
@@ -34,6 +39,10 @@ Eigen::VectorXd evaluate_formula(const std::string& what, const std::string& exp
         throw InputError(detail::concat(what, " '", expression, "': ", e.GetMsg()));
     }
     return out;
+}
+
+void check_formula(const std::string& what, const std::string& expression) {
+    (void)evaluate_formula(what, expression, Points::Zero(0, 3));
 }
 
 }  // namespace limsurf::cli

@@ -2,14 +2,18 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <new>
 #include <stdexcept>
+#include <utility>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/memory.h"
+#include "limsurf/render/camera.h"
 
 namespace limsurf::cli {
 
@@ -53,6 +57,30 @@ void refuse_overwriting_inputs(const std::string& output, const std::vector<std:
             throw InputError(output + ": is also the input '" + input +
                              "': write the result to another file (limsurf never overwrites its input)");
         }
+    }
+}
+
+void check_output_paths(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+    namespace fs = std::filesystem;
+    std::vector<std::pair<fs::path, std::string>> seen;  // (where it points, as given)
+    for (const std::string& output : outputs) {
+        if (output.empty()) {
+            continue;
+        }
+        refuse_overwriting_inputs(output, inputs);
+        std::error_code ec;
+        LIMSURF_CHECK(!fs::is_directory(output, ec), InputError, output, ": is a directory, not a file to write");
+        const fs::path folder = fs::path(output).parent_path();
+        LIMSURF_CHECK(folder.empty() || fs::is_directory(folder, ec), InputError, output, ": the folder '",
+                      folder.string(), "' does not exist");
+        // Through links, as write_file_atomically follows them; a file that does not exist yet by its
+        // absolute path with '.' and '..' resolved.
+        const fs::path where = fs::weakly_canonical(fs::absolute(output, ec), ec);
+        for (const auto& [other_where, other] : seen) {
+            LIMSURF_CHECK(!(where == other_where), InputError, output, ": names the same file as the output '", other,
+                          "': give each output its own file");
+        }
+        seen.emplace_back(where, output);
     }
 }
 
@@ -115,7 +143,20 @@ void add_format_option(CLI::App* cmd, std::string& text) {
 }
 
 MeshFormat output_format(const std::string& output, const std::string& format) {
-    return format.empty() ? mesh_format_from_path(output) : mesh_format_from_name(format);
+    if (format.empty()) {
+        return mesh_format_from_path(output);
+    }
+    const MeshFormat named = mesh_format_from_name(format);
+    // --format is for paths whose extension does not say (/dev/stdout, a pipe): one that says
+    // otherwise is a mistake, and a .ply holding OFF text would mislead every reader.
+    std::optional<MeshFormat> by_extension;
+    try {
+        by_extension = mesh_format_from_path(output);
+    } catch (const InputError&) {
+    }
+    LIMSURF_CHECK(!by_extension || *by_extension == named, InputError, output, ": --format ", format,
+                  " contradicts the extension '", lower_extension(output), "'");
+    return named;
 }
 
 std::string with_file_named(const Error& error, const SourceMap& source, const std::vector<std::string>& other_files) {
@@ -172,6 +213,52 @@ bool parse_size(const std::string& text, int& width, int& height) {
     width = std::stoi(text.substr(0, x));
     height = std::stoi(text.substr(x + 1));
     return width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
+}
+
+namespace {
+
+/// @p text as one finite number, or nullopt.
+std::optional<double> finite_number(const std::string& text) {
+    char* end = nullptr;
+    errno = 0;
+    const double x = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(x)) {
+        return std::nullopt;
+    }
+    return x;
+}
+
+}  // namespace
+
+CLI::Validator positive_number() {
+    return CLI::Validator(
+        [](const std::string& text) {
+            const std::optional<double> x = finite_number(text);
+            return x && *x > 0.0 ? std::string() : "'" + text + "' is not a positive finite number";
+        },
+        "POSITIVE");
+}
+
+CLI::Validator non_negative_number() {
+    return CLI::Validator(
+        [](const std::string& text) {
+            const std::optional<double> x = finite_number(text);
+            return x && *x >= 0.0 ? std::string() : "'" + text + "' is not a finite number >= 0";
+        },
+        "NONNEGATIVE");
+}
+
+CLI::Validator view_validator() {
+    return CLI::Validator(
+        [](const std::string& text) {
+            try {
+                (void)parse_view(text);
+            } catch (const Error& error) {
+                return std::string(error.what());
+            }
+            return std::string();
+        },
+        "VIEW");
 }
 
 CLI::Validator size_validator() {

@@ -49,6 +49,13 @@ void print_warnings(const ValidationReport& report);
 /// @throws InputError "OUT: is also the input 'IN': write the result to another file"
 void refuse_overwriting_inputs(const std::string& output, const std::vector<std::string>& inputs);
 
+/// @brief Checks a command's output paths before any work (empty paths, for outputs not asked for,
+///   are skipped): none names an input (refuse_overwriting_inputs), none is a directory, each one's
+///   folder exists, and no two name the same file. A command with several outputs then never writes
+///   the first and fails on the next, and a long solve never ends in "cannot write".
+/// @throws InputError naming the path and what is wrong with it
+void check_output_paths(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
+
 /// @brief Checks that every number in @p json is finite: the backstop of every command's results,
 ///   in JSON and in text (a result must never be printed as nan or inf, nor pass for a missing
 ///   value, which is how nlohmann prints them).
@@ -75,12 +82,22 @@ bool parse_size(const std::string& text, int& width, int& height);
 /// The CLI11 check of a --size option (parse_size).
 CLI::Validator size_validator();
 
+/// CLI11 checks of a number option, with readable messages: CLI11's own PositiveNumber prints its
+/// range with all 309 digits of the largest double (and calls 0 out of a range that starts at 0),
+/// and NonNegativeNumber lets nan through. Finite numbers only.
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+
+/// The CLI11 check of --view (iso, front, top or AZIMUTH,ELEVATION; limsurf render, parameterize).
+CLI::Validator view_validator();
+
 /// Registers --format obj|off|ply on @p cmd: the output format where the path's extension does
 /// not say it (/dev/stdout, a pipe).
 void add_format_option(CLI::App* cmd, std::string& text);
 
 /// The output format: --format when given, else the extension of @p output.
-/// @throws InputError when neither names a mesh format (checked before any work)
+/// @throws InputError when neither names a mesh format, or --format contradicts a mesh extension
+///   (checked before any work)
 [[nodiscard]] MeshFormat output_format(const std::string& output, const std::string& format);
 
 /// The message of @p error as naming_file() reports it.

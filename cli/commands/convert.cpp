@@ -14,7 +14,7 @@ namespace {
 struct ConvertOptions {
     std::string input;
     std::string output;
-    std::string ply_encoding = "ascii";
+    std::string ply_encoding;  ///< empty: ascii
     std::string format;
     bool strict_isolated = false;
 };
@@ -22,13 +22,13 @@ struct ConvertOptions {
 int run_convert(const ConvertOptions& options) {
     // Refuse before reading: an unknown output format is a usage mistake.
     const MeshFormat format = output_format(options.output, options.format);
-    refuse_overwriting_inputs(options.output, {options.input});
+    check_output_paths({options.output}, {options.input});
     const BuildResult built =
         read_mesh(options.input,
                   {.isolated_vertices = options.strict_isolated ? IsolatedVertices::Error : IsolatedVertices::Drop});
     print_warnings(built.report);
     print_warnings(write_mesh(options.output, built.mesh,
-                              {.ply_encoding = ply_encoding_from(options.ply_encoding), .format = format}));
+                              {.ply_encoding = ply_encoding_from(options.ply_encoding, format), .format = format}));
     return exit_ok;
 }
 

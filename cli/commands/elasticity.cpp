@@ -441,11 +441,7 @@ void print_text(const nlohmann::json& out, const ElasticityStudy& result) {
 }
 
 int run_elasticity(const ElasticityCommandOptions& options) {
-    for (const std::string& path : {options.output, options.png}) {
-        if (!path.empty()) {
-            refuse_overwriting_inputs(path, {options.input, options.face_materials});
-        }
-    }
+    check_output_paths({options.output, options.png}, {options.input, options.face_materials});
     LIMSURF_CHECK(options.output.empty() || lower_extension(options.output) == ".vtk" ||
                       lower_extension(options.output) == ".vtu",
                   InputError, options.output, ": unknown output format '", lower_extension(options.output),

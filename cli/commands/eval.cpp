@@ -202,9 +202,7 @@ std::vector<Evaluated> evaluate_points(const LimitBasis& basis, const Points& X,
 }
 
 int run_eval(const EvalOptions& options) {
-    if (!options.output.empty()) {
-        refuse_overwriting_inputs(options.output, {options.input, options.points});
-    }
+    check_output_paths({options.output}, {options.input, options.points});
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     const std::vector<Evaluated> results = naming_file(built.source, {options.points}, [&] {

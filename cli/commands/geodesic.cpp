@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,8 @@ struct GeodesicCommandOptions {
     bool json = false;
 };
 
-void write_picture(const ControlMesh& mesh, const std::string& scheme, const Eigen::VectorXd& distance,
+/// The picture of --png, in memory: it is drawn before any file is written.
+Image draw_picture(const ControlMesh& mesh, const std::string& scheme, const Eigen::VectorXd& distance,
                    const GeodesicCommandOptions& options) {
     LimitSchemeOptions limit_options;
     limit_options.scheme = scheme;
@@ -63,8 +65,7 @@ void write_picture(const ControlMesh& mesh, const std::string& scheme, const Eig
     render.colormap = Colormap::Viridis;
     render.num_threads = options.threads;
     render.isolines = options.isolines;
-    const RenderResult picture = render_tessellation(surface, evaluate_vertex_field(surface, distance), render);
-    write_png(options.png, picture.image);
+    return render_tessellation(surface, evaluate_vertex_field(surface, distance), render).image;
 }
 
 int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& options) {
@@ -129,12 +130,14 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
         out["png"] = options.png;
     }
     require_finite(out);  // before anything is written
+    const std::optional<Image> picture =
+        options.png.empty() ? std::nullopt : std::optional<Image>(draw_picture(mesh, options.scheme, d, options));
     if (!options.output.empty()) {
         const std::vector<VertexField> fields{{"distance", d}, {"limit_distance", result.limit_distance}};
         write_vertex_data(options.output, to_polygon_soup(mesh), fields);
     }
-    if (!options.png.empty()) {
-        write_picture(mesh, options.scheme, d, options);
+    if (picture) {
+        write_png(options.png, *picture);
     }
     if (options.json) {
         print_json(out);
@@ -165,11 +168,7 @@ int solve_and_report(const BuildResult& built, const GeodesicCommandOptions& opt
 }
 
 int run_geodesic(const GeodesicCommandOptions& options) {
-    for (const std::string& file : {options.output, options.png}) {
-        if (!file.empty()) {
-            refuse_overwriting_inputs(file, {options.input});
-        }
-    }
+    check_output_paths({options.output, options.png}, {options.input});
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     return naming_file(built.source, {options.output, options.png}, [&] { return solve_and_report(built, options); });

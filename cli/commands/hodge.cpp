@@ -46,7 +46,7 @@ struct HodgeCommandOptions {
 Eigen::VectorXd input_form(const ControlMesh& mesh, const HodgeCommandOptions& o) {
     const Topology& t = mesh.topology();
     if (!o.one_form.empty()) {
-        return read_vertex_values(o.one_form, t.num_edges());
+        return read_vertex_values(o.one_form, t.num_edges(), ValuesPer::Edge);
     }
     if (o.random >= 0) {
         return random_one_form(t, mesh.positions(), static_cast<std::uint64_t>(o.random));
@@ -130,21 +130,23 @@ int decompose_and_report(const BuildResult& built, const HodgeCommandOptions& o)
         out["output"] = o.output;
     }
     require_finite(out);  // before anything is written
+    // Every output is computed before the first is written: a failure leaves no file behind.
+    std::vector<OneFormVectors> sampled;
+    if (!o.output.empty()) {
+        for (const Eigen::VectorXd* form : {&w, &r.parts.exact, &r.parts.coexact, &r.parts.harmonic}) {
+            sampled.push_back(
+                one_form_vectors(t, mesh.positions(), scheme, *form, o.sample_level, options.scheme_options));
+        }
+    }
     if (!o.save_parts.empty()) {
         write_values(o.save_parts + "exact.txt", r.parts.exact);
         write_values(o.save_parts + "coexact.txt", r.parts.coexact);
         write_values(o.save_parts + "harmonic.txt", r.parts.harmonic);
     }
     if (!o.output.empty()) {
-        const auto sample = [&](const Eigen::VectorXd& form) {
-            return one_form_vectors(t, mesh.positions(), scheme, form, o.sample_level, options.scheme_options);
-        };
-        const OneFormVectors input = sample(w);
-        const OneFormVectors exact = sample(r.parts.exact);
-        const OneFormVectors coexact = sample(r.parts.coexact);
-        const OneFormVectors harmonic = sample(r.parts.harmonic);
-        write_one_form_vtk(o.output,
-                           {{"field", &input}, {"exact", &exact}, {"coexact", &coexact}, {"harmonic", &harmonic}});
+        write_one_form_vtk(
+            o.output,
+            {{"field", &sampled[0]}, {"exact", &sampled[1]}, {"coexact", &sampled[2]}, {"harmonic", &sampled[3]}});
     }
     if (o.json) {
         print_json(out);
@@ -204,9 +206,14 @@ void add_hodge_command(CLI::App& app, CommandStatus& status) {
         status.exit_code = run_guarded([&] {
             LIMSURF_CHECK(!o->one_form.empty() || o->random >= 0 || !o->field.empty(), InputError,
                           "hodge needs a 1-form: --one-form FILE, --random SEED or --field \"X;Y;Z\"");
-            if (!o->output.empty()) {
-                refuse_overwriting_inputs(o->output, {o->input, o->one_form});
-            }
+            const std::vector<std::string> parts =
+                o->save_parts.empty()
+                    ? std::vector<std::string>{}
+                    : std::vector<std::string>{o->save_parts + "exact.txt", o->save_parts + "coexact.txt",
+                                               o->save_parts + "harmonic.txt"};
+            std::vector<std::string> outputs = parts;
+            outputs.push_back(o->output);
+            check_output_paths(outputs, {o->input, o->one_form});
             const BuildResult built = read_mesh(o->input);
             print_warnings(built.report);
             return naming_file(built.source, {o->one_form, o->output}, [&] { return decompose_and_report(built, *o); });

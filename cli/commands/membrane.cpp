@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -165,11 +166,7 @@ MembraneRequest request_of(const MembraneCommandOptions& options) {
 
 /// Checks the output paths before any work: not an input, a format limsurf writes.
 void check_outputs(const MembraneCommandOptions& options) {
-    for (const std::string& file : {options.output, options.field_output}) {
-        if (!file.empty()) {
-            refuse_overwriting_inputs(file, {options.input});
-        }
-    }
+    check_output_paths({options.output, options.field_output}, {options.input});
     if (!options.output.empty()) {
         (void)output_format(options.output, "");
     }
@@ -359,7 +356,10 @@ int run_membrane(const MembraneCommandOptions& options) {
     std::optional<MembraneRequest> request;
     if (!options.evaluate_only) {
         request = request_of(options);
-        (void)membrane_problem(*request);  // a bad request fails before the mesh is read
+        (void)membrane_problem(*request);        // a bad request fails before the mesh is read
+    } else if (options.spontaneous_curvature) {  // what membrane_problem checks of a request
+        LIMSURF_CHECK(std::isfinite(*options.spontaneous_curvature), InputError,
+                      "--spontaneous-curvature: H0 must be a finite number, not ", *options.spontaneous_curvature);
     }
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);

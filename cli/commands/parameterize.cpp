@@ -50,17 +50,6 @@ struct ParameterizeCommandOptions {
     bool json = false;
 };
 
-void parse_size(const std::string& text, int& width, int& height) {
-    const std::size_t x = text.find('x');
-    LIMSURF_CHECK(x != std::string::npos, InputError, "--size: expected WIDTHxHEIGHT, got '", text, "'");
-    try {
-        width = std::stoi(text.substr(0, x));
-        height = std::stoi(text.substr(x + 1));
-    } catch (const std::exception&) {
-        throw InputError("--size: expected WIDTHxHEIGHT, got '" + text + "'");
-    }
-}
-
 nlohmann::json to_json(const ParameterizeCommandOptions& options, const ParameterizationOptions& p,
                        const ParameterizationResult& r) {
     const bool sec = has_level(p.method);
@@ -173,7 +162,7 @@ int parameterize_and_report(const BuildResult& built, const ParameterizeCommandO
     CheckerboardOptions checker;
     if (!options.texture_png.empty()) {  // options refused before the work
         checker.render.view = parse_view(options.view);
-        parse_size(options.size, checker.render.width, checker.render.height);
+        (void)parse_size(options.size, checker.render.width, checker.render.height);  // checked by size_validator
         checker.squares = options.squares;
         checker.render.num_threads = options.threads;
     }
@@ -202,12 +191,7 @@ int parameterize_and_report(const BuildResult& built, const ParameterizeCommandO
 }
 
 int run_parameterize(const ParameterizeCommandOptions& options) {
-    if (!options.output.empty()) {
-        refuse_overwriting_inputs(options.output, {options.input});
-    }
-    if (!options.texture_png.empty()) {
-        refuse_overwriting_inputs(options.texture_png, {options.input, options.output});
-    }
+    check_output_paths({options.output, options.texture_png}, {options.input});
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     return naming_file(built.source, {options.output, options.texture_png},
@@ -243,8 +227,11 @@ void add_parameterize_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--texture-png", options->texture_png, "Write a checkerboard texture view of the limit surface");
     cmd->add_option("--squares", options->squares, "Checker squares across the parameter domain (1..1000, default 10)")
         ->check(CLI::Range(1, 1000));
-    cmd->add_option("--view", options->view, "View of the texture picture: iso, front, top or AZIMUTH,ELEVATION");
-    cmd->add_option("--size", options->size, "Size of the texture picture, WIDTHxHEIGHT (default 1200x900)");
+    cmd->add_option("--view", options->view, "View of the texture picture: iso, front, top or AZIMUTH,ELEVATION")
+        ->check(view_validator());
+    cmd->add_option("--size", options->size,
+                    "Size of the texture picture, WIDTHxHEIGHT, 16..8192 each (default 1200x900)")
+        ->check(size_validator());
     cmd->add_flag("--json", options->json, "Print JSON");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_parameterize(*options); }); });
 }

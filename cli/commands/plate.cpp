@@ -97,8 +97,9 @@ nlohmann::json tuned_vertex_json(const PlateTunedVertex& v) {
 }
 
 int run_plate(const PlateOptions& options) {
-    if (!options.output.empty()) {
-        refuse_overwriting_inputs(options.output, {options.input, options.load_file});
+    check_output_paths({options.output}, {options.input, options.load_file});
+    if (options.load_file.empty() && !plate_load_shape(options.load)) {
+        check_formula("--load", options.load);
     }
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);

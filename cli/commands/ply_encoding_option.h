@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "limsurf/core/error.h"
+#include "limsurf/io/mesh_io.h"
 #include "limsurf/io/ply.h"
 
 namespace limsurf::cli {
@@ -17,8 +19,11 @@ inline void add_ply_encoding_option(CLI::App* cmd, std::string& name) {
         ->check(CLI::IsMember({"ascii", "binary-le", "binary-be"}));
 }
 
-/// The encoding a checked --ply-encoding value names.
-[[nodiscard]] inline PlyEncoding ply_encoding_from(const std::string& name) {
+/// The encoding a checked --ply-encoding value names (empty, not given: ascii).
+/// @throws InputError when it was given for an output that is not PLY (it would be ignored)
+[[nodiscard]] inline PlyEncoding ply_encoding_from(const std::string& name, MeshFormat format) {
+    LIMSURF_CHECK(name.empty() || format == MeshFormat::Ply, InputError, "--ply-encoding ", name,
+                  " applies to PLY output only, and the output is ", format == MeshFormat::Obj ? "OBJ" : "OFF");
     return name == "binary-le"   ? PlyEncoding::BinaryLittleEndian
            : name == "binary-be" ? PlyEncoding::BinaryBigEndian
                                  : PlyEncoding::Ascii;

@@ -132,9 +132,11 @@ int solve_and_report(const BuildResult& built, const PoissonCommandOptions& opti
 }
 
 int run_poisson(const PoissonCommandOptions& options) {
-    if (!options.output.empty()) {
-        refuse_overwriting_inputs(options.output, {options.input, options.rhs_file});
+    check_output_paths({options.output}, {options.input, options.rhs_file});
+    if (options.rhs_file.empty()) {
+        check_formula("--rhs", options.rhs);
     }
+    check_formula("--boundary-value", options.boundary_value);  // also on a closed mesh, which does not use it
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     return naming_file(built.source, {options.rhs_file, options.output},

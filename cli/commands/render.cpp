@@ -139,7 +139,7 @@ nlohmann::json result_json(const RenderCommandOptions& options, const FieldReque
 
 int run_render(const RenderCommandOptions& options) {
     const FieldRequest field = parse_field(options.field);
-    refuse_overwriting_inputs(options.output, {options.input, field.file});
+    check_output_paths({options.output}, {options.input, field.file});
     const std::string ext = lower_extension(options.output);
     LIMSURF_CHECK(ext == ".png" || ext == ".glb", InputError, options.output, ": unknown output format '", ext,
                   "' (expected .png or .glb)");
@@ -211,16 +211,7 @@ void add_render_command(CLI::App& app, CommandStatus& status) {
     cmd->add_flag("--control-mesh", options->control_mesh, "Draw the control polygon over the surface");
     cmd->add_option("--isolines", options->isolines, "Isolines of the field (0..100)")->check(CLI::Range(0, 100));
     cmd->add_option("--view", options->view, "iso, front, top, or AZIMUTH,ELEVATION in degrees (default iso)")
-        ->check(CLI::Validator(
-            [](const std::string& text) {
-                try {
-                    (void)parse_view(text);
-                } catch (const Error& error) {
-                    return std::string(error.what());
-                }
-                return std::string();
-            },
-            "VIEW"));
+        ->check(view_validator());
     cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT, 16..8192 each (default 1200x900)")
         ->check(size_validator());
     cmd->add_option("--resolution", options->resolution,

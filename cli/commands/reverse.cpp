@@ -35,7 +35,7 @@ SchemeOptions scheme_options(const SchemeHints& hints) {
 
 int run_reverse(const ReverseOptions& options) {
     const MeshFormat format = output_format(options.output, options.format);  // refused before any work
-    refuse_overwriting_inputs(options.output, {options.input});
+    check_output_paths({options.output}, {options.input});
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     return naming_file(built.source, {options.output}, [&] {
@@ -90,7 +90,7 @@ void add_reverse_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--tolerance", options->tolerance,
                     "With --levels -1: largest residual of a level after the first, relative to the bounding-box "
                     "diagonal")
-        ->check(CLI::NonNegativeNumber);
+        ->check(non_negative_number());
     cmd->add_flag("--json", options->json, "Print a JSON summary");
     cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_reverse(*options); }); });
 }

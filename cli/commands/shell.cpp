@@ -95,8 +95,9 @@ nlohmann::json vector_json(const Eigen::Vector3d& v) {
 }
 
 int run_shell(const ShellOptions& options) {
-    if (!options.output.empty()) {
-        refuse_overwriting_inputs(options.output, {options.input});
+    check_output_paths({options.output}, {options.input});
+    if (!options.surface.empty()) {
+        check_formula("--surface", options.surface);
     }
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);

@@ -33,7 +33,7 @@ struct SubdivideOptions {
     std::int64_t max_faces = RefineOptions{}.max_faces;
     std::string max_memory;
     std::string format;
-    std::string ply_encoding = "ascii";
+    std::string ply_encoding;  ///< empty: ascii
     bool json = false;
     int threads = 0;
 };
@@ -86,7 +86,7 @@ nlohmann::json size_json(const Topology& t) {
 
 int run_subdivide(const SubdivideOptions& options) {
     const MeshFormat format = output_format(options.output, options.format);  // refused before any work
-    refuse_overwriting_inputs(options.output, {options.input, options.weights});
+    check_output_paths({options.output}, {options.input, options.weights});
     const BuildResult built = read_mesh(options.input);
     print_warnings(built.report);
     RefineOptions refine = refine_options(options, built.mesh.hints());
@@ -103,7 +103,7 @@ int run_subdivide(const SubdivideOptions& options) {
         refined.mesh.hints.creasing = refine.scheme_options.creasing;
         refined.mesh.hints.triangles = refine.scheme_options.triangles;
         print_warnings(write_mesh(options.output, refined.mesh,
-                                  {.ply_encoding = ply_encoding_from(options.ply_encoding), .format = format}));
+                                  {.ply_encoding = ply_encoding_from(options.ply_encoding, format), .format = format}));
 
         if (options.json) {
             nlohmann::json levels = nlohmann::json::array();
@@ -158,7 +158,7 @@ void add_subdivide_command(CLI::App& app, CommandStatus& status) {
                     "Tuned Catmull-Clark weights: cup, saddle (Zhang-Sabin-Cirak Table 1) or a file of "
                     "'valence alpha beta gamma' / 'vertex I alpha beta gamma' lines");
     cmd->add_option("--max-faces", options->max_faces, "Refuse when the finest level would have more faces")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     add_memory_option(cmd, options->max_memory);
     add_ply_encoding_option(cmd, options->ply_encoding);
     add_threads_option(cmd, options->threads);

@@ -233,6 +233,7 @@ nlohmann::json search(const TuneOptions& options) {
 }
 
 int run_tune(const TuneOptions& options) {
+    check_output_paths({options.curve}, {});
     const auto start = std::chrono::steady_clock::now();
     nlohmann::json out = options.has_lambda ? at_lambda(options) : search(options);
     out["time_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -5,9 +5,11 @@
 // products of --method, and writes it as vectors on the limit surface (apps/vector_field.h).
 #include "limsurf/apps/vector_field.h"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -65,6 +67,7 @@ double number(const std::string& text, const std::string& flag, const std::strin
     }
     LIMSURF_CHECK(used == text.size() && !text.empty(), InputError, flag, " '", whole, "': '", text,
                   "' is not a number");
+    LIMSURF_CHECK(std::isfinite(value), InputError, flag, " '", whole, "': '", text, "' is not a finite number");
     return value;
 }
 
@@ -119,8 +122,8 @@ VectorFieldConstraints constraints_of(const VectorFieldCommandOptions& o) {
 
 /// The limit surface coloured by the vectors' magnitude at the level-S vertices (carried by the limit basis
 /// of the level-S mesh, whose limit surface is the same).
-void write_picture(const std::string& path, const OneFormVectors& v, SchemeKind scheme, const SchemeOptions& rules,
-                   int threads) {
+/// The picture of --png, in memory: it is drawn before any file is written.
+Image draw_picture(const OneFormVectors& v, SchemeKind scheme, const SchemeOptions& rules, int threads) {
     const LimitBasis basis(v.level_topology, scheme, rules);
     TessellationOptions tess;
     tess.resolution = std::max(2, automatic_resolution(basis, 120000));
@@ -132,8 +135,7 @@ void write_picture(const std::string& path, const OneFormVectors& v, SchemeKind 
     render.width = 900;
     render.height = 700;
     render.num_threads = threads;
-    const RenderResult picture = render_tessellation(surface, evaluate_vertex_field(surface, magnitude), render);
-    write_png(path, picture.image);
+    return render_tessellation(surface, evaluate_vertex_field(surface, magnitude), render).image;
 }
 
 int design_and_report(const BuildResult& built, const VectorFieldCommandOptions& o) {
@@ -201,14 +203,17 @@ int design_and_report(const BuildResult& built, const VectorFieldCommandOptions&
         }
     }
     require_finite(out);  // before anything is written
+    const std::optional<Image> picture =
+        o.png.empty() ? std::nullopt
+                      : std::optional<Image>(draw_picture(vectors, scheme, options.scheme_options, o.threads));
     if (!o.save_one_form.empty()) {
         write_values(o.save_one_form, r.w);
     }
     if (!o.output.empty()) {
         write_one_form_vtk(o.output, {{"field", &vectors}});
     }
-    if (!o.png.empty()) {
-        write_picture(o.png, vectors, scheme, options.scheme_options, o.threads);
+    if (picture) {
+        write_png(o.png, *picture);
     }
     print_warnings(r.warnings);
     if (o.json) {
@@ -276,11 +281,7 @@ void add_vector_field_command(CLI::App& app, CommandStatus& status) {
     cmd->add_flag("--json", o->json, "Print JSON");
     cmd->callback([o, &status] {
         status.exit_code = run_guarded([&] {
-            for (const std::string& path : {o->output, o->png, o->save_one_form}) {
-                if (!path.empty()) {
-                    refuse_overwriting_inputs(path, {o->input});
-                }
-            }
+            check_output_paths({o->output, o->png, o->save_one_form}, {o->input});
             const BuildResult built = read_mesh(o->input);
             print_warnings(built.report);
             return naming_file(built.source, {o->output, o->png, o->save_one_form},

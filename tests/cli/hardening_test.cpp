@@ -516,5 +516,186 @@ TEST(CliHardening, ByteOrderMarksAndClassicMacLineEndingsAreRead) {
     expect_one_error(limsurf({"info", ply.string()}), ply.string() + ":1: a carriage return");
 }
 
+// --- 8. every option with hostile values (a sweep of 19 commands × their options, 2026-12-06) ---
+
+/// Exit 2 (a usage mistake, refused before any work) with "error: " + @p start + … on stderr.
+void expect_usage_error(const CliRun& run, const std::string& start) {
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_EQ(run.err.rfind("error: " + start, 0), 0U) << run.err;
+}
+
+/// The names of the files in @p dir.
+std::vector<std::string> files_in(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        names.push_back(entry.path().filename().string());
+    }
+    return names;
+}
+
+TEST(CliHardening, TinyMembraneTargetsAreRefusedNotCrashed) {
+    // A subnormal V0 or M0 made the scale of its constraint, 1/target, infinite: SIGSEGV inside
+    // the solver's linear algebra, no message.
+    const std::string out = (temp_dir() / "membrane_tiny.obj").string();
+    const auto membrane = [&](const std::vector<std::string>& targets) {
+        std::vector<std::string> args{"membrane",           bundled("octahedron"), "--scheme", "loop", "--area",
+                                      "12.566370614359172", "--max-iterations",    "3",        "-o",   out};
+        args.insert(args.end(), targets.begin(), targets.end());
+        return limsurf(args);
+    };
+    expect_one_error(membrane({"--volume", "1e-320"}), "volume V0 = ");
+    const CliRun tiny_v = membrane({"--reduced-volume", "1e-310"});
+    expect_one_error(tiny_v, "reduced volume v0 = ");
+    EXPECT_NE(tiny_v.err.find(": must be at least 9.9999999999999995e-07"), std::string::npos) << tiny_v.err;
+    expect_one_error(membrane({"--reduced-volume", "1e-7"}),
+                     "reduced volume v0 = 9.9999999999999995e-08: must be at least");
+    expect_one_error(limsurf({"membrane", bundled("octahedron"), "--scheme", "loop", "--area", "1e308",
+                              "--reduced-volume", "0.9", "-o", out}),
+                     "area A0 = 1e+308: must lie in [1e-100, 1e+100]");
+    EXPECT_FALSE(fs::exists(out));
+    // A tiny M0 is scaled as M0 = 0 is (by the sphere's M): the solve runs (and stops after 3 iterations).
+    const CliRun tiny_m = membrane({"--reduced-volume", "0.9", "--mean-curvature", "1e-320"});
+    EXPECT_EQ(tiny_m.exit_code, 0) << tiny_m.err;
+    EXPECT_TRUE(fs::exists(out));
+}
+
+TEST(CliHardening, EveryWriterPassesDevicesThrough) {
+    // vector-field and hodge wrote a temporary file and renamed it over the output: run as root
+    // with -o /dev/full, they replaced the device with a regular file and reported success.
+    if (!fs::exists("/dev/full")) {
+        GTEST_SKIP() << "no /dev/full on this system";
+    }
+    const std::string cube = bundled("cube");
+    expect_one_error(
+        limsurf({"hodge", cube, "--scheme", "catmull-clark", "--method", "dec", "--random", "1", "-o", "/dev/full"}),
+        "/dev/full: write failed: No space left on device");
+    expect_one_error(limsurf({"vector-field", cube, "--scheme", "catmull-clark", "--method", "dec", "--source", "0:1",
+                              "--sink", "6:1", "-o", "/dev/full"}),
+                     "/dev/full: write failed: No space left on device");
+    struct stat status {};
+    ASSERT_EQ(::stat("/dev/full", &status), 0);
+    EXPECT_TRUE(S_ISCHR(status.st_mode)) << "/dev/full is no longer a character device";
+}
+
+TEST(CliHardening, NoOutputIsWrittenWhenAnotherOneCannotBe) {
+    // Each command wrote its outputs one after the other and failed on the first it could not
+    // write, keeping those before it; now every path is checked before any work.
+    const fs::path dir = temp_dir() / "several_outputs";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string missing = (temp_dir() / "no_such_folder" / "x.png").string();
+    const std::string folder_error =
+        missing + ": the folder '" + (temp_dir() / "no_such_folder").string() + "' does not exist";
+    const std::string cube = bundled("cube");
+    const std::string disk = bundled("disk_ev5_quads");
+    const auto in_dir = [&](const char* name) { return (dir / name).string(); };
+    expect_one_error(limsurf({"geodesic", cube, "--scheme", "catmull-clark", "--source", "0", "--level", "1", "-o",
+                              in_dir("a.ply"), "--png", missing}),
+                     folder_error);
+    expect_one_error(limsurf({"parameterize", disk, "--scheme", "catmull-clark", "--method", "dec", "-o",
+                              in_dir("a.ply"), "--texture-png", missing}),
+                     folder_error);
+    expect_one_error(
+        limsurf({"vector-field", cube, "--scheme", "catmull-clark", "--method", "dec", "--source", "0:1", "--sink",
+                 "6:1", "--save-one-form", in_dir("w.txt"), "-o", in_dir("v.vtk"), "--png", missing}),
+        folder_error);
+    expect_one_error(limsurf({"hodge", cube, "--scheme", "catmull-clark", "--method", "dec", "--random", "1",
+                              "--save-parts", in_dir("p_"), "-o", missing}),
+                     folder_error);
+    // Two outputs naming one file, and an output that is a folder.
+    expect_one_error(limsurf({"geodesic", cube, "--scheme", "catmull-clark", "--source", "0", "--level", "1", "-o",
+                              in_dir("a.png"), "--png", (dir / "." / "a.png").string()}),
+                     (dir / "." / "a.png").string() + ": names the same file as the output '" + in_dir("a.png") + "'");
+    const fs::path folder = dir / "folder.obj";
+    fs::create_directories(folder);
+    expect_one_error(limsurf({"subdivide", cube, "--scheme", "catmull-clark", "-o", folder.string()}),
+                     folder.string() + ": is a directory");
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"folder.obj"});
+}
+
+TEST(CliHardening, UsageMistakesAreNamed) {
+    const CliRun unknown = limsurf({"nosuch"});
+    expect_usage_error(unknown, "unknown command 'nosuch'; the commands are info, convert, subdivide");
+    expect_usage_error(limsurf({"--bogus"}), "unknown option '--bogus' before the command");
+    // An empty value was read as 0 (--nu '') or as "not given" (-o '').
+    const std::string plate = bundled("plate_sym");
+    expect_usage_error(limsurf({"plate", plate, "--nu", ""}), "argument 4 (after '--nu') is empty");
+    expect_usage_error(limsurf({"plate", plate, "--nu="}), "'--nu=' has an empty value");
+    // CLI11's own range checks printed the largest double in full (309 digits) and let nan through.
+    const std::string out = (temp_dir() / "never.obj").string();
+    const CliRun faces =
+        limsurf({"subdivide", bundled("cube"), "--scheme", "catmull-clark", "-o", out, "--max-faces", "0"});
+    expect_usage_error(faces, "--max-faces: '0' is not a positive finite number");
+    EXPECT_LT(faces.err.size(), 200U) << faces.err;
+    expect_usage_error(limsurf({"reverse", bundled("cube"), "-o", out, "--tolerance", "nan"}),
+                       "--tolerance: 'nan' is not a finite number >= 0");
+    // The texture's size and view are checked whether or not a texture is asked for.
+    expect_usage_error(
+        limsurf({"parameterize", bundled("disk_ev5_quads"), "--scheme", "catmull-clark", "--size", "abc"}),
+        "--size: expected WIDTHxHEIGHT");
+    expect_usage_error(
+        limsurf({"parameterize", bundled("disk_ev5_quads"), "--scheme", "catmull-clark", "--view", "abc"}), "--view: ");
+    // --format and --ply-encoding that contradict the output.
+    expect_one_error(limsurf({"convert", bundled("cube"), (temp_dir() / "o.ply").string(), "--format", "off"}),
+                     (temp_dir() / "o.ply").string() + ": --format off contradicts the extension '.ply'");
+    expect_one_error(limsurf({"convert", bundled("cube"), out, "--ply-encoding", "binary-le"}),
+                     "--ply-encoding binary-le applies to PLY output only, and the output is OBJ");
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(temp_dir() / "o.ply"));
+}
+
+TEST(CliHardening, FormulasAreOneExpressionAndCheckedBeforeUse) {
+    // muParser reads "1,2" as two expressions and returns the last: f = 2, silently.
+    const std::string cube = bundled("cube");
+    expect_one_error(limsurf({"poisson", cube, "--scheme", "catmull-clark", "--rhs", "1,2"}),
+                     "--rhs '1,2' has 2 comma-separated values: give one expression");
+    expect_one_error(limsurf({"plate", bundled("plate_sym"), "--load", "x,y"}),
+                     "--load 'x,y' has 2 comma-separated values");
+    expect_one_error(limsurf({"hodge", cube, "--scheme", "catmull-clark", "--method", "dec", "--field", "x,y;0;0"}),
+                     cube + ": --field 'x,y' has 2 comma-separated values");
+    // A boundary value on a closed mesh is not used, but a malformed one is still a mistake.
+    expect_one_error(limsurf({"poisson", cube, "--scheme", "catmull-clark", "--rhs", "x", "--boundary-value", "abc"}),
+                     "--boundary-value 'abc': ");
+}
+
+TEST(CliHardening, DegenerateNumbersAreNamedForWhatTheyAre) {
+    const std::string cube = bundled("cube");
+    const std::string plate = bundled("plate_sym");
+    // A 1-form has one value per edge: the cube's 8 vertices were named instead of its 12 edges.
+    const fs::path form = temp_dir() / "eleven_values.txt";
+    {
+        std::ofstream file(form);
+        for (int i = 0; i < 11; ++i) {
+            file << i << '\n';
+        }
+    }
+    expect_one_error(
+        limsurf({"hodge", cube, "--scheme", "catmull-clark", "--method", "dec", "--one-form", form.string()}),
+        form.string() + ": 11 values, but the mesh has 12 edges");
+    // p = 0 made the comparison with Navier 0/0, reported as an overflow.
+    expect_one_error(limsurf({"plate", plate, "--pressure", "0"}),
+                     plate + ": plate: the pressure p = 0 must be a non-zero");
+    // Subnormal moduli were reported as degenerate geometry or as an overflow of the results.
+    expect_one_error(limsurf({"plate", plate, "--E", "1e-320"}), plate + ": plate: E = ");
+    expect_one_error(limsurf({"shell", bundled("shell_scordelis_lo"), "--E", "1e-320", "--gravity", "90"}),
+                     bundled("shell_scordelis_lo") + ": shell: E = ");
+    expect_one_error(limsurf({"elasticity", bundled("rve_block"), "--E", "1e-320"}), "--E/--nu: elasticity: E = ");
+    // The evaluation path checks H0 as the solve path does (it reported the Helfrich energy's overflow).
+    expect_one_error(limsurf({"membrane", bundled("tetra_3"), "--scheme", "c2g0", "--evaluate-only",
+                              "--spontaneous-curvature", "nan"}),
+                     "--spontaneous-curvature: H0 must be a finite number, not nan");
+    // A sink was called a source, and its nan reached the library.
+    expect_one_error(limsurf({"vector-field", cube, "--scheme", "catmull-clark", "--method", "dec", "--sink", "6:nan"}),
+                     cube + ": --sink '6:nan': 'nan' is not a finite number");
+    // A heat flow so long that M + tL lost M to rounding gave 0.5 everywhere, the source too, and exit 0.
+    expect_one_error(limsurf({"geodesic", cube, "--scheme", "catmull-clark", "--source", "0", "--level", "1",
+                              "--time-factor", "1e200"}),
+                     cube + ": the time step t = 9.9999999999999997e+199 makes t L_ii up to ");
+    const CliRun long_but_fine = limsurf({"geodesic", cube, "--scheme", "catmull-clark", "--source", "0", "--level",
+                                          "1", "--time-factor", "1e6", "--json"});
+    ASSERT_EQ(long_but_fine.exit_code, 0) << long_but_fine.err;
+    EXPECT_GT(json_number(long_but_fine.out, "distance_max"), 0.5) << long_but_fine.out;
+}
+
 }  // namespace
 }  // namespace limsurf

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -249,6 +251,32 @@ TEST(Render, ControlPolygonChangesPixelsOnlyAlongItsEdges) {
         }
     }
     EXPECT_GT(changed, 300);  // the 9 visible edges of the cube, ~60 pixels each
+}
+
+// A field and its range scaled by 2^1020 (values up to 2^1020 ≈ 1.1e307, a range twice as wide):
+// the same picture, isolines included. The width of that range overflows a double; computed as it
+// was, every value mapped to the colour map's first colour.
+TEST(Render, ARangeNearTheLargestDoubleGivesTheSamePictureAsAScaledDown) {
+    const Scene s("sphere_quads", SchemeKind::CatmullClark, 6);
+    const Eigen::VectorXd y = s.surface.positions.col(1) / s.surface.positions.col(1).cwiseAbs().maxCoeff();
+    const double scale = std::ldexp(1.0, 1020);
+    RenderOptions options = small("front");
+    options.color_bar = false;  // its labels print the range
+    options.isolines = 4;
+    options.range = std::array<double, 2>{-1.0, 1.0};
+    const RenderResult unit = render_tessellation(s.surface, y, options);
+    options.range = std::array<double, 2>{-scale, scale};
+    const RenderResult huge = render_tessellation(s.surface, Eigen::VectorXd(scale * y), options);
+    EXPECT_EQ(count_different(unit.image, huge.image), 0);
+    // The picture is not one colour: the field and its isolines show.
+    std::set<std::tuple<int, int, int>> colours;
+    for (int py = 0; py < unit.image.height; ++py) {
+        for (int px = 0; px < unit.image.width; ++px) {
+            const Rgb c = unit.image.pixel(px, py);
+            colours.insert({c.r, c.g, c.b});
+        }
+    }
+    EXPECT_GT(colours.size(), 100U);
 }
 
 TEST(Render, IsDeterministicAndViewsDiffer) {

@@ -26,9 +26,9 @@ namespace limsurf {
 
 /// A membrane problem as a user states it.
 struct MembraneRequest {
-    double area = 0.0;                             ///< A0 > 0
+    double area = 0.0;                             ///< A0 in [min_membrane_area, max_membrane_area]
     std::optional<double> volume;                  ///< V0 > 0; exactly one of volume, reduced_volume
-    std::optional<double> reduced_volume;          ///< v0 in (0, 1]
+    std::optional<double> reduced_volume;          ///< v0 in [min_reduced_volume, 1]
     std::optional<double> mean_curvature;          ///< M0; at most one of mean_curvature, reduced_mean_curvature
     std::optional<double> reduced_mean_curvature;  ///< m0
     std::optional<double> spontaneous_curvature;   ///< H0: the Helfrich energy instead of W
@@ -73,8 +73,9 @@ struct MembraneRun {
 };
 
 /// @brief The problem (3.1) of @p request, targets made absolute (v0 → V0 and m0 → M0 at A0).
-/// @throws InputError naming the option for A0 <= 0, both or neither of volume and reduced volume,
-///   V0 <= 0, v0 outside (0, 1] (no closed surface of area A0 encloses more than the sphere),
+/// @throws InputError naming the option for A0 outside [min_membrane_area, max_membrane_area], both or
+///   neither of volume and reduced volume, V0 <= 0, v0 (given, or V0's) above 1 (no closed surface of
+///   area A0 encloses more than the sphere) or below min_reduced_volume,
 ///   both mean curvature options, a negative ε, max_iterations < 1, tolerance <= 0, or a value
 ///   that is not finite
 [[nodiscard]] MembraneProblem membrane_problem(const MembraneRequest& request);

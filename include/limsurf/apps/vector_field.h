@@ -74,8 +74,9 @@ struct NamedVectors {
 /// @brief Writes vector fields as legacy ASCII VTK polydata: the level-L mesh at limit positions (POLYGONS)
 ///   with, for each field NAME, POINT_DATA `NAME` (level_vectors, for surface streamlines / LIC) and
 ///   `NAME_magnitude`, and CELL_DATA `NAME_face` (vectors, for glyphs at cell centres) and
-///   `NAME_face_magnitude`; CELL_DATA `face_center` holds the limit sample points. Atomic (a temporary file
-///   renamed).
+///   `NAME_face_magnitude`; CELL_DATA `face_center` holds the limit sample points. Written through
+///   write_file_atomically(): nothing is left behind on failure, and a device or FIFO is written through, not
+///   replaced.
 /// @throws InputError when there is no field, the fields do not share one mesh, a name is empty or has other
 ///   characters, the file cannot be written or a value is not finite
 void write_one_form_vtk(const std::string& path, const std::vector<NamedVectors>& fields);

@@ -33,11 +33,15 @@ void validate_vertex_field(const VertexField& field, Index num_vertices);
 void validate_vertex_fields(std::span<const VertexField> fields, Index num_vertices,
                             std::span<const std::string_view> reserved = {});
 
+/// What a file of values holds one value per: the word its error messages use.
+enum class ValuesPer { Vertex, Edge };
+
 /// @brief Reads one finite number per line ('#' comments and blank lines skipped), @p count of
-///   them: per-vertex data such as a right-hand side.
+///   them: per-vertex data such as a right-hand side, or (@p per Edge) a 1-form.
 /// @throws InputError naming the file (and line): cannot open, a directory, a line that is not
-///   one finite number, more or fewer than @p count values
-[[nodiscard]] Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count);
+///   one finite number, more or fewer than @p count values ("… the mesh has 12 edges")
+[[nodiscard]] Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count,
+                                                 ValuesPer per = ValuesPer::Vertex);
 
 /// @brief Writes @p values one per line with 17 significant digits (what read_vertex_values reads
 ///   back bit for bit: per-vertex or per-edge data such as a 1-form), atomically (io/atomic_file.h).

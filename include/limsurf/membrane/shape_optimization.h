@@ -32,12 +32,22 @@ enum class MembraneObjective {
 /// "willmore", "helfrich" or "harmonic" (the CLI's and Python's name of the objective).
 [[nodiscard]] const char* to_string(MembraneObjective objective) noexcept;
 
+/// The range of the area A0 a problem may ask for: a start scaled to A0 (as solve_membrane_problem scales it), so its
+/// coordinates are ~ sqrt(A0) and V ~ A0^(3/2); beyond these the volume, the gradients or the solver's scaled
+/// quantities leave double precision (state the problem in other units).
+inline constexpr double min_membrane_area = 1e-100;
+inline constexpr double max_membrane_area = 1e100;
+/// The least reduced volume V0 / volume_from_reduced(1, A0) a problem may ask for: the volume constraint is scaled by
+/// V0, and a subnormal V0 made that scale infinite (a crash inside the solver's linear algebra). Far below any shape of
+/// the phase diagrams (Fig. 7 of the paper has v0 = 0.18).
+inline constexpr double min_reduced_volume = 1e-6;
+
 /// The problem: an objective and hard constraints.
 struct MembraneProblem {
     MembraneObjective objective = MembraneObjective::Willmore;
     double spontaneous_curvature = 0.0;    ///< H0 of the Helfrich objective
-    double area = 0.0;                     ///< A0 > 0 (always constrained)
-    std::optional<double> volume;          ///< V0 (> 0), when constrained
+    double area = 0.0;                     ///< A0 in [min_membrane_area, max_membrane_area] (always constrained)
+    std::optional<double> volume;          ///< V0 (reduced volume in [min_reduced_volume, 1]), when constrained
     std::optional<double> mean_curvature;  ///< M0, when constrained
     std::optional<double> willmore_bound;  ///< W ≤ bound, when given (3.12)
 };
@@ -105,8 +115,9 @@ struct MembraneResult {
 ///   A trial point where the surface degenerates (NumericalError from ShapeFunctionals) makes Ipopt
 ///   shorten the step; it is not an error. Ipopt's MUMPS is not reentrant: concurrent calls are
 ///   serialised.
-/// @throws InputError for an infeasible problem (A0 <= 0, V0 <= 0, V0 above the volume of the
-///   sphere of area A0, i.e. reduced volume > 1, a Willmore bound <= 0, non-finite data), initial
+/// @throws InputError for an infeasible or unrepresentable problem (A0 outside [min_membrane_area,
+///   max_membrane_area], V0 <= 0, a reduced volume above 1 (V0 above the volume of the sphere of
+///   area A0) or below min_reduced_volume, a Willmore bound <= 0, non-finite data), initial
 ///   points of the wrong shape or not finite, non-positive tolerances
 /// @throws NumericalError when the surface of @p initial is degenerate (or a functional is not finite there)
 /// @throws UnsupportedError when limsurf was built without Ipopt (membrane_solver_available())

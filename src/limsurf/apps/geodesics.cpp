@@ -229,6 +229,23 @@ GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind s
 /// basis') makes (M0 + t L)⁻¹ δ, for t ~ h², close to the L² projection of a point mass, whose
 /// coefficients oscillate in sign, and the normalised gradient then points the wrong way far from
 /// the source.
+/// Refuses a time step so long that M + tL has lost M to rounding: the heat then levels out to a
+/// constant plus noise, and the normalised gradient — the distances — is that noise (a time factor
+/// of 1e200 gave 0.5 everywhere, the source too, and exit 0). The heat method's own t = h² (time
+/// factor 1) gives t L_ii / M_ii of order 1–10; 1e12 still leaves M four digits in every diagonal entry.
+void check_time_step_keeps_the_mass(const SparseMatrix& mass, const SparseMatrix& L, double t) {
+    double ratio = 0.0;
+    for (Index i = 0; i < L.rows(); ++i) {
+        const double m = mass.coeff(i, i);
+        if (m > 0.0) {
+            ratio = std::max(ratio, t * std::abs(L.coeff(i, i)) / m);
+        }
+    }
+    LIMSURF_CHECK(ratio <= 1e12, InputError, "the time step t = ", t, " makes t L_ii up to ", ratio,
+                  " times M_ii: the heat operator M + tL has lost the mass matrix to rounding and the "
+                  "distances would be noise; use a smaller time step or time factor (the heat method's is 1)");
+}
+
 std::pair<SparseMatrix, SparseMatrix> mass_and_laplacian(const Topology& t, const Points& X, SchemeKind scheme,
                                                          const HeatGeodesicsOptions& options, const LimitBasis* basis) {
     if (options.method == LaplacianMethod::Iga) {
@@ -457,6 +474,7 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
         basis.emplace(topology, scheme, options.scheme_options);
     }
     const auto [mass, L] = mass_and_laplacian(topology, X, scheme, options, basis ? &*basis : nullptr);
+    check_time_step_keeps_the_mass(mass, L, m.t);
     const SparseMatrix heat_matrix = SparseMatrix(mass + m.t * L);
     if (use_limit) {
         SamplerOptions quadrature = options.gradient_quadrature;

@@ -39,6 +39,11 @@ bool MembraneRun::converged(const MembraneRequest& request) const noexcept {
 MembraneProblem membrane_problem(const MembraneRequest& request) {
     LIMSURF_CHECK(std::isfinite(request.area) && request.area > 0.0, InputError, "area A0 = ", request.area,
                   ": must be positive");
+    // The start is scaled to A0, so its coordinates are ~ sqrt(A0) and V ~ A0^(3/2): outside this range
+    // the volume, the gradients or the solver's scaled quantities leave double precision.
+    LIMSURF_CHECK(request.area >= min_membrane_area && request.area <= max_membrane_area, InputError,
+                  "area A0 = ", request.area, ": must lie in [", min_membrane_area, ", ", max_membrane_area,
+                  "] (state the problem in other units)");
     require_finite(request.volume, "volume V0");
     require_finite(request.reduced_volume, "reduced volume v0");
     require_finite(request.mean_curvature, "mean curvature M0");
@@ -65,12 +70,17 @@ MembraneProblem membrane_problem(const MembraneRequest& request) {
         // The isoperimetric inequality: the round sphere encloses the most volume for its area.
         LIMSURF_CHECK(v0 > 0.0 && v0 <= 1.0, InputError, "reduced volume v0 = ", v0,
                       ": must lie in (0, 1] (no closed surface encloses more volume than the sphere of its area)");
+        LIMSURF_CHECK(v0 >= min_reduced_volume, InputError, "reduced volume v0 = ", v0, ": must be at least ",
+                      min_reduced_volume, " (below it the volume constraint, scaled by V0, is not representable)");
         problem.volume = volume_from_reduced(v0, request.area);
     } else {
         const double v0 = *request.volume / volume_from_reduced(1.0, request.area);
         LIMSURF_CHECK(*request.volume > 0.0 && v0 <= 1.0, InputError, "volume V0 = ", *request.volume,
                       ": must lie in (0, ", volume_from_reduced(1.0, request.area),
                       "], the volume of the sphere of area A0 (reduced volume ", v0, ")");
+        LIMSURF_CHECK(v0 >= min_reduced_volume, InputError, "volume V0 = ", *request.volume, ": its reduced volume ",
+                      v0, " must be at least ", min_reduced_volume,
+                      " (below it the volume constraint, scaled by V0, is not representable)");
         problem.volume = request.volume;
     }
     if (request.reduced_mean_curvature) {

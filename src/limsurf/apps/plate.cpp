@@ -118,6 +118,10 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
     const PlateRectangle& box = out.rectangle;
     const double pi = std::numbers::pi;
     const double p = load.pressure;
+    // With p = 0 the plate does not bend, and the comparison with Navier's solution is 0/0.
+    LIMSURF_CHECK(per_vertex || load.shape == PlateLoadShape::Function || std::isnormal(p), InputError,
+                  "plate: the pressure p = ", p,
+                  " must be a non-zero finite number (with p = 0 the plate does not bend)");
     // The sine loads of the seed's Table 2 (two waves) and the single wave, over the bounding box.
     const auto sine = [&](int waves) {
         return [&, waves](const Points& P) {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <utility>
@@ -14,6 +12,7 @@
 #include "limsurf/apps/hodge.h"
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
+#include "limsurf/io/atomic_file.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
@@ -492,10 +491,9 @@ void write_one_form_vtk(const std::string& path, const std::vector<NamedVectors>
     }
     LIMSURF_CHECK(first.level_points.allFinite() && first.points.allFinite(), InputError,
                   "a sample point is not finite: nothing written");
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        LIMSURF_CHECK(out.good(), InputError, "cannot write '", path, "'");
+    // Through the atomic writer, as every other output: a device or FIFO is written through, a
+    // failed write leaves no file behind and names the reason.
+    write_file_atomically(path, [&](std::ostream& out) {
         out.precision(17);
         out << "# vtk DataFile Version 3.0\nlimsurf 1-forms as vectors on the limit surface (level " << first.level
             << ")\nASCII\nDATASET POLYDATA\nPOINTS " << t.num_vertices() << " double\n";
@@ -534,9 +532,7 @@ void write_one_form_vtk(const std::string& path, const std::vector<NamedVectors>
             write_vectors(f.name + "_face", f.vectors->vectors);
             write_norms(f.name + "_face_magnitude", f.vectors->vectors);
         }
-        LIMSURF_CHECK(out.good(), InputError, "writing '", path, "' failed");
-    }
-    LIMSURF_CHECK(std::rename(tmp.c_str(), path.c_str()) == 0, InputError, "cannot write '", path, "'");
+    });
 }
 
 Eigen::VectorXd integrate_one_form(const Topology& topology, const Points& X,

@@ -18,11 +18,18 @@ class SparseCholesky {
   public:
     using ColMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
 
-    /// @throws NumericalError (naming @p what) when @p A is not positive definite
+    /// @throws NumericalError (naming @p what) when @p A has an entry that is not finite or is not
+    ///   positive definite
     SparseCholesky(const SparseMatrix& A, const char* what) : A_(A) {
         if (A_.rows() == 0) {  // nothing to solve (CHOLMOD crashes on an empty matrix)
             return;
         }
+        // An overflowed entry (a material constant or weight near the largest double) would be
+        // reported by the factorisation as "not positive definite": name the cause instead.
+        LIMSURF_CHECK(Eigen::Map<const Eigen::VectorXd>(A_.valuePtr(), A_.nonZeros()).allFinite(), NumericalError,
+                      "the matrix of ", what,
+                      " has an entry that is not finite: its data overflowed (a material constant, weight or "
+                      "coordinate too large?)");
         solver_.compute(A_);
         LIMSURF_CHECK(solver_.info() == Eigen::Success, NumericalError, "the Cholesky factorisation of ", what,
                       " failed: the matrix is not positive definite (degenerate geometry?)");

@@ -117,6 +117,10 @@ const char* to_string(PlaneModel model) noexcept {
 Eigen::Matrix3d elasticity_matrix(const ElasticMaterial& material, PlaneModel model) {
     const double E = material.E, nu = material.nu;
     LIMSURF_CHECK(std::isfinite(E) && E > 0.0, InputError, "elasticity: E must be > 0, got ", E);
+    // A subnormal E has lost its digits, and the stiffness it gives underflows (the effective
+    // stiffness bounds came out as 0/0).
+    LIMSURF_CHECK(std::isnormal(E) && E <= 1e300, InputError, "elasticity: E = ", E,
+                  " is outside the range of double precision the stiffness needs: state it in other units");
     LIMSURF_CHECK(std::isfinite(nu) && nu > -1.0 && nu < 0.5, InputError, "elasticity: nu must be in (-1, 0.5), got ",
                   nu);
     Eigen::Matrix3d C = Eigen::Matrix3d::Zero();

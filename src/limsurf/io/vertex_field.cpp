@@ -62,7 +62,8 @@ void validate_vertex_fields(std::span<const VertexField> fields, Index num_verti
     }
 }
 
-Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count) {
+Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index count, ValuesPer per) {
+    const char* element = per == ValuesPer::Edge ? "edge" : "vertex";
     std::ifstream in = open_input_file(path);
     const std::string name = path.string();
     Eigen::VectorXd out(count);
@@ -84,12 +85,13 @@ Eigen::VectorXd read_vertex_values(const std::filesystem::path& path, Index coun
             detail::io_fail(name, number, "value " + detail::io_quote(tokens[0]) + " is not finite");
         }
         if (n >= count) {
-            detail::io_fail(name, number, "more than " + std::to_string(count) + " values (one per vertex)");
+            detail::io_fail(name, number, "more than " + std::to_string(count) + " values (one per " + element + ")");
         }
         out(n++) = value;
     }
     LIMSURF_CHECK(!in.bad(), InputError, name, ": read error");
-    LIMSURF_CHECK(n == count, InputError, name, ": ", n, " values, but the mesh has ", count, " vertices");
+    LIMSURF_CHECK(n == count, InputError, name, ": ", n, " values, but the mesh has ", count,
+                  per == ValuesPer::Edge ? " edges" : " vertices");
     return out;
 }
 

@@ -36,6 +36,9 @@ void validate(const ShapeFunctionals& functionals, const Points& initial, const 
               const MembraneOptions& options) {
     LIMSURF_CHECK(std::isfinite(problem.area) && problem.area > 0.0, InputError,
                   "the area A0 must be positive and finite, not ", problem.area);
+    LIMSURF_CHECK(problem.area >= min_membrane_area && problem.area <= max_membrane_area, InputError,
+                  "the area A0 = ", problem.area, " must lie in [", min_membrane_area, ", ", max_membrane_area,
+                  "] (state the problem in other units)");
     if (problem.volume) {
         const double v0 = *problem.volume;
         const double sphere = volume_from_reduced(1.0, problem.area);
@@ -43,6 +46,9 @@ void validate(const ShapeFunctionals& functionals, const Points& initial, const 
         LIMSURF_CHECK(v0 <= sphere, InputError, "the volume V0 = ", v0,
                       " exceeds that of the sphere of area A0 = ", problem.area, " (", sphere, "): reduced volume ",
                       v0 / sphere, " > 1 violates the isoperimetric inequality");
+        LIMSURF_CHECK(v0 / sphere >= min_reduced_volume, InputError, "the volume V0 = ", v0, " is below ",
+                      min_reduced_volume, " times that of the sphere of area A0 (reduced volume ", v0 / sphere,
+                      "): the volume constraint, scaled by V0, is not representable");
     }
     if (problem.mean_curvature) {
         LIMSURF_CHECK(std::isfinite(*problem.mean_curvature), InputError, "the mean curvature M0 must be finite");
@@ -85,7 +91,10 @@ std::vector<Constraint> constraints_of(const MembraneProblem& problem, const Sha
     }
     if (problem.mean_curvature) {
         const double m0 = *problem.mean_curvature;
-        const double scale = m0 != 0.0 ? std::abs(m0) : mean_curvature_from_reduced(1.0, problem.area);
+        // |M0|, unless it is so small next to the sphere's M that 1/|M0| leaves double precision
+        // (a subnormal M0 crashed the solver's linear algebra); M0 = 0 has the sphere's scale.
+        const double sphere = mean_curvature_from_reduced(1.0, problem.area);
+        const double scale = std::abs(m0) >= 1e-6 * sphere ? std::abs(m0) : sphere;
         out.push_back({ShapeFunctional::MeanCurvature, m0, scale, false});
     }
     if (problem.willmore_bound) {

@@ -138,18 +138,20 @@ struct Shading {
     Eigen::Vector3d background;
 };
 
+/// Where @p f lies in @p range, 0..1 inside it. In halves, which are exact: a range as wide as
+/// [-1e308, 1e308] must not overflow its width to infinity (every value would map to 0).
 double field_position(const std::array<double, 2>& range, double f) {
-    return range[1] > range[0] ? (f - range[0]) / (range[1] - range[0]) : 0.5;
+    return range[1] > range[0] ? (f / 2 - range[0] / 2) / (range[1] / 2 - range[0] / 2) : 0.5;
 }
 
 /// How strongly an isoline covers a sample with field value @p f on triangle @p t: 1 on the line, 0 beyond
 /// about half a pixel from it.
 double isoline_weight(const Shading& c, Index t, double f) {
-    const double spacing = (c.range[1] - c.range[0]) / (c.isolines + 1);
-    if (!(spacing > 0.0)) {
+    const double half_spacing = (c.range[1] / 2 - c.range[0] / 2) / (c.isolines + 1);  // halves: field_position
+    if (!(half_spacing > 0.0)) {
         return 0.0;
     }
-    const double g = (f - c.range[0]) / spacing;
+    const double g = (f / 2 - c.range[0] / 2) / half_spacing;
     const double k = std::round(g);
     if (k < 1.0 || k > c.isolines) {
         return 0.0;
@@ -159,19 +161,19 @@ double isoline_weight(const Shading& c, Index t, double f) {
     const Eigen::Vector3d a = c.projected.row(corner(0));
     const Eigen::Vector3d e1 = c.projected.row(corner(1)).transpose() - a;
     const Eigen::Vector3d e2 = c.projected.row(corner(2)).transpose() - a;
-    const double df1 = c.field(corner(1)) - c.field(corner(0));
-    const double df2 = c.field(corner(2)) - c.field(corner(0));
+    const double df1 = c.field(corner(1)) / 2 - c.field(corner(0)) / 2;  // halves, as half_spacing
+    const double df2 = c.field(corner(2)) / 2 - c.field(corner(0)) / 2;
     const double det = e1.x() * e2.y() - e1.y() * e2.x();
     if (det == 0.0) {
         return 0.0;
     }
     const double gx = (df1 * e2.y() - df2 * e1.y()) / det;
     const double gy = (df2 * e1.x() - df1 * e2.x()) / det;
-    const double per_pixel = std::hypot(gx, gy) * c.supersampling;  // field change per output pixel
-    if (!(per_pixel > 0.0)) {
+    const double half_per_pixel = std::hypot(gx, gy) * c.supersampling;  // half the field's change per pixel
+    if (!(half_per_pixel > 0.0)) {
         return 0.0;
     }
-    const double distance = std::abs(g - k) * spacing / per_pixel;
+    const double distance = std::abs(g - k) * half_spacing / half_per_pixel;
     return std::clamp(1.5 - distance / isoline_half_width, 0.0, 1.0);
 }
 
