@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -217,12 +216,12 @@ bool parse_size(const std::string& text, int& width, int& height) {
 
 namespace {
 
-/// @p text as one finite number, or nullopt.
+/// @p text as one finite number, or nullopt (an overflow reads as ±HUGE_VAL: not finite; an
+/// underflow reads as the subnormal or zero it rounds to).
 std::optional<double> finite_number(const std::string& text) {
     char* end = nullptr;
-    errno = 0;
     const double x = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(x)) {
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(x)) {
         return std::nullopt;
     }
     return x;

@@ -250,7 +250,7 @@ callback(dict) is called after every iteration with 'stage', 'iteration', 'objec
 an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
 has 'projected' True when the points returned hold the constraints: the lowest objective met near them,
 or its last iterate, projected onto them (a feasible point, not a minimiser; 'status' says which). Raises limsurf.InputError for an infeasible request
-(area <= 0, reduced volume outside (0, 1], both or neither volume options) or an open mesh,
+(area outside [1e-100, 1e100], reduced volume outside [1e-6, 1], both or neither volume options) or an open mesh,
 limsurf.UnsupportedError for Doo–Sabin or without Ipopt.)";
 
 constexpr const char* self_intersections_doc = R"(Whether the limit surface passes through itself
