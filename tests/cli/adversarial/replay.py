@@ -4,7 +4,8 @@
 For each input (the committed corpus in tests/data/malformed and tests/cli/adversarial/corpus,
 plus inputs generated here: huge faces and valences, scaled and flattened meshes, byte-order
 marks, CR line endings, special files) and each command, and for the commands that read no mesh
-(tune) once each with bad options, a run must:
+(tune) once each with bad options, and every number option of every command with values at the
+edges of a double (option_cases), a run must:
   - end within its time bound (no hang), with exit code 0, 1 or 2 (never 3, never a signal);
   - on failure, print exactly one "error: " line on stderr (as its last line), at most
     max_warning_lines warnings, and leave no output file and no temporary file;
@@ -298,6 +299,88 @@ def elasticity_cases(root, work, out_dir):
 
 # ---------------------------------------------------------------------------- checks
 
+# Every number option of every command, one at a time, with values at the edges of a double (a sweep
+# of this kind, 2026-12-06, found a crash inside Ipopt on a subnormal target, a device replaced by a
+# regular file, outputs left behind, and 0/0 reported as an overflow). Each entry: a valid run on a
+# bundled mesh, the options to vary, and the outputs it may write.
+HOSTILE_NUMBERS = ["nan", "-inf", "-1", "0", "1e-320", "1e308"]
+
+
+def option_cases(root, out_dir):
+    """(label, argv, output files it may write): each command's number options given hostile values,
+    and its outputs in a missing folder."""
+    def mesh(name):
+        return os.path.join(root, "data", "meshes", name + ".obj")
+
+    def o(name):
+        return os.path.join(out_dir, name)
+    missing = o("no_such_folder/x")
+    table = [
+        ("subdivide", ["subdivide", mesh("cube"), "--scheme", "catmull-clark", "-o", o("s.obj")], [o("s.obj")],
+         ["--levels", "--max-faces", "--threads"]),
+        ("eval", ["eval", mesh("cube"), "--scheme", "catmull-clark", "--grid", "1", "-o", o("e.json")], [o("e.json")],
+         ["--grid", "--threads"]),
+        ("measure", ["measure", mesh("cube"), "--scheme", "catmull-clark", "--degree", "4", "--tiles", "2"], [],
+         ["--degree", "--tiles"]),
+        ("volume", ["volume", mesh("cube"), "--scheme", "catmull-clark"], [], ["--levels", "--degree", "--tiles"]),
+        ("poisson", ["poisson", mesh("cube"), "--scheme", "catmull-clark", "--level", "1", "--rhs", "x", "-o",
+                     o("p.vtk")], [o("p.vtk")], ["--level", "--degree", "--tiles", "--reference-level",
+                                                 "--boundary-value", "--rhs"]),
+        ("eigen", ["eigen", "--scheme", "catmull-clark", "--valence", "5"], [], ["--valence", "--rings"]),
+        ("plate", ["plate", mesh("plate_sym"), "--degree", "2", "-o", o("w.vtk")], [o("w.vtk")],
+         ["--pressure", "--levels", "--thickness", "--E", "--nu", "--degree", "--decide-level"]),
+        ("shell", ["shell", mesh("shell_scordelis_lo"), "--E", "4.32e8", "--nu", "0", "--thickness", "0.25",
+                   "--gravity", "90", "--fix", "abs(y) > 24.999:xz", "--degree", "3", "--tiles", "1"], [],
+         ["--E", "--nu", "--thickness", "--gravity", "--pressure", "--levels", "--degree", "--tiles"]),
+        ("render", ["render", mesh("cube"), "--scheme", "catmull-clark", "-o", o("r.png"), "--size", "64x64",
+                    "--resolution", "2", "--field", "mean-curvature"], [o("r.png")],
+         ["--isolines", "--resolution", "--supersampling"]),
+        ("parameterize", ["parameterize", mesh("disk_ev7_tris"), "--scheme", "loop", "--method", "dec", "-o",
+                          o("uv.ply"), "--texture-png", o("uv.png"), "--size", "64x64"], [o("uv.ply"), o("uv.png")],
+         ["--squares", "--degree", "--tiles"]),
+        ("geodesic", ["geodesic", mesh("cube"), "--scheme", "catmull-clark", "--source", "0", "--level", "1", "-o",
+                      o("g.ply"), "--png", o("g.png")], [o("g.ply"), o("g.png")],
+         ["--source", "--level", "--time-factor", "--reference-level", "--isolines", "--gradient-degree"]),
+        ("vector-field", ["vector-field", mesh("cube"), "--scheme", "catmull-clark", "--method", "dec", "--source",
+                          "0:1", "--sink", "6:1", "--save-one-form", o("w.txt"), "-o", o("v.vtk"), "--png",
+                          o("v.png")], [o("w.txt"), o("v.vtk"), o("v.png")],
+         ["--weight", "--sample-level", "--level"]),
+        ("hodge", ["hodge", mesh("genus2"), "--scheme", "catmull-clark", "--method", "dec", "--random", "1",
+                   "--save-parts", o("p_"), "-o", o("h.vtk")],
+         [o("p_exact.txt"), o("p_coexact.txt"), o("p_harmonic.txt"), o("h.vtk")],
+         ["--random", "--sample-level", "--level"]),
+        ("membrane", ["membrane", mesh("octahedron"), "--scheme", "loop", "--area", "12.566370614359172",
+                      "--reduced-volume", "0.9", "--max-iterations", "3", "-o", o("m.obj")], [o("m.obj")],
+         ["--area", "--reduced-volume", "--mean-curvature", "--reduced-mean-curvature", "--spontaneous-curvature",
+          "--regularize-harmonic", "--tolerance", "--degree"]),
+        ("membrane volume", ["membrane", mesh("octahedron"), "--scheme", "loop", "--area", "12.566370614359172",
+                             "--volume", "3", "--max-iterations", "3", "-o", o("m.obj")], [o("m.obj")], ["--volume"]),
+        ("tune", ["tune", "--valence", "5", "--lambda", "0.55"], [], ["--lambda", "--quadrature", "--poisson-ratio"]),
+        ("reverse", ["reverse", mesh("quad_torus"), "-o", o("rv.obj")], [o("rv.obj")], ["--levels", "--tolerance"]),
+        ("elasticity", ["elasticity", mesh("quad_grid"), "--boundary", "loaded", "--clamp", "left", "--traction",
+                        "right:0.1,0", "--plane-stress", "--resolution", "2", "--no-stiffness", "-o", o("el.vtk")],
+         [o("el.vtk")], ["--E", "--nu", "--levels", "--resolution"]),
+    ]
+    def with_value(argv, option, value):  # replaces the option's value, or adds the option
+        if option in argv:
+            k = argv.index(option)
+            return argv[:k + 1] + [value] + argv[k + 2:]
+        return argv + [option, value]
+
+    runs = []
+    for label, argv, outputs, options in table:
+        for option in options:
+            for value in HOSTILE_NUMBERS:
+                runs.append(("%s %s %s" % (label, option, value), with_value(argv, option, value), outputs))
+        # Each output in a missing folder, the others where they were: nothing may be written.
+        for k in range(len(argv)):
+            if argv[k] in outputs or (label == "hodge" and argv[k] == o("p_")):
+                bad = list(argv)
+                bad[k] = missing + os.path.splitext(argv[k])[1]
+                runs.append(("%s %s in a missing folder" % (label, argv[k - 1]), bad, outputs))
+    return runs
+
+
 def check(limsurf, name, label, argv, outputs, out_dir, is_huge):
     """Runs one command; returns a list of problems (empty when it kept the promise)."""
     limit = HUGE_SECONDS if is_huge else SLOW_SECONDS
@@ -337,7 +420,9 @@ def check(limsurf, name, label, argv, outputs, out_dir, is_huge):
         if NON_FINITE.search(out):
             problems.append("%s: nan/inf on stdout: %s" % (where, NON_FINITE.search(out).group(0)))
         for path in outputs:
-            if os.path.exists(path) and NON_FINITE.search(open(path, "rb").read().decode("utf-8", "replace")):
+            binary = os.path.splitext(path)[1] in (".png", ".glb")  # compressed bytes may spell "inf"
+            if os.path.exists(path) and not binary and \
+                    NON_FINITE.search(open(path, "rb").read().decode("utf-8", "replace")):
                 problems.append("%s: nan/inf in %s" % (where, os.path.basename(path)))
             if os.path.exists(path) and os.path.splitext(path)[1] in (".obj", ".off", ".ply"):
                 back = subprocess.run([limsurf, "info", path], capture_output=True, timeout=60)
@@ -378,6 +463,8 @@ def main():
         jobs.append(("no input", label, argv, outputs, False, len(inputs)))
     for label, argv, outputs in elasticity_cases(args.root, args.work, "@OUT@"):
         jobs.append(("bundled cells", label, argv, outputs, False, len(inputs)))
+    for label, argv, outputs in option_cases(args.root, "@OUT@"):
+        jobs.append(("options", label, argv, outputs, False, len(inputs)))
 
     local = threading.local()  # one output folder per worker thread
 
