@@ -37,7 +37,24 @@ void require_real(const py::array& a, const std::string& name) {
                   std::string(py::str(a.dtype())));
 }
 
+/// @p a (integers) as 64-bit signed integers. Unsigned 64-bit values above the signed range wrapped
+/// in the cast (2^64 − 1 was reported as -1): they are refused by value.
+py::array_t<long long> signed_indices(const py::array& a, const std::string& name) {
+    if (dtype_kind(a) == 'u' && a.itemsize() == 8) {
+        const auto u = py::array_t<unsigned long long, py::array::c_style | py::array::forcecast>::ensure(a);
+        for (py::ssize_t i = 0; i < u.size(); ++i) {
+            LIMSURF_CHECK(u.data()[i] <= static_cast<unsigned long long>(std::numeric_limits<long long>::max()),
+                          InputError, name, ": index ", u.data()[i], " is out of range");
+        }
+    }
+    return py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
 }  // namespace
+
+void require_real_numbers(const py::handle& array, const std::string& name) {
+    require_real(as_array(array, name), name);
+}
 
 py::array_t<double> new_array(py::ssize_t rows, py::ssize_t cols) {
     return py::array_t<double>({rows, cols});
@@ -60,7 +77,7 @@ Points points_from(const py::handle& array, const std::string& name) {
     for (py::ssize_t i = 0; i < view.shape(0); ++i) {
         for (py::ssize_t j = 0; j < 3; ++j) {
             const double x = view(i, j);
-            LIMSURF_CHECK(std::isfinite(x), InputError, name, "[", i, ", ", j, "] = ", x, ": positions must be finite");
+            LIMSURF_CHECK(std::isfinite(x), InputError, name, "[", i, ", ", j, "] = ", x, ": values must be finite");
             out(i, j) = x;
         }
     }
@@ -98,7 +115,7 @@ void faces_from_array(const py::array& a, const std::string& name, Index num_ver
     LIMSURF_CHECK(a.ndim() == 2, InputError, name, ": expected shape (faces, corners), got ", a.ndim(),
                   " dimensions (a list of sequences gives polygons of mixed degree)");
     LIMSURF_CHECK(a.shape(1) >= 3, InputError, name, ": faces need at least 3 corners, got ", a.shape(1));
-    const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+    const auto c = signed_indices(a, name);
     const auto view = c.unchecked<2>();
     std::vector<Index> corners(static_cast<std::size_t>(a.shape(1)));
     soup.face_vertices.reserve(static_cast<std::size_t>(a.shape(0) * a.shape(1)));
@@ -125,7 +142,7 @@ void faces_from_sequence(const py::sequence& faces, const std::string& name, Ind
                       ": expected integer vertex indices, got dtype ", std::string(py::str(a.dtype())));
         LIMSURF_CHECK(a.ndim() == 1 && a.size() >= 3, InputError, face_name,
                       ": a face needs a sequence of at least 3 vertex indices");
-        const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+        const auto c = signed_indices(a, face_name);
         corners.clear();
         for (py::ssize_t k = 0; k < c.size(); ++k) {
             corners.push_back(checked_corner(c.data()[k], face_name + "[" + std::to_string(k) + "]", num_vertices));
@@ -149,10 +166,11 @@ void faces_into(const py::handle& faces, const std::string& name, Index num_vert
 std::vector<Index> indices_from(const py::handle& array, const std::string& name, Index limit) {
     const py::array a = as_array(array, name);
     const char kind = dtype_kind(a);
-    LIMSURF_CHECK(kind == 'i' || kind == 'u', InputError, name, ": expected integers, got dtype ",
+    // An empty list becomes a float64 array in numpy: empty is empty, whatever its dtype.
+    LIMSURF_CHECK(a.size() == 0 || kind == 'i' || kind == 'u', InputError, name, ": expected integers, got dtype ",
                   std::string(py::str(a.dtype())));
     LIMSURF_CHECK(a.ndim() <= 1, InputError, name, ": expected a vector, got ", a.ndim(), " dimensions");
-    const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+    const auto c = signed_indices(a, name);
     std::vector<Index> out(static_cast<std::size_t>(c.size()));
     for (py::ssize_t i = 0; i < c.size(); ++i) {
         const long long value = c.data()[i];

@@ -39,6 +39,11 @@ void faces_into(const py::handle& faces, const std::string& name, Index num_vert
 /// Integer indices (ptex faces) of @p n points, checked to be in [0, limit).
 [[nodiscard]] std::vector<Index> indices_from(const py::handle& array, const std::string& name, Index limit);
 
+/// @brief Refuses an array whose dtype is not real (complex, object, strings): numpy's casts would
+///   drop the imaginary part with only a warning.
+/// @throws InputError "<name>: expected real numbers, got dtype …"
+void require_real_numbers(const py::handle& array, const std::string& name);
+
 /// The numpy view of @p matrix's memory, read-only, keeping @p owner alive (no copy).
 [[nodiscard]] py::array_t<double> read_only_view(const Points& matrix, const py::handle& owner);
 

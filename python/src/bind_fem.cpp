@@ -2,6 +2,7 @@
 // and shell stiffnesses as scipy matrices, and the plate and shell solvers of `limsurf plate` and
 // `limsurf shell` (apps/plate.h, apps/shell.h) with their --json numbers.
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -219,6 +220,8 @@ bool truth_from(const py::object& result, const std::string& name) {
                   ": expected booleans, got dtype ", std::string(py::str(a.dtype())));
     LIMSURF_CHECK(a.size() == 1, InputError, name, ": expected 1 value for 1 point, got ", a.size());
     const auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    // nan != 0 is true: a nan used to select the point.
+    LIMSURF_CHECK(!std::isnan(c.data()[0]), InputError, name, ": got nan, expected a boolean");
     return c.data()[0] != 0.0;
 }
 

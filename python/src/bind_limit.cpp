@@ -1,4 +1,5 @@
 // limsurf.LimitBasis: exact limit evaluation vectorised over arrays of points (GIL released).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include "arrays.h"
 #include "common.h"
 #include "limsurf/core/huge_page_allocator.h"
+#include "limsurf/core/magnitude.h"
 #include "limsurf/core/parallel.h"
 #include "limsurf/limit/batch_evaluation.h"
 #include "limsurf/limit/limit_basis.h"
@@ -38,15 +40,23 @@ class PointArrays {
     PointArrays(const Basis& b, const py::handle& faces, const py::handle& u, const py::handle& v)
         : limit_(b.basis.num_ptex_faces()), quad_(b.basis.domain() == ParameterDomain::Quad) {
         const py::array f = py::array::ensure(faces);
-        LIMSURF_CHECK(f && (f.dtype().kind() == 'i' || f.dtype().kind() == 'u'), InputError,
+        // An empty list is a float64 array in numpy: empty is empty, whatever its dtype.
+        LIMSURF_CHECK(f && (f.size() == 0 || f.dtype().kind() == 'i' || f.dtype().kind() == 'u'), InputError,
                       "faces: expected integers, got ", f ? std::string(py::str(f.dtype())) : "no array");
         LIMSURF_CHECK(f.ndim() <= 1, InputError, "faces: expected a vector, got ", f.ndim(), " dimensions");
+        if (f.dtype().kind() == 'u' && f.itemsize() == 8) {  // 2^64 - 1 wrapped to -1 in the cast below
+            const auto big = py::array_t<unsigned long long, py::array::c_style | py::array::forcecast>::ensure(f);
+            for (py::ssize_t i = 0; i < big.size(); ++i) {
+                LIMSURF_CHECK(big.data()[i] < static_cast<unsigned long long>(limit_), InputError, "faces[", i,
+                              "] = ", big.data()[i], ": out of range [0, ", limit_, ")");
+            }
+        }
         faces_ = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(f);
         u_ = real_vector(u, "u");
         v_ = real_vector(v, "v");
         for (const auto& [name, a] : {std::pair{"u", &u_}, std::pair{"v", &v_}}) {
-            LIMSURF_CHECK(a->size() == faces_.size(), InputError, name, ": expected ", faces_.size(), " values, got ",
-                          a->size());
+            LIMSURF_CHECK(a->size() == faces_.size(), InputError, "faces has ", faces_.size(), " values and ", name,
+                          " has ", a->size(), ": give one (face, u, v) per point");
         }
     }
     [[nodiscard]] Index size() const { return static_cast<Index>(faces_.size()); }
@@ -192,11 +202,22 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
                   const py::handle& X, int threads, bool frames, const py::handle& out_handle) {
     LIMSURF_CHECK(order >= 0 && order <= 2, InputError, "order: expected 0, 1 or 2, got ", order);
     const PointArrays points(b, faces, u, v);
+    check_threads(threads);
     const ControlPoints control(b, X);
     const Points& P = control.get();
     LIMSURF_CHECK(out_handle.is_none() || py::isinstance<py::dict>(out_handle), InputError,
                   "out: expected the dict of an earlier evaluate() call, or None");
     const py::dict given = out_handle.is_none() ? py::dict() : py::reinterpret_borrow<py::dict>(out_handle);
+    // A misspelled key ('positon') was ignored and a new array returned: the caller's buffer unused.
+    for (const auto& [key, value] : given) {
+        const std::string name = py::str(key);
+        const bool known = name == "curvature_defined" ||
+                           std::find(std::begin(row_names), std::end(row_names), name) != std::end(row_names) ||
+                           std::find(std::begin(frame_names), std::end(frame_names), name) != std::end(frame_names);
+        LIMSURF_CHECK(known, InputError, "out: unknown key '", name,
+                      "' (the keys are those evaluate() returns: position, du, dv, duu, duv, dvv, normal, "
+                      "mean_curvature, gaussian_curvature, k1, k2, curvature_defined)");
+    }
     const auto n = static_cast<py::ssize_t>(points.size());
     const int rows = order == 0 ? 1 : order == 1 ? 3 : 6;
     const bool normals = frames && order >= 1;
@@ -255,8 +276,12 @@ py::dict evaluate(const Basis& b, const py::handle& faces, const py::handle& u, 
                     continue;
                 }
                 const bool frame = has_tangent_plane(d);
-                const Eigen::Vector3d nrm =
-                    frame ? Eigen::Vector3d(d.row(Du).cross(d.row(Dv)).normalized()) : Eigen::Vector3d::Constant(nan);
+                // The tangents brought to order one first (exactly, by a power of two): their cross
+                // product overflowed for a surface 1e160 across and the normal came back nan.
+                const Eigen::Matrix<double, 2, 3> tangents =
+                    times_power_of_two(d.middleRows<2>(Du), -magnitude_exponent(d.middleRows<2>(Du)));
+                const Eigen::Vector3d nrm = frame ? Eigen::Vector3d(tangents.row(0).cross(tangents.row(1)).normalized())
+                                                  : Eigen::Vector3d::Constant(nan);
                 for (int c = 0; c < 3; ++c) {
                     frame_out[0][3 * i + c] = nrm(c);
                 }

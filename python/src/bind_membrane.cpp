@@ -2,6 +2,7 @@
 // c2g0-sphere-scheme-biomembranes §3 and their exact gradients), limsurf.minimize_membrane (the
 // dict of `limsurf membrane --json` plus the positions) and limsurf.self_intersections (whether a
 // limit surface passes through itself, apps/self_intersection.h). Each takes a Mesh, or arrays V, F.
+#include <cmath>
 #include <exception>
 #include <optional>
 #include <string>
@@ -47,6 +48,7 @@ ShapeFunctionals functionals_of(const LimitBasis& basis, const ShapeArguments& a
 
 /// `limsurf membrane --json`'s "self_intersection" for the limit surface of @p X.
 py::dict self_intersection_dict(const LimitBasis& basis, const Points& X, int resolution, int threads) {
+    check_threads(threads);
     SelfIntersectionOptions options;
     options.resolution = resolution;
     options.num_threads = threads;
@@ -77,13 +79,18 @@ py::dict values_dict(const ShapeValues& values, const std::optional<double>& spo
                  "reduced_volume"_a = values.reduced_volume(),
                  "reduced_mean_curvature"_a = values.reduced_mean_curvature());
     if (spontaneous_curvature) {
-        out["helfrich"] = values.helfrich(*spontaneous_curvature);
+        const double helfrich = values.helfrich(*spontaneous_curvature);
+        LIMSURF_CHECK(std::isfinite(helfrich), NumericalError, "the Helfrich energy with H0 = ", *spontaneous_curvature,
+                      " is not finite (H0² A overflows): give H0 in the units of the mesh");
+        out["helfrich"] = helfrich;
     }
     return out;
 }
 
 py::dict shape_functionals(const Mesh& mesh, const std::string& scheme, const std::optional<py::object>& X,
                            bool gradients, std::optional<double> spontaneous_curvature, const ShapeArguments& args) {
+    LIMSURF_CHECK(!spontaneous_curvature || std::isfinite(*spontaneous_curvature), InputError,
+                  "spontaneous_curvature: H0 must be a finite number, not ", spontaneous_curvature.value_or(0.0));
     return naming_source(mesh, [&] {
         const Points positions = X ? points_from(*X, "X") : mesh.mesh.positions();
         const ShapeFunctionals functionals = functionals_of(basis_of(mesh, scheme), args);
@@ -102,7 +109,11 @@ py::dict shape_functionals(const Mesh& mesh, const std::string& scheme, const st
                 gradient[name_of(which)] = to_numpy(values.gradient_of(which));
             }
             if (spontaneous_curvature) {
-                gradient["helfrich"] = to_numpy(values.helfrich_gradient(*spontaneous_curvature));
+                const Points helfrich = values.helfrich_gradient(*spontaneous_curvature);
+                LIMSURF_CHECK(helfrich.allFinite(), NumericalError,
+                              "the Helfrich gradient with H0 = ", *spontaneous_curvature,
+                              " is not finite (H0² ∇A overflows)");
+                gradient["helfrich"] = to_numpy(helfrich);
             }
             out["gradient"] = gradient;
         }

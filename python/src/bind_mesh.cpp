@@ -39,6 +39,7 @@ void creases_into(const py::handle& creases, Index num_vertices, SharpnessTags& 
     if (creases.is_none()) {
         return;
     }
+    require_real_numbers(creases, "creases");
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(creases);
     LIMSURF_CHECK(a && a.ndim() == 2 && a.shape(1) == 3, InputError,
                   "creases: expected rows (vertex, vertex, sharpness), shape (k, 3)");
@@ -57,6 +58,7 @@ void corners_into(const py::handle& corners, Index num_vertices, SharpnessTags& 
     if (corners.is_none()) {
         return;
     }
+    require_real_numbers(corners, "corners");
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(corners);
     LIMSURF_CHECK(a && a.ndim() == 2 && a.shape(1) == 2, InputError,
                   "corners: expected rows (vertex, sharpness), shape (k, 2)");

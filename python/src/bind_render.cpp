@@ -1,5 +1,9 @@
 // Pictures and viewers: the tessellation of the limit surface, rendered images as numpy arrays
 // (the pixels `limsurf render` writes), PNG and glTF files.
+#include <algorithm>
+#include <cctype>
+#include <string>
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -13,6 +17,12 @@
 
 namespace limsurf::python {
 namespace {
+
+std::string lower_case(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
 
 using namespace pybind11::literals;
 
@@ -31,6 +41,8 @@ LimitTessellation tessellation_of(const Mesh& mesh, const std::string& scheme, i
                                   const Points& X, int threads, const RuleNames& rules) {
     const LimitBasis basis(mesh.mesh.topology(), scheme_from(scheme), rules_for(mesh.mesh, rules));
     TessellationOptions options;
+    LIMSURF_CHECK(resolution >= 0, InputError, "resolution: expected 0 (automatic) or 1..1024, got ", resolution);
+    check_threads(threads);
     options.resolution = resolution > 0 ? resolution : automatic_resolution(basis);
     options.curvature = curvature;
     options.num_threads = threads;
@@ -99,7 +111,11 @@ py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& f
                 const std::optional<std::array<double, 2>>& range, const std::string& colormap, int supersampling,
                 bool color_bar, const std::optional<std::filesystem::path>& output, int threads,
                 const RuleNames& rules) {
-    LIMSURF_CHECK(threads >= 0, InputError, "threads: expected 0 (all cores) or a positive count, got ", threads);
+    check_threads(threads);
+    // As `limsurf render -o`: the extension says the format (a .bmp or .jpg got PNG bytes).
+    const std::string extension = output ? lower_case(output->extension().string()) : std::string();
+    LIMSURF_CHECK(!output || extension == ".png" || extension == ".glb", InputError, "output: ", output->string(),
+                  ": unknown format '", extension, "' (expected .png or .glb)");
     RenderOptions options;
     options.num_threads = threads;
     options.view = view_from(view);
@@ -117,7 +133,7 @@ py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& f
             tessellation_of(mesh, scheme, resolution, curvature, mesh.mesh.positions(), threads, rules);
         std::string name;
         const Eigen::VectorXd values = field_values(field, t, mesh.mesh.num_vertices(), name);
-        const bool glb = output && output->extension() == ".glb";
+        const bool glb = extension == ".glb";
         py::dict out(
             "resolution"_a = t.resolution, "points"_a = t.num_points(), "triangles"_a = t.num_triangles(),
             "field"_a = values.size() > 0 ? py::object(py::str(name)) : py::object(py::none()),
@@ -151,6 +167,9 @@ py::dict render(const Mesh& mesh, const std::string& scheme, const py::handle& f
 void write_glb_arrays(const std::filesystem::path& path, const py::handle& positions, const py::handle& triangles,
                       const py::handle& normals, const py::handle& colors, const py::handle& scalar,
                       const std::string& scalar_name) {
+    const std::string extension = lower_case(path.extension().string());
+    LIMSURF_CHECK(extension == ".glb", InputError, "path: ", path.string(),
+                  ": expected a .glb file (glTF binary), got '", extension, "'");
     TriangleSurface s;
     s.positions = points_from(positions, "positions");
     const auto n = static_cast<Index>(s.positions.rows());

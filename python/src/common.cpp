@@ -64,6 +64,10 @@ SurfaceFunction surface_function(const py::function& f, const std::string& name)
     };
 }
 
+void check_threads(int threads) {
+    LIMSURF_CHECK(threads >= 0, InputError, "threads: expected 0 (all cores) or a positive count, got ", threads);
+}
+
 std::string located_message(const Error& error, const SourceMap& source) {
     const std::string message = error.what();
     if (source.file.empty() || message.compare(0, source.file.size() + 1, source.file + ":") == 0) {

@@ -53,6 +53,10 @@ struct RuleNames {
 /// finite values (InputError naming "<name>(P) result"). A Python exception in f propagates as itself.
 [[nodiscard]] SurfaceFunction surface_function(const py::function& f, const std::string& name);
 
+/// @brief Refuses a negative thread count (0 means all cores), as every binding with `threads` does.
+/// @throws InputError "threads: …"
+void check_threads(int threads);
+
 /// The message of @p error prefixed with the file and line of the mesh element it is about (when
 /// the mesh came from a file and the error is about one of its elements), as the CLI does.
 /// The comparison with the DEC reference on the K-times subdivided mesh as the CLI prints it in

@@ -146,8 +146,31 @@ def test_bad_points_are_named(mesh_path):
         basis.evaluate([0, 1], [0.2, 0.75], [0.2, 0.5])
     with pytest.raises(limsurf.InputError, match=r"faces\[0\] = 20: out of range \[0, 20\)"):
         basis.evaluate([20], [0.1], [0.1])
-    with pytest.raises(limsurf.InputError, match=r"v: expected 2 values, got 1"):
+    with pytest.raises(limsurf.InputError, match=r"faces has 2 values and v has 1"):
         basis.evaluate([0, 1], [0.1, 0.1], [0.1])
+    # An unsigned index above the signed range wrapped to -1 in the message; now its value is named.
+    with pytest.raises(limsurf.InputError, match=r"faces\[0\] = 18446744073709551615: out of range"):
+        basis.evaluate(np.array([2**64 - 1], dtype=np.uint64), [0.1], [0.1])
+    # Negative thread counts, and out= keys evaluate() does not return, are refused (they were ignored).
+    with pytest.raises(limsurf.InputError, match=r"threads: expected 0 \(all cores\) or a positive count"):
+        basis.evaluate([0], [0.1], [0.1], threads=-1)
+    with pytest.raises(limsurf.InputError, match=r"out: unknown key 'positon'"):
+        basis.evaluate([0], [0.1], [0.1], out={"positon": np.zeros((1, 3))})
+    # An empty list is a float64 array in numpy: no points, not a dtype error.
+    assert basis.evaluate([], [], [])["position"].shape == (0, 3)
+
+
+def test_normals_of_a_surface_near_the_largest_double_are_finite(mesh_path):
+    # The tangents' cross product overflowed for a surface 1e160 across: the normal was nan while
+    # curvature_defined said True. The normal does not depend on the size (it is scaled exactly).
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    basis = limsurf.LimitBasis(mesh, "catmull-clark")
+    faces, u, v = [0, 1], [0.1, 0.5], [0.2, 0.5]
+    unit = basis.evaluate(faces, u, v, order=2)
+    huge = basis.evaluate(faces, u, v, order=2, X=np.array(mesh.V) * 2.0**700)
+    assert np.isfinite(huge["normal"]).all()
+    np.testing.assert_array_equal(huge["normal"], unit["normal"])
+    np.testing.assert_array_equal(huge["mean_curvature"], unit["mean_curvature"] * 2.0**-700)
     with pytest.raises(limsurf.InputError, match=r"u\[0\] = nan"):
         basis.evaluate([0], [np.nan], [0.1])
     with pytest.raises(limsurf.InputError, match="faces: expected integers"):

@@ -107,7 +107,7 @@ def test_binary_ply_round_trip(mesh_path, tmp_path):
     (CUBE_V, CUBE_F[:, :2], r"F: faces need at least 3 corners"),
     (CUBE_V, [[0, 1, 2], [0, 1]], r"F\[1\]: a face needs a sequence of at least 3"),
     (CUBE_V[:, :2], CUBE_F, r"V: expected shape \(n, 3\), got \(8, 2\)"),
-    (np.where(np.arange(24).reshape(8, 3) == 13, np.nan, CUBE_V), CUBE_F, r"V\[4, 1\] = nan: positions must be finite"),
+    (np.where(np.arange(24).reshape(8, 3) == 13, np.nan, CUBE_V), CUBE_F, r"V\[4, 1\] = nan: values must be finite"),
     (CUBE_V.astype(complex), CUBE_F, r"V: expected real numbers, got dtype complex128"),
     ("not an array", CUBE_F, r"V: expected real numbers, got dtype <U12"),
 ])

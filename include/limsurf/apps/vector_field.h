@@ -61,6 +61,7 @@ struct OneFormVectors {
 ///   @p scheme (Loop or Catmull–Clark), sampled at the faces of level @p level (0..6).
 /// @throws InputError when w has the wrong size or a non-finite value, or level is out of range; as
 ///   require_form_rules (the scheme and mesh need form subdivision rules) and LimitBasis
+/// @throws NumericalError when the vectors overflow (a 1-form near the largest double)
 [[nodiscard]] OneFormVectors one_form_vectors(const Topology& topology, const Points& X0, SchemeKind scheme,
                                               const Eigen::VectorXd& w, int level,
                                               const SchemeOptions& scheme_options = {});

@@ -73,10 +73,10 @@ void add_point_load(const LimitWeights& at, const Eigen::Vector3d& force, Eigen:
 [[nodiscard]] Eigen::MatrixXd rigid_body_modes(const Points& X);
 
 struct ShellSolution {
-    Eigen::VectorXd u;          ///< 3 #V control displacements, row 3 v + c
-    double residual = 0.0;      ///< ‖K u − f‖ / ‖f‖ over the unconstrained unknowns
-    double energy = 0.0;        ///< fᵀ u (twice the strain energy)
-    int free_rigid_motions = 0; ///< rigid motions the constraints leave free (removed from u)
+    Eigen::VectorXd u;           ///< 3 #V control displacements, row 3 v + c
+    double residual = 0.0;       ///< ‖K u − f‖ / ‖f‖ over the unconstrained unknowns
+    double energy = 0.0;         ///< fᵀ u (twice the strain energy)
+    int free_rigid_motions = 0;  ///< rigid motions the constraints leave free (removed from u)
     std::string solver;
     /// u as #V × 3 rows.
     [[nodiscard]] Points displacements() const;
@@ -142,12 +142,15 @@ struct ShellLevel {
     double area = 0.0;  ///< of the limit surface, by the quadrature
 };
 
+/// The most refinement levels solve_shell_levels takes (each has 4 times the faces of the one before).
+inline constexpr int max_shell_levels = 6;
+
 /// @brief Solves @p problem on the control mesh (@p topology, @p points) refined 0..@p levels times.
 ///   Point loads and probes sit at the limit points of control vertices (they stay put under
 ///   refinement): the nearest one is taken, and refused when it is farther than 1e-6 of the
 ///   mesh's extent from the requested point.
-/// @throws InputError when a point load or probe is not at a vertex limit point, when no support
-///   selects anything although one was given, or as the functions above
+/// @throws InputError for levels outside 0..max_shell_levels, when a point load or probe is not at a
+///   vertex limit point, when no support selects anything although one was given, or as the functions above
 [[nodiscard]] std::vector<ShellLevel> solve_shell_levels(const Topology& topology, const Points& points,
                                                          const ShellProblem& problem, int levels);
 

@@ -63,7 +63,7 @@ struct ReverseResult {
 ///   level is not a subdivided topology (a non-quad face, corners that cannot be classed, an edge
 ///   point of the wrong valence, a face point on the boundary, sharpness that no coarse tag refines
 ///   to); for a later level of an explicit @p max_levels the message names the level, no element.
-/// @throws InputError for max_levels = 0 or < -1
+/// @throws InputError for max_levels = 0 or < -1, or a tolerance that is negative or not finite
 /// @throws NumericalError when the fit is not finite
 [[nodiscard]] ReverseResult reverse_catmull_clark(const ControlMesh& fine, int max_levels = -1,
                                                   const SchemeOptions& options = {}, double tolerance = 1e-9);

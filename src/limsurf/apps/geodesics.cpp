@@ -463,8 +463,11 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
         (smooth && (options.gradient == HeatGradient::Limit ||
                     (options.gradient == HeatGradient::Automatic && options.gradient_level < 0 && options.level >= 3)));
     m.gradient_level = smooth && !use_limit ? (options.gradient_level < 0 ? options.level : options.gradient_level) : 0;
+    // The gradient level defaults to the level: name the one the caller gave (level = -1 was
+    // reported as a gradient level).
     LIMSURF_CHECK(m.gradient_level >= 0 && m.gradient_level <= 8, InputError,
-                  "the gradient level must be in [0, 8], got ", m.gradient_level);
+                  options.gradient_level < 0 ? "the level" : "the gradient level", " must be in [0, 8], got ",
+                  m.gradient_level);
     const auto setup_start = Clock::now();
     std::tie(m.h_mean, m.h_max) = edge_lengths(topology, X);
     m.t = options.time_step.value_or(options.time_factor * m.h_mean * m.h_mean);
@@ -533,6 +536,9 @@ Eigen::MatrixXd HeatGeodesics::distances(const std::vector<std::vector<Index>>& 
     const Impl& m = *impl_;
     for (const std::vector<Index>& sources : source_sets) {
         check_sources(sources, m.num_vertices);
+    }
+    if (source_sets.empty()) {  // no columns: CHOLMOD printed an error on an empty right-hand side
+        return Eigen::MatrixXd(m.num_vertices, 0);
     }
     Eigen::MatrixXd phi = m.integrate(m.divergence_of_normalised_gradient(m.heat_solutions(source_sets)));
     for (Index j = 0; j < phi.cols(); ++j) {

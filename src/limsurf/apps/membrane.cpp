@@ -89,6 +89,10 @@ MembraneProblem membrane_problem(const MembraneRequest& request) {
         problem.mean_curvature = request.mean_curvature;
     }
     if (request.spontaneous_curvature) {
+        const double h0 = *request.spontaneous_curvature;
+        LIMSURF_CHECK(std::isfinite(h0 * h0 * request.area), InputError, "spontaneous curvature H0 = ", h0,
+                      ": H0² A0 overflows (give H0 in the units of the mesh: the round sphere of area A0 has H = ",
+                      std::sqrt(4.0 * std::numbers::pi / request.area), ")");
         problem.objective = MembraneObjective::Helfrich;
         problem.spontaneous_curvature = *request.spontaneous_curvature;
     }

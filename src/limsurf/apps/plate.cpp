@@ -280,6 +280,11 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
             if (pass.quarter_deflection && std::abs(wq) > 1e-9 * std::abs(wc)) {
                 c.quarter_relative_error = *pass.quarter_deflection / wq - 1.0;
             }
+            // E = 1e308 gave w ~ 1e-304, whose squares underflow: the relative errors came out 0/0.
+            LIMSURF_CHECK(std::isnormal(l2_exact) && std::isnormal(work), NumericalError,
+                          "plate: Navier's deflection (largest ", std::max(std::abs(wc), std::abs(wq)),
+                          ") is too small or too large for its squares to be doubles: state the problem in other "
+                          "units (E, the thickness and the load)");
             c.l2_relative_error = std::sqrt(l2 / l2_exact);
             c.energy_relative_error = std::sqrt(std::max(0.0, work - pass.solution.energy) / work);
             pass.navier = c;

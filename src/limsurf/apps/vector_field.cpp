@@ -471,6 +471,10 @@ OneFormVectors one_form_vectors(const Topology& topology, const Points& X0, Sche
     const double norm = wL.norm();
     out.fit_residual = norm > 0.0 ? std::sqrt(misfit) / norm : 0.0;
     vertex_vectors(out);
+    // A 1-form near the largest double gave vectors and a residual of inf or nan, returned as such.
+    LIMSURF_CHECK(std::isfinite(out.fit_residual) && out.vectors.allFinite() && out.level_vectors.allFinite(),
+                  NumericalError, "the vectors of this 1-form are not finite (its values, up to ",
+                  wL.cwiseAbs().maxCoeff(), ", overflow their squares): scale the 1-form down");
     return out;
 }
 

@@ -9,11 +9,11 @@
 #include <Eigen/QR>
 
 #include "element_assembly.h"
-#include "material.h"
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/limit/interpolation.h"
 #include "limsurf/refine/refine.h"
+#include "material.h"
 
 namespace limsurf {
 namespace {
@@ -159,6 +159,10 @@ void add_point_load(const LimitWeights& at, const Eigen::Vector3d& force, Eigen:
 }
 
 Eigen::MatrixXd rigid_body_modes(const Points& X) {
+    // colwise().maxCoeff() of no rows reads past the data (a crash from Python on a 0 × 3 array).
+    LIMSURF_CHECK(X.rows() > 0 && X.cols() == 3, InputError, "rigid_body_modes: X has ", X.rows(), " × ", X.cols(),
+                  " entries: give at least one point with 3 coordinates");
+    LIMSURF_CHECK(X.allFinite(), InputError, "rigid_body_modes: a coordinate is not finite");
     const Eigen::RowVector3d centre = X.colwise().mean();
     const double extent = std::max((X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff(), 1e-300);
     Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * X.rows(), 6);
@@ -227,8 +231,8 @@ ShellSolution solve_shell(const SparseMatrix& K, const Eigen::VectorXd& f, const
     if (Q.cols() > 0) {
         // A load with a resultant along a free rigid motion has no static solution.
         const Eigen::VectorXd resultant = Q.transpose() * f;
-        LIMSURF_CHECK(resultant.norm() <= 1e-6 * std::max(f.norm(), 1e-300), InputError,
-                      "shell: the supports leave ", Q.cols(),
+        LIMSURF_CHECK(resultant.norm() <= 1e-6 * std::max(f.norm(), 1e-300), InputError, "shell: the supports leave ",
+                      Q.cols(),
                       " rigid motion(s) free and the load is not in equilibrium with them (relative resultant ",
                       resultant.norm() / f.norm(), "): add supports or balance the load");
         load -= Q * resultant;  // what remains is quadrature rounding
@@ -287,7 +291,8 @@ Index vertex_at(const Points& limits, const Eigen::Vector3d& q, const char* what
 
 /// The supports' unknowns: components of the boundary control vertices they select (by the points
 /// given for level 0 and their refinements, which are on the intended surface).
-std::vector<bool> supported_unknowns(const Topology& t, const Points& where, const std::vector<ShellSupport>& supports) {
+std::vector<bool> supported_unknowns(const Topology& t, const Points& where,
+                                     const std::vector<ShellSupport>& supports) {
     std::vector<bool> fixed(at(3 * t.num_vertices()), false);
     for (std::size_t k = 0; k < supports.size(); ++k) {
         bool any = false;
@@ -323,8 +328,8 @@ ShellLevel solve_level(int level, Topology topology, Points X, const Points& whe
     const std::vector<bool> fixed = supported_unknowns(topology, where, problem.supports);
     const LimitSampler sampler(basis, problem.quadrature);
     const SparseMatrix K = assemble_shell_stiffness(sampler, X, problem.material);
-    Eigen::VectorXd f = problem.traction ? shell_area_load(sampler, X, problem.traction)
-                                         : Eigen::VectorXd::Zero(3 * X.rows()).eval();
+    Eigen::VectorXd f =
+        problem.traction ? shell_area_load(sampler, X, problem.traction) : Eigen::VectorXd::Zero(3 * X.rows()).eval();
     for (std::size_t k = 0; k < load_vertices.size(); ++k) {
         add_point_load(basis.vertex_limit(load_vertices[k]), problem.point_loads[k].force, f);
     }
@@ -357,7 +362,9 @@ Points projected(const Points& P, const std::function<Points(const Points&)>& pr
 
 std::vector<ShellLevel> solve_shell_levels(const Topology& topology, const Points& points, const ShellProblem& problem,
                                            int levels) {
-    LIMSURF_CHECK(levels >= 0, InputError, "shell: levels must be >= 0");
+    // As the plate study: each level has 4 times the faces of the one before (levels = 30 ran for ever).
+    LIMSURF_CHECK(levels >= 0 && levels <= max_shell_levels, InputError, "shell: levels must be in 0..",
+                  max_shell_levels, ", got ", levels);
     LIMSURF_CHECK(points.rows() == topology.num_vertices(), InputError, "shell: ", points.rows(), " points for ",
                   topology.num_vertices(), " vertices");
     std::vector<ShellLevel> out;

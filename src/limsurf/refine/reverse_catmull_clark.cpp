@@ -501,6 +501,9 @@ ReverseResult reverse_catmull_clark(const ControlMesh& fine, int max_levels, con
                   "the number of levels to reverse must be >= 1 or "
                   "-1 (as many as possible), not ",
                   max_levels);
+    // A nan tolerance compared false with every residual and silently stopped after one level.
+    LIMSURF_CHECK(std::isfinite(tolerance) && tolerance >= 0.0, InputError,
+                  "the tolerance must be a finite number >= 0, not ", tolerance);
     ReverseResult result;
     ControlMesh current = fine;
     for (int level = 0; max_levels == -1 || level < max_levels; ++level) {

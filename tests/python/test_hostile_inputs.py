@@ -1,0 +1,93 @@
+"""What a sweep of every function of the module with hostile arguments found (2026-12-06, ~1,900
+calls): each call here crashed the interpreter, ran for ever, returned nan, or silently ignored its
+argument before, and now raises a clear error or returns the right thing."""
+import numpy as np
+import pytest
+
+import limsurf
+
+
+def test_rigid_body_modes_of_no_points_is_an_error_not_a_crash():
+    with pytest.raises(limsurf.InputError, match=r"rigid_body_modes: X has 0 × 3 entries"):
+        limsurf.rigid_body_modes(np.zeros((0, 3)))
+
+
+def test_shell_levels_are_bounded(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("shell_scordelis_lo"))
+    with pytest.raises(limsurf.InputError, match=r"shell: levels must be in 0\.\.6, got 30"):
+        limsurf.shell(mesh, "catmull-clark", levels=30, E=4.32e8, nu=0.0, thickness=0.25, gravity=90.0,
+                      supports=[(True, "xyz")])
+
+
+def test_a_spontaneous_curvature_that_is_not_finite_or_overflows_is_refused(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("sphere_tris"))
+    with pytest.raises(limsurf.InputError, match=r"spontaneous_curvature: H0 must be a finite number, not nan"):
+        limsurf.shape_functionals(mesh, "loop", spontaneous_curvature=np.nan)
+    with pytest.raises(limsurf.NumericalError, match=r"the Helfrich energy with H0 = 1e\+308 is not finite"):
+        limsurf.shape_functionals(mesh, "loop", spontaneous_curvature=1e308)
+    with pytest.raises(limsurf.InputError, match=r"spontaneous curvature H0 = 1e\+308: H0² A0 overflows"):
+        limsurf.minimize_membrane(mesh, "loop", area=4 * np.pi, reduced_volume=0.9, spontaneous_curvature=1e308)
+
+
+def test_tiny_membrane_targets_are_refused(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("octahedron"))
+    with pytest.raises(limsurf.InputError, match=r"reduced volume v0 = 9\.9999999999999995e-08: must be at least"):
+        limsurf.minimize_membrane(mesh, "loop", area=4 * np.pi, reduced_volume=1e-7)
+    with pytest.raises(limsurf.InputError, match=r"area A0 = 3.8725919148493183e-121: must lie in \[1e-100, 1e\+100\]"):
+        limsurf.minimize_membrane(mesh, "loop", area=2.0**-400, reduced_volume=0.9)
+
+
+def test_a_one_form_that_overflows_is_an_error_not_nan(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.NumericalError, match=r"the vectors of this 1-form are not finite"):
+        limsurf.one_form_vectors(mesh, "catmull-clark", np.ones(12) * 1e300, level=1)
+
+
+def test_a_plate_whose_deflection_underflows_is_an_error_not_nan(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("plate_asym"))
+    with pytest.raises(limsurf.NumericalError, match=r"plate: Navier's deflection .* too small or too large"):
+        limsurf.plate(mesh, "catmull-clark", 1e4, E=1e308)
+
+
+def test_reverse_refuses_a_tolerance_that_is_not_a_number(mesh_path):
+    fine = limsurf.subdivide(limsurf.read_mesh(mesh_path("cube")), "catmull-clark", 2)
+    for tolerance in (np.nan, -1.0, np.inf):
+        with pytest.raises(limsurf.InputError, match=r"the tolerance must be a finite number >= 0"):
+            limsurf.reverse_catmull_clark(fine, tolerance=tolerance)
+
+
+def test_negative_resolutions_and_thread_counts_are_refused(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"resolution: expected 0 \(automatic\) or 1\.\.1024, got -5"):
+        limsurf.tessellate(mesh, "catmull-clark", resolution=-5)
+    with pytest.raises(limsurf.InputError, match=r"threads: expected 0 \(all cores\)"):
+        limsurf.tessellate(mesh, "catmull-clark", threads=-1)
+    with pytest.raises(limsurf.InputError, match=r"threads: expected 0 \(all cores\)"):
+        limsurf.self_intersections(mesh, "catmull-clark", threads=-7)
+
+
+def test_heat_geodesics_of_no_source_sets_and_a_bad_level(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    heat = limsurf.HeatGeodesics(mesh, "catmull-clark", level=2)
+    assert heat.distances([]).shape == (8, 0)  # CHOLMOD printed an error on stderr for it
+    with pytest.raises(limsurf.InputError, match=r"^the level must be in \[0, 8\], got -1"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", 0, level=-1)
+
+
+def test_complex_creases_and_empty_index_lists(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    V, F = np.array(mesh.V), np.array(mesh.F)
+    with pytest.raises(limsurf.InputError, match=r"creases: expected real numbers, got dtype complex128"):
+        limsurf.Mesh(V, F, creases=np.array([[0, 1, 2 + 5j]]))
+    assert limsurf.Mesh(V, F, holes=[]).num_faces == 6  # an empty list is float64 in numpy
+
+
+def test_picture_and_gltf_files_need_their_extension(mesh_path, tmp_path):
+    # A .bmp got PNG bytes, a .obj glTF bytes; `limsurf render -o` refuses both.
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"unknown format '\.bmp' \(expected \.png or \.glb\)"):
+        limsurf.render(mesh, "catmull-clark", size=(32, 32), resolution=2, output=tmp_path / "q.bmp")
+    V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    with pytest.raises(limsurf.InputError, match=r"expected a \.glb file \(glTF binary\), got '\.obj'"):
+        limsurf.write_glb(tmp_path / "q.obj", V, np.array([[0, 1, 2]]))
+    assert not any(tmp_path.iterdir())
