@@ -91,3 +91,30 @@ def test_picture_and_gltf_files_need_their_extension(mesh_path, tmp_path):
     with pytest.raises(limsurf.InputError, match=r"expected a \.glb file \(glTF binary\), got '\.obj'"):
         limsurf.write_glb(tmp_path / "q.obj", V, np.array([[0, 1, 2]]))
     assert not any(tmp_path.iterdir())
+
+
+def test_self_intersection_does_not_depend_on_the_size(mesh_path):
+    # The triangle tests multiply coordinates: at 1e200 they overflowed and the cube "intersected"
+    # itself in 50 818 pairs; at 1e300 its diagonal overflowed (an error about the weld tolerance).
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    unit = limsurf.self_intersections(mesh, "catmull-clark")
+    for scale in (1e-200, 1e100, 1e200, 1e300):
+        scaled = limsurf.self_intersections(mesh, "catmull-clark", X=np.array(mesh.V) * scale)
+        assert (scaled["intersects"], scaled["intersecting_pairs"]) == (False, 0), scale
+        assert scaled["triangles"] == unit["triangles"]
+    # A surface that does meet itself meets itself at any size (as in tests/apps: a vertex pulled through).
+    ico = limsurf.read_mesh(mesh_path("icosahedron"))
+    V = np.array(ico.V)
+    V[0] = -3.0 * V[0] + 0.3 * V[5]
+    crossing = limsurf.self_intersections(ico, "loop", X=V)
+    assert crossing["intersects"]
+    huge = limsurf.self_intersections(ico, "loop", X=V * 2.0**800)
+    assert huge["intersecting_pairs"] == crossing["intersecting_pairs"]
+    assert huge["control_faces"] == crossing["control_faces"]
+
+
+def test_a_memory_budget_must_be_positive(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"the memory budget \(max_memory\) must be positive, got -1"):
+        limsurf.poisson(mesh, "catmull-clark", lambda P: P[:, 0], method="sec", level=1, reference_level=2,
+                        max_memory=-1)

@@ -116,6 +116,8 @@ std::int64_t transient_bytes(const LevelSize& child, std::int64_t nonzeros) {
 void check_memory(const Topology& base, const std::vector<LevelSize>& sizes, std::int64_t peak,
                   const RefineOptions& options) {
     constexpr std::int64_t always_fine = std::int64_t{64} << 20;  // local patches: no look-up of the machine
+    LIMSURF_CHECK(!options.max_memory || *options.max_memory > 0, InputError,
+                  "the memory budget (max_memory) must be positive, got ", options.max_memory.value_or(0));
     if (!options.max_memory && peak <= always_fine) {
         return;
     }

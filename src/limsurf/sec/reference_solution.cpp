@@ -33,6 +33,8 @@ void check_reference(const Topology& topology, SchemeKind scheme, const Referenc
     LIMSURF_CHECK(problem.level >= 0 && problem.level <= 16, InputError, "the reference level must be in [0, 16], got ",
                   problem.level);
     const std::int64_t peak = reference_peak_bytes(topology, scheme, problem.level);
+    LIMSURF_CHECK(!problem.max_memory || *problem.max_memory > 0, InputError,
+                  "the memory budget (max_memory) must be positive, got ", problem.max_memory.value_or(0));
     const std::int64_t budget = problem.max_memory.value_or(default_memory_budget());
     LIMSURF_CHECK(peak <= budget, InputError, "the DEC reference on level ", problem.level, " (",
                   predict_sizes(topology, scheme, problem.level).back().vertices, " vertices) needs about ",
