@@ -206,13 +206,12 @@ void add_hodge_command(CLI::App& app, CommandStatus& status) {
         status.exit_code = run_guarded([&] {
             LIMSURF_CHECK(!o->one_form.empty() || o->random >= 0 || !o->field.empty(), InputError,
                           "hodge needs a 1-form: --one-form FILE, --random SEED or --field \"X;Y;Z\"");
-            const std::vector<std::string> parts =
-                o->save_parts.empty()
-                    ? std::vector<std::string>{}
-                    : std::vector<std::string>{o->save_parts + "exact.txt", o->save_parts + "coexact.txt",
-                                               o->save_parts + "harmonic.txt"};
-            std::vector<std::string> outputs = parts;
-            outputs.push_back(o->output);
+            std::vector<std::string> outputs{o->output};
+            if (!o->save_parts.empty()) {
+                for (const char* part : {"exact.txt", "coexact.txt", "harmonic.txt"}) {
+                    outputs.push_back(o->save_parts + part);
+                }
+            }
             check_output_paths(outputs, {o->input, o->one_form});
             const BuildResult built = read_mesh(o->input);
             print_warnings(built.report);

@@ -132,6 +132,29 @@ TEST(SelfIntersection, ClosedSurfaceAndAVertexPushedThroughIt) {
     EXPECT_EQ(two[1], pairs[1]);
 }
 
+// The pairs do not depend on the size: the tests multiply coordinates, and at 1e200 their products
+// overflowed (a closed octahedron "met itself"). Scaled by 2^±800 the points give the same pairs.
+TEST(SelfIntersection, ThePairsDoNotDependOnTheSize) {
+    Points crossing = octahedron_points();
+    crossing.row(0) << -0.5, 0.1, 1.8;
+    for (const Points& p : {octahedron_points(), crossing}) {
+        const Pairs unit = intersecting_triangle_pairs(p, octahedron_triangles());
+        for (const int k : {-800, 670, 800}) {
+            EXPECT_EQ(intersecting_triangle_pairs(Points(p * std::ldexp(1.0, k)), octahedron_triangles()), unit) << k;
+        }
+    }
+    // Welding compares squared distances, which underflowed at 2^-800 (every point merged): each
+    // point and a copy 1e-3 away merge, the others do not, at any size.
+    Points doubled(12, 3);
+    doubled << octahedron_points(), octahedron_points().array() + 1e-3;
+    const WeldedTriangles unit = weld_coincident_points(doubled, octahedron_triangles(), 2e-3);
+    ASSERT_EQ(unit.points.rows(), 6);
+    for (const int k : {-800, 800}) {
+        const double s = std::ldexp(1.0, k);
+        EXPECT_EQ(weld_coincident_points(Points(doubled * s), octahedron_triangles(), 2e-3 * s).index, unit.index) << k;
+    }
+}
+
 // Random triangles in a box: the grid search must find what testing every pair on its own finds,
 // whatever the order of the triangles.
 TEST(SelfIntersection, GridSearchFindsEveryPairOnce) {

@@ -34,7 +34,8 @@ using Triangles = Eigen::Matrix<Index, Eigen::Dynamic, 3>;
 
 /// @brief The intersecting pairs {i, j} (i < j, rows of @p triangles), sorted, at most @p max_pairs
 ///   of them (the first in that order); a triangle with a repeated vertex is skipped.
-/// @param points #P×3, finite
+/// @param points #P×3, finite, of any size (far from order one they are scaled by a power of two
+///   first, exactly: the pairs do not depend on the size)
 /// @param triangles #T×3 indices into points
 /// @throws InputError for an index out of range or a point that is not finite (naming it)
 [[nodiscard]] std::vector<std::array<Index, 2>>

@@ -28,15 +28,11 @@ SelfIntersections limit_self_intersections(const LimitBasis& basis, const Points
     if (t.num_points() == 0) {
         return out;
     }
-    // Whether a surface meets itself does not depend on its size, but the triangle tests multiply
-    // coordinates (cubes of them): a surface 1e200 across overflowed them and "intersected" itself in
-    // 50 818 pairs, and at 1e300 its diagonal overflowed. Far from order one, the points are brought
-    // there by a power of two, which is exact (every product scales exactly, so the verdict is the
-    // one of the unscaled surface); near it they are used as they are.
-    const int e = magnitude_exponent(t.positions);
-    const Points positions = std::abs(e) > 64 ? Points(times_power_of_two(t.positions, -e)) : t.positions;
-    const double diagonal = (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).norm();
-    const WeldedTriangles welded = weld_coincident_points(positions, t.triangles, options.weld_tolerance * diagonal);
+    // Without squaring the extent: the diagonal of a surface 1e300 across overflowed, and the weld
+    // tolerance derived from it was named as the error. (intersecting_triangle_pairs copes with any
+    // size itself.)
+    const double diagonal = scale_free_norm(t.positions.colwise().maxCoeff() - t.positions.colwise().minCoeff());
+    const WeldedTriangles welded = weld_coincident_points(t.positions, t.triangles, options.weld_tolerance * diagonal);
     out.points = static_cast<Index>(welded.points.rows());
     const auto pairs = intersecting_triangle_pairs(welded.points, welded.triangles);
     out.intersecting_pairs = pairs.size();

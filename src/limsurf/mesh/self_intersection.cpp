@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/magnitude.h"
 
 namespace limsurf {
 namespace {
@@ -249,9 +250,16 @@ bool boxes_overlap(const Box& a, const Box& b) noexcept {
 
 }  // namespace
 
-std::vector<std::array<Index, 2>> intersecting_triangle_pairs(const Points& points, const Triangles& triangles,
+std::vector<std::array<Index, 2>> intersecting_triangle_pairs(const Points& given, const Triangles& triangles,
                                                               std::size_t max_pairs) {
-    check_mesh(points, triangles);
+    check_mesh(given, triangles);
+    // The tests multiply coordinates (cubes of them): points 1e200 across overflowed them and a
+    // cube "met itself" in tens of thousands of pairs. Far from order one the points are brought
+    // there by a power of two, which is exact (every product scales exactly: the same verdicts);
+    // near it they are used as they are.
+    const int e = magnitude_exponent(given);
+    const Points scaled = std::abs(e) > 64 ? Points(times_power_of_two(given, -e)) : Points();
+    const Points& points = std::abs(e) > 64 ? scaled : given;
     std::vector<Index> live;
     std::vector<Box> boxes(static_cast<std::size_t>(triangles.rows()));
     for (Index t = 0; t < triangles.rows(); ++t) {
@@ -321,10 +329,18 @@ std::vector<std::array<Index, 2>> intersecting_triangle_pairs(const Points& poin
     return pairs;
 }
 
-WeldedTriangles weld_coincident_points(const Points& points, const Triangles& triangles, double tolerance) {
-    LIMSURF_CHECK(std::isfinite(tolerance) && tolerance >= 0.0, InputError,
-                  "weld tolerance must be finite and >= 0, got ", tolerance);
-    check_mesh(points, triangles);
+WeldedTriangles weld_coincident_points(const Points& given, const Triangles& triangles, double given_tolerance) {
+    LIMSURF_CHECK(std::isfinite(given_tolerance) && given_tolerance >= 0.0, InputError,
+                  "weld tolerance must be finite and >= 0, got ", given_tolerance);
+    check_mesh(given, triangles);
+    // Distances are compared by their squares: at 1e-200 those underflowed to 0 and every nearby
+    // point merged. Far from order one, points and tolerance are compared scaled by one power of
+    // two (exact, as in intersecting_triangle_pairs); the welded points are the given ones.
+    const int e = magnitude_exponent(given);
+    const bool rescale = std::abs(e) > 64;
+    const Points scaled = rescale ? Points(times_power_of_two(given, -e)) : Points();
+    const Points& points = rescale ? scaled : given;
+    const double tolerance = rescale ? std::ldexp(given_tolerance, -e) : given_tolerance;
     // Cells of the tolerance's size: a point within the tolerance of another lies in one of the 27
     // cells around it. With tolerance 0 only equal points merge, and any cell size works.
     double largest = 0.0;
@@ -380,7 +396,7 @@ WeldedTriangles weld_coincident_points(const Points& points, const Triangles& tr
     }
     welded.points.resize(static_cast<Index>(representative_of_new.size()), 3);
     for (std::size_t k = 0; k < representative_of_new.size(); ++k) {
-        welded.points.row(static_cast<Index>(k)) = points.row(representative_of_new[k]);
+        welded.points.row(static_cast<Index>(k)) = given.row(representative_of_new[k]);
     }
     welded.triangles.resize(triangles.rows(), 3);
     for (Index t = 0; t < triangles.rows(); ++t) {
