@@ -153,6 +153,32 @@ TEST(Validate, TagsMustNameExistingElements) {
                                         "m.obj:203: hole 6: face out of range [0, 5]"}));
 }
 
+// Before: a second tag of the same edge or vertex replaced the first without a word (and a later 0
+// did not replace it at all); the file most likely holds a mistake, so both lines are named.
+TEST(Validate, ConflictingRepeatedTagsAreWarnings) {
+    PolygonSoup soup = soup_of(test::cube_positions(), test::cube_faces());
+    soup.sharpness.creases.push_back({0, 1, 2.0, 200});
+    soup.sharpness.creases.push_back({1, 0, 2.0, 201});  // the same sharpness again: harmless
+    soup.sharpness.creases.push_back({1, 0, 0.0, 202});
+    soup.sharpness.corners.push_back({3, 10.0, 203});
+    soup.sharpness.corners.push_back({3, 1.5, 204});
+    const auto report = validate(soup);
+    EXPECT_EQ(messages(report),
+              (std::vector<std::string>{
+                  "m.obj:202: crease (1, 0) has sharpness 0 here and 2 at line 201; the last tag is used",
+                  "m.obj:204: corner 3 has sharpness 1.5 here and 10 at line 203; the last tag is used"}));
+    EXPECT_FALSE(report.has_errors());
+    EXPECT_EQ(report.issues[0].problem, Problem::ConflictingTag);
+    EXPECT_STREQ(problem_name(Problem::ConflictingTag), "conflicting-tag");
+
+    PolygonSoup in_memory = soup_of(test::cube_positions(), test::cube_faces());
+    in_memory.sharpness.corners.push_back({3, 10.0, 0});
+    in_memory.sharpness.corners.push_back({3, 1.5, 0});
+    EXPECT_EQ(
+        messages(validate(in_memory)),
+        (std::vector<std::string>{"m.obj: corner 3 has sharpness 1.5 here and 10 at tag 0; the last tag is used"}));
+}
+
 TEST(Validate, InMemoryDataHasNoLocation) {
     PolygonSoup soup;
     soup.positions = points(4);

@@ -28,7 +28,10 @@ enum class Problem {
     BadTag,                   ///< error: a crease on a non-edge, negative or non-finite sharpness
     IsolatedVertex,           ///< warning: a vertex in no face (dropped by build_control_mesh)
     DegenerateFace,           ///< warning: a face of zero area
-    DuplicateFace             ///< warning: two faces with the same vertex set
+    DuplicateFace,            ///< warning: two faces with the same vertex set
+    /// warning: an edge or vertex tagged again with another sharpness (the last tag is used, as in
+    /// OpenSubdiv's factory, even when it is 0)
+    ConflictingTag
 };
 
 /// Warnings leave the mesh usable; errors do not.

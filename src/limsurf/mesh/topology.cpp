@@ -433,17 +433,29 @@ bool Topology::all_faces_have_degree(Index degree) const noexcept {
 }
 
 void Topology::apply_sharpness(const SharpnessTags& sharpness) {
+    // The last tag of an edge or vertex wins, a 0 included, as in OpenSubdiv's factory (validate()
+    // warns when two tags disagree). The tables stay empty until some sharpness is positive.
     for (const CreaseTag& crease : sharpness.creases) {
-        if (crease.sharpness > 0.0) {
+        if (crease.sharpness > 0.0 || !edge_sharpness_.empty()) {
             edge_sharpness_.resize(at(num_edges()), 0.0);
             edge_sharpness_[at(find_edge(crease.v0, crease.v1))] = crease.sharpness;
         }
     }
     for (const CornerTag& corner : sharpness.corners) {
-        if (corner.sharpness > 0.0) {
+        if (corner.sharpness > 0.0 || !vertex_sharpness_.empty()) {
             vertex_sharpness_.resize(at(num_vertices_), 0.0);
             vertex_sharpness_[at(corner.vertex)] = corner.sharpness;
         }
+    }
+    // A later 0 may have cleared every sharpness: then the mesh is as smooth as one without tags.
+    const auto all_zero = [](const auto& table) {
+        return std::all_of(table.begin(), table.end(), [](double s) { return s == 0.0; });
+    };
+    if (all_zero(edge_sharpness_)) {
+        edge_sharpness_.clear();
+    }
+    if (all_zero(vertex_sharpness_)) {
+        vertex_sharpness_.clear();
     }
     for (const HoleTag& hole : sharpness.holes) {
         holes_.resize(at(num_faces()), 0);

@@ -24,6 +24,7 @@ Severity severity_of(Problem problem) noexcept {
     case Problem::IsolatedVertex:
     case Problem::DegenerateFace:
     case Problem::DuplicateFace:
+    case Problem::ConflictingTag:
         return Severity::Warning;
     default:
         return Severity::Error;
@@ -58,6 +59,8 @@ const char* problem_name(Problem problem) noexcept {
         return "degenerate-face";
     case Problem::DuplicateFace:
         return "duplicate-face";
+    case Problem::ConflictingTag:
+        return "conflicting-tag";
     }
     return "unknown";
 }
@@ -623,6 +626,54 @@ class ConnectivityChecker {
             if (hole.face < 0 || hole.face >= num_faces()) {
                 add(Problem::BadTag, source_.line_location(hole.line),
                     concat("hole ", hole.face, ": face out of range [0, ", num_faces() - 1, "]"));
+            }
+        }
+        check_conflicting_tags();
+    }
+
+    // "line 7" where the file is known, else the tag's place in its list ("tag 3").
+    static std::string tag_origin(int line, std::size_t index) {
+        return line > 0 ? concat("line ", line) : concat("tag ", index);
+    }
+
+    // An edge or vertex tagged twice with different sharpness is most likely a mistake in the file; the
+    // last tag wins (Topology::apply_sharpness, as OpenSubdiv's factory), so this is a warning that
+    // names both tags. Equal repeats are harmless and pass silently.
+    void check_conflicting_tags() {
+        const auto in_range = [nv = faces_.num_vertices](Index v) { return v >= 0 && v < nv; };
+        std::unordered_map<std::uint64_t, std::size_t> last_crease;
+        for (std::size_t i = 0; i < sharpness_.creases.size(); ++i) {
+            const CreaseTag& c = sharpness_.creases[i];
+            if (!in_range(c.v0) || !in_range(c.v1)) {
+                continue;  // named as a bad tag already
+            }
+            const auto [it, first] = last_crease.try_emplace(edge_key(c.v0, c.v1), i);
+            if (!first) {
+                const CreaseTag& before = sharpness_.creases[it->second];
+                if (before.sharpness != c.sharpness) {
+                    add(Problem::ConflictingTag, source_.line_location(c.line),
+                        concat("crease (", c.v0, ", ", c.v1, ") has sharpness ", c.sharpness, " here and ",
+                               before.sharpness, " at ", tag_origin(before.line, it->second),
+                               "; the last tag is used"));
+                }
+                it->second = i;
+            }
+        }
+        std::unordered_map<Index, std::size_t> last_corner;
+        for (std::size_t i = 0; i < sharpness_.corners.size(); ++i) {
+            const CornerTag& c = sharpness_.corners[i];
+            if (!in_range(c.vertex)) {
+                continue;
+            }
+            const auto [it, first] = last_corner.try_emplace(c.vertex, i);
+            if (!first) {
+                const CornerTag& before = sharpness_.corners[it->second];
+                if (before.sharpness != c.sharpness) {
+                    add(Problem::ConflictingTag, source_.line_location(c.line),
+                        concat("corner ", c.vertex, " has sharpness ", c.sharpness, " here and ", before.sharpness,
+                               " at ", tag_origin(before.line, it->second), "; the last tag is used"));
+                }
+                it->second = i;
             }
         }
     }

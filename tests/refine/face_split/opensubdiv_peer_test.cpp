@@ -94,6 +94,73 @@ TEST(OpenSubdivPeer, CatmullClarkCreasesUniformAndChaikin) {
     }
 }
 
+// An edge or vertex tagged twice: OpenSubdiv's factory applies the tags in order, so the last one
+// wins even when it is 0. Before, limsurf skipped a later 0 and kept the earlier sharpness.
+TEST(OpenSubdivPeer, TheLastOfRepeatedTagsWins) {
+    namespace Far = OpenSubdiv::Far;
+    const auto mesh = load_bundled("quad_torus");  // closed: Far makes boundary edges sharp itself
+    const Topology& plain = mesh.topology;
+    const auto e0 = plain.edge_vertices(0);
+    const auto e1 = plain.edge_vertices(5);
+    SharpnessTags tags;
+    tags.creases = {{e0[0], e0[1], 2.0, 0}, {e0[1], e0[0], 0.0, 0}, {e1[0], e1[1], 0.0, 0}, {e1[0], e1[1], 3.5, 0}};
+    tags.corners = {{4, 10.0, 0}, {4, 0.0, 0}, {6, 1.0, 0}, {6, 2.5, 0}};
+    const Topology ours = with_tags(plain, tags);
+
+    std::vector<int> degrees;
+    for (Index f = 0; f < plain.num_faces(); ++f) {
+        degrees.push_back(plain.face_degree(f));
+    }
+    std::vector<Far::Index> pairs;
+    std::vector<float> weights;
+    for (const CreaseTag& c : tags.creases) {
+        pairs.insert(pairs.end(), {c.v0, c.v1});
+        weights.push_back(static_cast<float>(c.sharpness));
+    }
+    std::vector<Far::Index> corners;
+    std::vector<float> corner_weights;
+    for (const CornerTag& c : tags.corners) {
+        corners.push_back(c.vertex);
+        corner_weights.push_back(static_cast<float>(c.sharpness));
+    }
+    Far::TopologyDescriptor desc;
+    desc.numVertices = plain.num_vertices();
+    desc.numFaces = plain.num_faces();
+    desc.numVertsPerFace = degrees.data();
+    desc.vertIndicesPerFace = plain.all_face_vertices().data();
+    desc.numCreases = static_cast<int>(weights.size());
+    desc.creaseVertexIndexPairs = pairs.data();
+    desc.creaseWeights = weights.data();
+    desc.numCorners = static_cast<int>(corners.size());
+    desc.cornerVertexIndices = corners.data();
+    desc.cornerWeights = corner_weights.data();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    const std::unique_ptr<Far::TopologyRefiner> far(
+        Factory::Create(desc, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, OpenSubdiv::Sdc::Options())));
+    ASSERT_NE(far, nullptr);
+    const Far::TopologyLevel& level = far->GetLevel(0);
+    int sharp_edges = 0;
+    for (Index e = 0; e < plain.num_edges(); ++e) {
+        const auto ends = plain.edge_vertices(e);
+        const Far::Index far_edge = level.FindEdge(ends[0], ends[1]);
+        ASSERT_NE(far_edge, OpenSubdiv::Far::INDEX_INVALID);
+        EXPECT_EQ(ours.edge_sharpness(e), level.GetEdgeSharpness(far_edge)) << "edge " << e;
+        sharp_edges += ours.edge_sharpness(e) > 0.0 ? 1 : 0;
+    }
+    EXPECT_EQ(sharp_edges, 1);
+    EXPECT_EQ(ours.edge_sharpness(5), 3.5);
+    for (Index v = 0; v < plain.num_vertices(); ++v) {
+        EXPECT_EQ(ours.vertex_sharpness(v), level.GetVertexSharpness(v)) << "vertex " << v;
+    }
+    EXPECT_EQ(ours.vertex_sharpness(4), 0.0);
+    EXPECT_EQ(ours.vertex_sharpness(6), 2.5);
+
+    // A later 0 that clears every tag leaves the mesh as smooth as one without tags.
+    SharpnessTags cleared;
+    cleared.creases = {{e0[0], e0[1], 2.0, 0}, {e0[0], e0[1], 0.0, 0}};
+    EXPECT_FALSE(with_tags(plain, cleared).has_sharpness());
+}
+
 TEST(OpenSubdivPeer, LoopBundledMeshes) {
     for (const auto& bundled : triangle_meshes()) {
         const auto mesh = load_bundled(bundled.name);
