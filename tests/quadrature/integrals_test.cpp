@@ -53,6 +53,25 @@ TEST(LimitSampler, StoresOneSampleperRulePointAndWeightsSumToTheDomain) {
     EXPECT_NEAR(total, cube.basis.num_ptex_faces(), 1e-12);
 }
 
+// Before: a degree out of range was named after an internal function ("square_rule: degree 200 ...").
+TEST(LimitSampler, ADegreeOutOfRangeIsNamedAsTheQuadratureDegree) {
+    const Loaded cube("cube");
+    const Loaded icosahedron("icosahedron", SchemeKind::Loop);
+    const auto message = [](const LimitBasis& basis, int degree) {
+        try {
+            const LimitSampler sampler(basis, degree);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message(cube.basis, 200), "the quadrature degree per tile must be in 1..127 on quad ptex faces, not 200");
+    EXPECT_EQ(message(cube.basis, 0), "the quadrature degree per tile must be in 1..127 on quad ptex faces, not 0");
+    EXPECT_EQ(message(icosahedron.basis, 61),
+              "the quadrature degree per tile must be in 1..60 on triangle ptex faces, not 61");
+    EXPECT_EQ(message(icosahedron.basis, 1), "no error");
+}
+
 TEST(LimitSampler, TilesCoverTheDomainAndCrowdTowardsExtraordinaryCorners) {
     for (const auto& [name, scheme, domain] :
          {std::tuple{"cube", SchemeKind::CatmullClark, 1.0}, std::tuple{"icosahedron", SchemeKind::Loop, 0.5},

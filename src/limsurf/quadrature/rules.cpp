@@ -248,7 +248,9 @@ QuadratureRule gauss_legendre_1d(int n) {
 }
 
 QuadratureRule square_rule(int degree) {
-    LIMSURF_CHECK(degree >= 1 && degree <= 127, InputError, "square_rule: degree ", degree, " is outside [1, 127]");
+    LIMSURF_CHECK(degree >= 1 && degree <= max_square_rule_degree, InputError,
+                  "the quadrature rule on the square: degree ", degree, " is outside [1, ", max_square_rule_degree,
+                  "]");
     const QuadratureRule line = gauss_legendre_1d((degree + 2) / 2);
     const std::size_t n = line.u.size();
     QuadratureRule rule;
@@ -265,7 +267,9 @@ QuadratureRule square_rule(int degree) {
 }
 
 QuadratureRule triangle_rule(int degree) {
-    LIMSURF_CHECK(degree >= 1 && degree <= 60, InputError, "triangle_rule: degree ", degree, " is outside [1, 60]");
+    LIMSURF_CHECK(degree >= 1 && degree <= max_triangle_rule_degree, InputError,
+                  "the quadrature rule on the triangle: degree ", degree, " is outside [1, ", max_triangle_rule_degree,
+                  "]");
     if (degree <= detail::max_tabulated_triangle_degree) {
         return detail::expand_orbits(detail::tabulated_triangle_rule(degree), degree);
     }

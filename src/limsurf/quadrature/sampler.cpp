@@ -181,8 +181,12 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
     LIMSURF_CHECK(options.subdivide_near_extraordinary >= 0 && options.subdivide_near_extraordinary <= 30, InputError,
                   "tile levels near extraordinary vertices must be in 0..30, not ",
                   options.subdivide_near_extraordinary);
-    const QuadratureRule rule =
-        domain_ == ParameterDomain::Quad ? square_rule(options.degree) : triangle_rule(options.degree);
+    const bool quads = domain_ == ParameterDomain::Quad;
+    const int max_degree = quads ? max_square_rule_degree : max_triangle_rule_degree;
+    LIMSURF_CHECK(options.degree >= 1 && options.degree <= max_degree, InputError,
+                  "the quadrature degree per tile must be in 1..", max_degree, " on ", quads ? "quad" : "triangle",
+                  " ptex faces, not ", options.degree);
+    const QuadratureRule rule = quads ? square_rule(options.degree) : triangle_rule(options.degree);
 
     std::vector<Pending> pending;
     for (Index p = first_ptex_face; p < last_ptex_face; ++p) {
