@@ -350,6 +350,37 @@ TEST(VectorFieldTest, ReferenceOnTheSubdividedMesh) {
     EXPECT_GT(lumped.reference->l2_relative, dec.reference->l2_relative);
 }
 
+// Before: on genus2 a weight of 1e11 failed the Cholesky factorisation as "degenerate geometry?", and on
+// the cube a weight of 1e18 returned a field with 4 000 times the minimal energy and no error. Weights
+// that stiff are refused, naming the largest that works; just below it the design still converges to
+// the same field as the weight grows (the misfit falls like 1/weight).
+TEST(VectorFieldTest, WeightsTooStiffForTheEnergyAreRefused) {
+    const ControlMesh mesh = load("genus2");
+    const auto design = [&](double weight) {
+        VectorFieldConstraints c;
+        c.sources = {{0, 1.0, weight}, {30, -1.0, weight}};
+        return design_vector_field(mesh.topology(), mesh.positions(), SchemeKind::CatmullClark, c,
+                                   options(InnerProductMethod::Dec));
+    };
+    std::string message;
+    try {
+        (void)design(1e11);
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    // The stiffest constraint is named: the sink's row is the longer one here.
+    ASSERT_EQ(message.rfind("the weight 100000000000 of the source constraint at 30 makes it ", 0), 0U) << message;
+    const std::size_t about = message.find("is about ");
+    ASSERT_NE(about, std::string::npos) << message;
+    const double largest = std::stod(message.substr(about + 9));
+    EXPECT_GT(largest, 1e8);
+    EXPECT_LT(largest, 1e11);
+    const VectorFieldResult stiff = design(0.9 * largest);
+    const VectorFieldResult loose = design(0.009 * largest);
+    EXPECT_NEAR(stiff.max_residual / loose.max_residual, 1e-2, 1e-3);  // 100 times the weight, 1/100 the misfit
+    EXPECT_NEAR(stiff.energy, loose.energy, 1e-4 * loose.energy);
+}
+
 TEST(VectorFieldTest, BadInputIsRefusedClearly) {
     const ControlMesh mesh = load("genus2");
     const Topology& t = mesh.topology();

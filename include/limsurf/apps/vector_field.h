@@ -207,7 +207,10 @@ struct VectorFieldResult {
 ///   constrained, only as a least-squares compromise; either way a warning and the imbalance are reported.
 /// @throws InputError for no constraints, an element out of range (naming it), a stroke with fewer than two
 ///   vertices or two consecutive vertices without an edge between them (naming them), a vertex or face
-///   constrained twice, a weight that is not positive and finite, a non-finite target; as
+///   constrained twice, a weight that is not positive and finite or so large that its row is more than
+///   1e7 times stiffer than the energy (W_c |a_c|² against mean diag(L1): rounding would lose the
+///   energy or its regularisation ε M1, and the design would silently not minimise it or the
+///   factorisation fail), a non-finite target; as
 ///   control_inner_products; NumericalError when a factorisation fails or the conjugate gradients do not
 ///   converge in 2000 steps
 [[nodiscard]] VectorFieldResult design_vector_field(const Topology& topology, const Points& X0, SchemeKind scheme,

@@ -278,6 +278,36 @@ Eigen::VectorXd solve_with_exact_vertex_mass(const SparseMatrix& K, const detail
     return x;
 }
 
+/// @brief Refuses a constraint so stiff against the energy that K = L1 + Aᵀ W A + ε M1 has lost L1 or
+///   ε M1 to rounding. Measured on the bundled meshes before this check: on the cube the field silently
+///   stopped minimising the energy (with the lumped mass it kept 8 digits up to weight 1e12 and was
+///   4 000 times too large at 1e18; with the exact mass it was wrong in the 4th digit at 1e14); on the
+///   genus-1 and genus-2 meshes the Cholesky factorisation failed from a stiffness of 3e8 on (ε M1,
+///   which alone fixes the harmonic part, was lost), reported as degenerate geometry. The stiffness of
+///   row c is W_c |a_c|² over the mean diagonal of L1; the largest that worked everywhere was 6e7, so
+///   1e7 is allowed. The misfit falls like 1/weight: weights this large gain nothing.
+/// @throws InputError naming the stiffest constraint, its weight and the largest weight it may have
+void check_constraints_keep_the_energy(const ConstraintRows& rows, const SparseMatrix& A, const Eigen::VectorXd& W,
+                                       const SparseMatrix& L1) {
+    constexpr double max_stiffness = 1e7;  // times mean diag(L1); the default weight 1000 is 3–60 on the meshes
+    const double energy_scale = L1.diagonal().mean();
+    Eigen::VectorXd row_norms = Eigen::VectorXd::Zero(A.rows());
+    for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+        for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+            row_norms[it.row()] += it.value() * it.value();
+        }
+    }
+    Eigen::Index c = 0;
+    const double stiffness = (W.cwiseProduct(row_norms) / energy_scale).maxCoeff(&c);  // the stiffest row
+    const auto& [kind, element] = rows.what[static_cast<std::size_t>(c)];
+    const double weight = rows.weights[static_cast<std::size_t>(c)];
+    LIMSURF_CHECK(stiffness <= max_stiffness, InputError, "the weight ", weight, " of the ", kind, " constraint at ",
+                  element, " makes it ", stiffness,
+                  " times stiffer than the energy: rounding would lose the energy or its regularisation (the "
+                  "largest weight it may have here is about ",
+                  weight * max_stiffness / stiffness, "; the misfit already falls like 1/weight)");
+}
+
 void report_constraints(VectorFieldResult& result, const ConstraintRows& rows, const SparseMatrix& A) {
     const Eigen::VectorXd achieved = A * result.w;
     double worst = 0.0;
@@ -611,6 +641,7 @@ VectorFieldResult design_vector_field(const Topology& topology, const Points& X0
         t[c] = rows.targets[static_cast<std::size_t>(c)];
     }
     const SparseMatrix L1 = anti_holomorphic_matrix(topology, ip);
+    check_constraints_keep_the_energy(rows, A, W, L1);
     const SparseMatrix At = A.transpose();
     const SparseMatrix K = L1 + At * diagonal(W) * A + harmonic_regulariser(L1, ip.M1, 1e-10);
     const detail::SparseCholesky solver(K, "the vector-field design system");
