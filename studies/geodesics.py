@@ -37,8 +37,9 @@ def runs(quick: bool) -> list[tuple[str, int, float]]:
 
 
 def run(cli: str, mesh: str, scheme: str, method: str, level: int, c: float, K: int) -> dict:
+    level_option = ["--level", str(level)] if method.startswith("sec") else []  # only sec and secsnap take it
     out = sl.run_json(cli, "geodesic", sl.mesh(mesh), "--scheme", scheme, "--source", "0", "--method", method,
-                      "--level", str(max(level, 0)), "--time-factor", repr(c), "--reference-level", str(K))
+                      *level_option, "--time-factor", repr(c), "--reference-level", str(K))
     return {"study": NAME, "mesh": mesh, "scheme": scheme, "method": method, "level": level,
             "gradient": out["gradient"], "time_factor": c,
             "t": out["t"], "reference_level": K, "l2_relative": out["reference"]["l2_relative"],

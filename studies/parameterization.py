@@ -104,8 +104,9 @@ def row_from(experiment: str, mesh: str, series: str, out: dict) -> dict:
 
 def run(cli: str, path: str, series: str, *extra: str) -> dict:
     method, level, _, _, _ = SERIES[series]
-    return sl.run_json(cli, "parameterize", path, "--scheme", "catmull-clark", "--method", method, "--level",
-                       str(level), *extra)
+    level_option = ["--level", str(level)] if method.startswith("sec") else []  # only sec and secsnap take it
+    return sl.run_json(cli, "parameterize", path, "--scheme", "catmull-clark", "--method", method, *level_option,
+                       *extra)
 
 
 def plot(rows: list[dict], outdir: Path) -> list[Path]:

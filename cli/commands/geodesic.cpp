@@ -214,7 +214,12 @@ void add_geodesic_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("--isolines", options->isolines, "Isolines in the picture (0..100, default 12)")
         ->check(CLI::Range(0, 100));
     cmd->add_flag("--json", options->json, "Print JSON");
-    cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_geodesic(*options); }); });
+    cmd->callback([options, cmd, &status] {
+        status.exit_code = run_guarded([&] {
+            check_method_options(*cmd, options->method);
+            return run_geodesic(*options);
+        });
+    });
 }
 
 }  // namespace limsurf::cli

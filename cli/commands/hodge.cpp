@@ -202,8 +202,9 @@ void add_hodge_command(CLI::App& app, CommandStatus& status) {
                     "Write the parts as PREFIXexact.txt, PREFIXcoexact.txt, PREFIXharmonic.txt (one value per edge)");
     cmd->add_option("-o,--output", o->output, "Write the input and its parts as vectors (.vtk)");
     cmd->add_flag("--json", o->json, "Print JSON");
-    cmd->callback([o, &status] {
+    cmd->callback([o, cmd, &status] {
         status.exit_code = run_guarded([&] {
+            check_level_option(*cmd, o->method);
             LIMSURF_CHECK(!o->one_form.empty() || o->random >= 0 || !o->field.empty(), InputError,
                           "hodge needs a 1-form: --one-form FILE, --random SEED or --field \"X;Y;Z\"");
             std::vector<std::string> outputs{o->output};

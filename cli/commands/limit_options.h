@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "limsurf/apps/laplacian_method.h"
 #include "limsurf/core/error.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/mesh/control_mesh.h"
@@ -101,6 +102,25 @@ inline void add_iga_quadrature_options(CLI::App* cmd, int& degree, int& tiles) {
     cmd->add_option("--degree", degree, "iga: quadrature degree per tile (1..60, default 8)")->check(CLI::Range(1, 60));
     cmd->add_option("--tiles", tiles, "iga: tile levels towards extraordinary vertices (0..20, default 6)")
         ->check(CLI::Range(0, 20));
+}
+
+/// @brief Refuses --level without --method sec or secsnap when given: the method would ignore it
+///   without a word (as --lumped with iga is refused).
+/// @throws InputError naming the option and the method
+inline void check_level_option(const CLI::App& cmd, const std::string& method) {
+    LIMSURF_CHECK(has_level(parse_laplacian_method(method)) || cmd.count("--level") == 0, InputError,
+                  "--level applies to --method sec and secsnap, not to ", method);
+}
+
+/// @brief check_level_option(), and refuses add_iga_quadrature_options()' --degree and --tiles
+///   without --method iga.
+/// @throws InputError naming the option and the method
+inline void check_method_options(const CLI::App& cmd, const std::string& method) {
+    check_level_option(cmd, method);
+    for (const char* name : {"--degree", "--tiles"}) {
+        LIMSURF_CHECK(parse_laplacian_method(method) == LaplacianMethod::Iga || cmd.count(name) == 0, InputError,
+                      name, " applies to --method iga, not to ", method);
+    }
 }
 
 /// The rules chosen on the command line, else the file's hints, else the defaults.

@@ -233,7 +233,12 @@ void add_parameterize_command(CLI::App& app, CommandStatus& status) {
                     "Size of the texture picture, WIDTHxHEIGHT, 16..8192 each (default 1200x900)")
         ->check(size_validator());
     cmd->add_flag("--json", options->json, "Print JSON");
-    cmd->callback([options, &status] { status.exit_code = run_guarded([&] { return run_parameterize(*options); }); });
+    cmd->callback([options, cmd, &status] {
+        status.exit_code = run_guarded([&] {
+            check_level_option(*cmd, options->method);
+            return run_parameterize(*options);
+        });
+    });
 }
 
 }  // namespace limsurf::cli

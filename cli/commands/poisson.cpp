@@ -168,8 +168,9 @@ void add_poisson_command(CLI::App& app, CommandStatus& status) {
     add_threads_option(cmd, options->threads);
     cmd->add_option("-o,--output", options->output, "Write the control mesh with fields u and f (.ply, .vtk, .vtu)");
     cmd->add_flag("--json", options->json, "Print JSON");
-    cmd->callback([options, &status] {
+    cmd->callback([options, cmd, &status] {
         status.exit_code = run_guarded([&] {
+            check_method_options(*cmd, options->method);
             LIMSURF_CHECK(!options->rhs.empty() || !options->rhs_file.empty(), InputError,
                           "poisson needs --rhs or --rhs-file");
             return run_poisson(*options);

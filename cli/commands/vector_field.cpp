@@ -279,8 +279,9 @@ void add_vector_field_command(CLI::App& app, CommandStatus& status) {
     cmd->add_option("-o,--output", o->output, "Write the vectors on the limit surface (.vtk: glyphs, streamlines)");
     cmd->add_option("--png", o->png, "Picture of the limit surface coloured by the field's magnitude (.png)");
     cmd->add_flag("--json", o->json, "Print JSON");
-    cmd->callback([o, &status] {
+    cmd->callback([o, cmd, &status] {
         status.exit_code = run_guarded([&] {
+            check_level_option(*cmd, o->method);
             check_output_paths({o->output, o->png, o->save_one_form}, {o->input});
             const BuildResult built = read_mesh(o->input);
             print_warnings(built.report);

@@ -146,21 +146,22 @@ def volume(mesh: Mesh, scheme: LimitScheme, *, gradient: Literal[True], X: Array
            triangles: Triangles | None = None) -> tuple[float, FloatArray]: ...
 
 def exterior_derivatives(mesh: Mesh) -> tuple[scipy.sparse.csr_matrix, scipy.sparse.csr_matrix]: ...
-def inner_products(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int = 3, lumped: bool = False,
-                   boundary: Boundary | None = None, creasing: Creasing | None = None,
+def inner_products(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int | None = None,
+                   lumped: bool = False, boundary: Boundary | None = None, creasing: Creasing | None = None,
                    triangles: Triangles | None = None) -> dict[str, scipy.sparse.csr_matrix]: ...
-def operators(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int = 3, lumped: bool = False,
-              boundary: Boundary | None = None, creasing: Creasing | None = None,
+def operators(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int | None = None,
+              lumped: bool = False, boundary: Boundary | None = None, creasing: Creasing | None = None,
               triangles: Triangles | None = None) -> dict[str, scipy.sparse.csr_matrix]: ...
 def poisson(mesh: Mesh, scheme: LimitScheme, rhs: SurfaceFunction | ArrayLike, *,
-            method: Method | Literal["iga"] = "sec", level: int = 3, lumped: bool = False, degree: int = 8,
-            tiles: int = 6, boundary_values: SurfaceFunction | ArrayLike | float | None = None,
+            method: Method | Literal["iga"] = "sec", level: int | None = None, lumped: bool = False,
+            degree: int | None = None, tiles: int | None = None,
+            boundary_values: SurfaceFunction | ArrayLike | float | None = None,
             reference_level: int | None = None, max_memory: int | None = None, boundary: Boundary | None = None,
             creasing: Creasing | None = None, triangles: Triangles | None = None,
             threads: int = 0) -> dict[str, object]: ...
 
 def parameterize(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method | Literal["iga"] = "sec",
-                 level: int = 3,
+                 level: int | None = None,
                  boundary: Literal["free", "circle"] = "free", reference_level: int | None = None,
                  max_memory: int | None = None, degree: int = 6, tiles: int = 3, threads: int = 0,
                  boundary_rule: Boundary | None = None, creasing: Creasing | None = None,
@@ -173,19 +174,20 @@ def design_vector_field(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *,
                         sinks: list[tuple[int, float] | tuple[int, float, float]] = ...,
                         vortices: list[tuple[int, float] | tuple[int, float, float]] = ...,
                         strokes: list[tuple[list[int], float] | tuple[list[int], float, float]] = ...,
-                        weight: float = 1000.0, method: Method = "sec", level: int = 3,
+                        weight: float = 1000.0, method: Method = "sec", level: int | None = None,
                         vertex_mass: Literal["exact", "lumped"] = "exact", sample_level: int = 2,
                         reference_level: int | None = None, boundary: Boundary | None = None,
                         creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
 def hodge_decomposition(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], w: ArrayLike | None = None, *,
-                        random: int | None = None, method: Method = "sec", level: int = 3, basis: bool = True,
+                        random: int | None = None, method: Method = "sec", level: int | None = None, basis: bool = True,
                         reference_level: int | None = None, boundary: Boundary | None = None,
                         creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
-def harmonic_basis(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec", level: int = 3,
-                   seed: int = 1, boundary: Boundary | None = None, creasing: Creasing | None = None,
-                   triangles: Triangles | None = None) -> dict[str, object]: ...
+def harmonic_basis(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *, method: Method = "sec",
+                   level: int | None = None, seed: int = 1, boundary: Boundary | None = None,
+                   creasing: Creasing | None = None, triangles: Triangles | None = None) -> dict[str, object]: ...
 def geodesic_distance(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], sources: int | list[int], *,
-                      method: Method | Literal["iga"] = "sec", level: int = 3, degree: int = 8, tiles: int = 6,
+                      method: Method | Literal["iga"] = "sec", level: int | None = None, degree: int | None = None,
+                      tiles: int | None = None,
                       gradient: Literal["auto", "limit", "subdivided"] = "auto", gradient_level: int | None = None,
                       gradient_degree: int = 2, time_factor: float = 1.0, reference_level: int | None = None,
                       max_memory: int | None = None,
@@ -194,7 +196,8 @@ def geodesic_distance(mesh: Mesh, scheme: Literal["loop", "catmull-clark"], sour
 
 class HeatGeodesics:
     def __init__(self, mesh: Mesh, scheme: Literal["loop", "catmull-clark"], *,
-                 method: Method | Literal["iga"] = "sec", level: int = 3, degree: int = 8, tiles: int = 6,
+                 method: Method | Literal["iga"] = "sec", level: int | None = None, degree: int | None = None,
+                 tiles: int | None = None,
                  gradient: Literal["auto", "limit", "subdivided"] = "auto",
                  gradient_level: int | None = None, gradient_degree: int = 2, time_factor: float = 1.0,
                  boundary: Boundary | None = None, creasing: Creasing | None = None,

@@ -62,6 +62,7 @@ Eigen::Vector2d pair_from(const py::handle& x, const std::string& name) {
 }
 
 Eigen::Matrix2d matrix2_from(const py::handle& x, const std::string& name) {
+    require_real_numbers(x, name);  // before the cast below, which would drop an imaginary part
     const py::array a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x);
     LIMSURF_CHECK(a && a.ndim() == 2 && a.shape(0) == 2 && a.shape(1) == 2, InputError, name,
                   ": expected a 2 x 2 matrix (rows)");

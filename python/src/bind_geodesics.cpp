@@ -29,12 +29,12 @@ std::vector<Index> sources_from(const py::handle& sources) {
     }
 }
 
-/// The keyword arguments method, level, degree and tiles (iga).
+/// The keyword arguments method, level, degree and tiles (iga; None: the default).
 struct MethodChoice {
     std::string method;
     int level = 3;
-    int degree = 8;
-    int tiles = 6;
+    std::optional<int> degree;
+    std::optional<int> tiles;
 };
 
 /// The keyword arguments gradient, gradient_level and gradient_degree.
@@ -49,9 +49,14 @@ HeatGeodesicsOptions heat_options(const Mesh& mesh, const MethodChoice& method, 
     HeatGeodesicsOptions options;
     options.method = parse_laplacian_method(method.method);
     options.level = method.level;
-    options.iga_quadrature.degree = method.degree;
-    options.iga_quadrature.subdivide_near_extraordinary = method.tiles;
+    require_iga_for_quadrature(options.method, method.method, method.degree, method.tiles);
+    options.iga_quadrature.degree = method.degree.value_or(options.iga_quadrature.degree);
+    options.iga_quadrature.subdivide_near_extraordinary =
+        method.tiles.value_or(options.iga_quadrature.subdivide_near_extraordinary);
     options.gradient = parse_heat_gradient(gradient.gradient);
+    // The library reads -1 as "not given": a -1 from Python would have been taken for None.
+    LIMSURF_CHECK(!gradient.level || *gradient.level >= 0, InputError, "gradient_level must be >= 0 (or None), not ",
+                  *gradient.level);
     options.gradient_level = gradient.level.value_or(-1);
     options.gradient_quadrature.degree = gradient.degree;
     options.time_factor = time_factor;
@@ -91,11 +96,13 @@ py::dict report(const Mesh& mesh, const std::string& scheme, const HeatGeodesics
 void bind_geodesics(py::module_& m) {
     m.def(
         "geodesic_distance",
-        [](const Mesh& mesh, const std::string& scheme, const py::handle& sources, const std::string& method, int level,
-           int degree, int tiles, const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
-           double time_factor, std::optional<int> reference_level, std::optional<std::int64_t> max_memory,
+        [](const Mesh& mesh, const std::string& scheme, const py::handle& sources, const std::string& method,
+           std::optional<int> given_level, std::optional<int> degree, std::optional<int> tiles,
+           const std::string& gradient, std::optional<int> gradient_level, int gradient_degree, double time_factor,
+           std::optional<int> reference_level, std::optional<std::int64_t> max_memory,
            std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             return naming_source(mesh, [&] {
                 GeodesicOptions options;
                 options.heat = heat_options(mesh, MethodChoice{method, level, degree, tiles},
@@ -113,14 +120,14 @@ void bind_geodesics(py::module_& m) {
                 return report(mesh, scheme, options.heat, list, r);
             });
         },
-        "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "degree"_a = 8,
-        "tiles"_a = 6, "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2,
-        "time_factor"_a = 1.0, "reference_level"_a = py::none(), "max_memory"_a = py::none(), "boundary"_a = py::none(),
-        "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "mesh"_a, "scheme"_a, "sources"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(),
+        "degree"_a = py::none(), "tiles"_a = py::none(), "gradient"_a = "auto", "gradient_level"_a = py::none(),
+        "gradient_degree"_a = 2, "time_factor"_a = 1.0, "reference_level"_a = py::none(), "max_memory"_a = py::none(),
+        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Geodesic distance on the limit surface from `sources` (a control vertex or a list of them) by the
 heat method (Crane et al. 2013) with the operators of `method` ('dec', 'decsnap', 'sec', 'secsnap';
 SEC §4.2) or Galerkin with the limit basis ('iga', mass and stiffness integrated with `degree` per
-tile and `tiles` levels towards extraordinary vertices): the dict of `limsurf geodesic --json` plus
+tile and `tiles` levels towards extraordinary vertices; None: 8 and 6; other methods refuse them): the dict of `limsurf geodesic --json` plus
 'distance' (#V: values at the control vertices for dec, control coefficients of the limit function
 for sec and iga) and 'limit_distance' (#V: at the limit point of each control vertex). iga
 normalises the heat gradient on the limit surface (quadrature of degree gradient_degree per face);
@@ -133,13 +140,15 @@ Raises limsurf.InputError for a source out of range, no source, or a disconnecte
 
     py::class_<HeatGeodesics>(m, "HeatGeodesics",
                               R"(The heat method set up and factorised once for repeated queries:
-HeatGeodesics(mesh, scheme, method='sec', level=3, degree=8, tiles=6, gradient='auto', gradient_level=None,
+HeatGeodesics(mesh, scheme, method='sec', level=None, degree=None, tiles=None, gradient='auto', gradient_level=None,
 gradient_degree=2, time_factor=1.0).distance(sources)
 costs two back-substitutions (three on open meshes) and one divergence per call.)")
-        .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method, int level, int degree,
-                         int tiles, const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
+        .def(py::init([](const Mesh& mesh, const std::string& scheme, const std::string& method,
+                         std::optional<int> given_level, std::optional<int> degree, std::optional<int> tiles,
+                         const std::string& gradient, std::optional<int> gradient_level, int gradient_degree,
                          double time_factor, std::optional<std::string> boundary, std::optional<std::string> creasing,
                          std::optional<std::string> triangles) {
+                 const int level = level_for(method, given_level);
                  return naming_source(mesh, [&] {
                      const HeatGeodesicsOptions options =
                          heat_options(mesh, MethodChoice{method, level, degree, tiles},
@@ -150,9 +159,9 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
                      return HeatGeodesics(mesh.mesh, kind, options);
                  });
              }),
-             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "degree"_a = 8, "tiles"_a = 6,
-             "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2, "time_factor"_a = 1.0,
-             "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
+             "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(), "degree"_a = py::none(),
+             "tiles"_a = py::none(), "gradient"_a = "auto", "gradient_level"_a = py::none(), "gradient_degree"_a = 2,
+             "time_factor"_a = 1.0, "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none())
         .def(
             "distance",
             [](const HeatGeodesics& self, const py::handle& sources) {

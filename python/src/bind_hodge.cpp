@@ -64,9 +64,10 @@ void bind_hodge(py::module_& m) {
     m.def(
         "hodge_decomposition",
         [](const Mesh& mesh, const std::string& scheme, const py::handle& w, std::optional<std::int64_t> random,
-           const std::string& method, int level, bool basis, std::optional<int> reference_level,
+           const std::string& method, std::optional<int> given_level, bool basis, std::optional<int> reference_level,
            std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             return naming_source(mesh, [&] {
                 LIMSURF_CHECK(w.is_none() != !random.has_value(), InputError,
                               "hodge_decomposition needs exactly one of w (#E values) and random (a seed)");
@@ -90,7 +91,7 @@ void bind_hodge(py::module_& m) {
             });
         },
         "mesh"_a, "scheme"_a, "w"_a = py::none(), py::kw_only(), "random"_a = py::none(), "method"_a = "sec",
-        "level"_a = 3, "basis"_a = true, "reference_level"_a = py::none(), "boundary"_a = py::none(),
+        "level"_a = py::none(), "basis"_a = true, "reference_level"_a = py::none(), "boundary"_a = py::none(),
         "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Helmholtz–Hodge decomposition w = dα + δβ + h in the inner products of `method`: `limsurf hodge`.
 
@@ -101,9 +102,10 @@ rank by eigenvalue gap). reference_level K: compare with DEC on the K-times subd
 Returns the keys of `--json`, with the arrays 'w', 'exact', 'coexact', 'harmonic' (#E), 'alpha' (#V), 'gamma' (#F).)");
     m.def(
         "harmonic_basis",
-        [](const Mesh& mesh, const std::string& scheme, const std::string& method, int level, std::int64_t seed,
-           std::optional<std::string> boundary, std::optional<std::string> creasing,
+        [](const Mesh& mesh, const std::string& scheme, const std::string& method, std::optional<int> given_level,
+           std::int64_t seed, std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             return naming_source(mesh, [&] {
                 LIMSURF_CHECK(seed >= 0, InputError, "seed must be >= 0 (got ", seed, ")");
                 const SchemeKind kind = scheme_from(scheme);
@@ -120,8 +122,8 @@ Returns the keys of `--json`, with the arrays 'w', 'exact', 'coexact', 'harmonic
                                 "gram_eigenvalues"_a = to_numpy(Eigen::VectorXd(b.gram_eigenvalues)), "gap"_a = b.gap);
             });
         },
-        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "seed"_a = 1, "boundary"_a = py::none(),
-        "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(), "seed"_a = 1,
+        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(An M1-orthonormal basis of the harmonic 1-forms (closed and co-closed) in the inner products of `method`.
 
 Returns 'forms' (#E × dimension, formsᵀ M1 forms = I), 'dimension' (the numerical rank of projected random

@@ -403,6 +403,8 @@ X: other control points (#V × 3) for the same basis (default the mesh's V). thr
 frames=False leaves out the normal and the curvatures (derivatives only, the cheapest evaluation).
 out: the dict an earlier call returned, for points of the same count: its arrays are filled again in
 place and returned (no allocation; evaluating point batches in a loop this saves a fifth of the time).
+When a point is bad the call raises and out's arrays may already hold some rows of this call (as numpy's
+out= does): do not read them after an error.
 faces as int64 and u, v as float64 C-contiguous arrays are read without a copy.
 The GIL is released while C++ works. Raises InputError naming the first bad point.)")
         .def("weights", &weights, "faces"_a, "u"_a, "v"_a, "order"_a = 0,

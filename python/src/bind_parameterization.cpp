@@ -64,14 +64,15 @@ py::dict parameterize_mesh(const Mesh& mesh, const std::string& scheme, const st
 void bind_parameterization(py::module_& m) {
     m.def(
         "parameterize",
-        [](const Mesh& mesh, const std::string& scheme, const std::string& method, int level,
+        [](const Mesh& mesh, const std::string& scheme, const std::string& method, std::optional<int> given_level,
            const std::string& boundary, std::optional<int> reference_level, std::optional<std::int64_t> max_memory,
            int degree, int tiles, int threads, std::optional<std::string> boundary_rule,
            std::optional<std::string> creasing, std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             return parameterize_mesh(mesh, scheme, method, level, boundary, reference_level, max_memory, degree, tiles,
                                      threads, RuleNames{boundary_rule, creasing, triangles});
         },
-        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "boundary"_a = "free",
+        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(), "boundary"_a = "free",
         "reference_level"_a = py::none(), "max_memory"_a = py::none(), "degree"_a = 6, "tiles"_a = 3, "threads"_a = 0,
         "boundary_rule"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Maps the limit surface of an open mesh to the plane, (u, v) per control vertex (SEC §4.1), as

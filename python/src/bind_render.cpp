@@ -183,6 +183,7 @@ void write_glb_arrays(const std::filesystem::path& path, const py::handle& posit
         s.normals = points_from(normals, "normals");
     }
     if (!colors.is_none()) {
+        require_real_numbers(colors, "colors");
         const auto c = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(colors);
         LIMSURF_CHECK(c && c.ndim() == 2 && (c.shape(1) == 3 || c.shape(1) == 4) && c.shape(0) == n, InputError,
                       "colors: expected shape (", n, ", 3) or (", n, ", 4), sRGB in [0, 1]");

@@ -103,24 +103,27 @@ void bind_sec(py::module_& m) {
         "counter-clockwise); d1 @ d0 == 0 exactly (SEC §2).");
     m.def(
         "inner_products",
-        [](const Mesh& mesh, const std::string& scheme, const std::string& method, int level, bool lumped,
-           std::optional<std::string> boundary, std::optional<std::string> creasing,
+        [](const Mesh& mesh, const std::string& scheme, const std::string& method, std::optional<int> given_level,
+           bool lumped, std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             const InnerProducts ip =
                 inner_products_of(mesh, scheme, method, level, lumped, RuleNames{boundary, creasing, triangles});
             return py::dict("M0"_a = to_scipy(ip.M0), "M1"_a = to_scipy(ip.M1), "M2"_a = to_scipy(ip.M2));
         },
-        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "lumped"_a = false,
+        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(), "lumped"_a = false,
         "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(The inner products M0 (#V × #V), M1 (#E × #E), M2 (#F × #F) on the control mesh (SEC §3.4) as scipy CSR:
 method 'dec' (polygonal, of the control mesh), 'decsnap' (vertices at their limit positions),
-'sec' (Eq. 12: (A_k^L)ᵀ M_k^L A_k^L at level L = `level`), 'secsnap' (Eq. 16). lumped replaces M0 and
+'sec' (Eq. 12: (A_k^L)ᵀ M_k^L A_k^L at level L = `level`, None: 3), 'secsnap' (Eq. 16); `level` with
+'dec' or 'decsnap' is refused (it would be ignored), in every function that takes a method. lumped replaces M0 and
 M2 by diag(M 1) (§3.5). scheme: 'loop' or 'catmull-clark' (the form subdivision rules).)");
     m.def(
         "operators",
-        [](const Mesh& mesh, const std::string& scheme, const std::string& method, int level, bool lumped,
-           std::optional<std::string> boundary, std::optional<std::string> creasing,
+        [](const Mesh& mesh, const std::string& scheme, const std::string& method, std::optional<int> given_level,
+           bool lumped, std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             InnerProducts ip =
                 inner_products_of(mesh, scheme, method, level, lumped, RuleNames{boundary, creasing, triangles});
             const Operators ops(mesh.mesh.topology(), std::move(ip));
@@ -129,40 +132,44 @@ M2 by diag(M 1) (§3.5). scheme: 'loop' or 'catmull-clark' (the form subdivision
                             "M1"_a = to_scipy(m_.M1), "M2"_a = to_scipy(m_.M2),
                             "laplacian"_a = to_scipy(ops.laplacian()), "divergence"_a = to_scipy(ops.divergence()));
         },
-        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "lumped"_a = false,
+        "mesh"_a, "scheme"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(), "lumped"_a = false,
         "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(The operators of SEC Table 1 as scipy CSR: d0, d1, M0, M1, M2 (as inner_products()), the weak
 Laplacian L = d0ᵀ M1 d0 (#V × #V, symmetric positive semi-definite, constants in its kernel) and the
 divergence d0ᵀ M1 (#V × #E). The strong Laplacian is M0⁻¹ L.)");
     m.def(
         "poisson",
-        [](const Mesh& mesh, const std::string& scheme, const py::handle& rhs, const std::string& method, int level,
-           bool lumped, int degree, int tiles, const py::handle& boundary_values, std::optional<int> reference_level,
+        [](const Mesh& mesh, const std::string& scheme, const py::handle& rhs, const std::string& method,
+           std::optional<int> given_level, bool lumped, std::optional<int> degree, std::optional<int> tiles,
+           const py::handle& boundary_values, std::optional<int> reference_level,
            std::optional<std::int64_t> max_memory, std::optional<std::string> boundary,
            std::optional<std::string> creasing, std::optional<std::string> triangles, int threads) {
+            const int level = level_for(method, given_level);
             LIMSURF_CHECK(threads >= 0, InputError, "threads must be >= 0 (0: all cores), not ", threads);
             SurfacePoissonOptions options;
             options.num_threads = threads;
             options.method = parse_laplacian_method(method);
             options.level = level;
             options.lumped = lumped;
-            options.degree = degree;
-            options.tiles = tiles;
+            require_iga_for_quadrature(options.method, method, degree, tiles);
+            options.degree = degree.value_or(options.degree);
+            options.tiles = tiles.value_or(options.tiles);
             options.scheme_options = rules_for(mesh.mesh, RuleNames{boundary, creasing, triangles});
             options.reference_level = reference_level;
             options.max_memory = max_memory;
             return poisson(mesh, scheme, rhs, options, boundary_values);
         },
-        "mesh"_a, "scheme"_a, "rhs"_a, py::kw_only(), "method"_a = "sec", "level"_a = 3, "lumped"_a = false,
-        "degree"_a = 8, "tiles"_a = 6, "boundary_values"_a = py::none(), "reference_level"_a = py::none(),
-        "max_memory"_a = py::none(), "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
-        "threads"_a = 0,
+        "mesh"_a, "scheme"_a, "rhs"_a, py::kw_only(), "method"_a = "sec", "level"_a = py::none(), "lumped"_a = false,
+        "degree"_a = py::none(), "tiles"_a = py::none(), "boundary_values"_a = py::none(),
+        "reference_level"_a = py::none(), "max_memory"_a = py::none(), "boundary"_a = py::none(),
+        "creasing"_a = py::none(), "triangles"_a = py::none(), "threads"_a = 0,
         R"(Solves −Δu = f on the limit surface with every unknown on the control mesh: `limsurf poisson`.
 
 rhs: a function f(P) of an (n, 3) position array returning n values (integrated where the method
 integrates: level L for sec, the quadrature points for iga), or #V values at the control vertices.
 method: 'dec', 'decsnap', 'sec', 'secsnap' (SEC §3 inner products; level L, lumped) or 'iga'
-(Galerkin with the limit basis; quadrature degree and tiles). Closed meshes: the mean of f is removed
+(Galerkin with the limit basis; quadrature `degree` per tile and `tiles` levels towards extraordinary
+vertices, None: 8 and 6; other methods refuse them). Closed meshes: the mean of f is removed
 and u has mean 0. Open meshes: boundary_values (None = 0, a number, a function of position, or #V
 values) at the boundary vertices. reference_level K: also solve with DEC on the K-times subdivided
 mesh and report the relative L2/Linf differences (needs rhs as a function). threads: for the sec

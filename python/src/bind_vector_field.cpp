@@ -84,9 +84,10 @@ and the mean of the faces' vectors), 'fit_residual' and 'level'.)");
         "design_vector_field",
         [](const Mesh& mesh, const std::string& scheme, const py::iterable& sources, const py::iterable& sinks,
            const py::iterable& vortices, const py::iterable& strokes, double weight, const std::string& method,
-           int level, const std::string& vertex_mass, int sample_level, std::optional<int> reference_level,
-           std::optional<std::string> boundary, std::optional<std::string> creasing,
+           std::optional<int> given_level, const std::string& vertex_mass, int sample_level,
+           std::optional<int> reference_level, std::optional<std::string> boundary, std::optional<std::string> creasing,
            std::optional<std::string> triangles) {
+            const int level = level_for(method, given_level);
             return naming_source(mesh, [&] {
                 const VectorFieldConstraints c = constraints_from(sources, sinks, vortices, strokes, weight);
                 const SchemeKind kind = scheme_from(scheme);
@@ -132,9 +133,9 @@ and the mean of the faces' vectors), 'fit_residual' and 'level'.)");
             });
         },
         "mesh"_a, "scheme"_a, py::kw_only(), "sources"_a = py::list(), "sinks"_a = py::list(),
-        "vortices"_a = py::list(), "strokes"_a = py::list(), "weight"_a = 1000.0, "method"_a = "sec", "level"_a = 3,
-        "vertex_mass"_a = "exact", "sample_level"_a = 2, "reference_level"_a = py::none(), "boundary"_a = py::none(),
-        "creasing"_a = py::none(), "triangles"_a = py::none(),
+        "vortices"_a = py::list(), "strokes"_a = py::list(), "weight"_a = 1000.0, "method"_a = "sec",
+        "level"_a = py::none(), "vertex_mass"_a = "exact", "sample_level"_a = 2, "reference_level"_a = py::none(),
+        "boundary"_a = py::none(), "creasing"_a = py::none(), "triangles"_a = py::none(),
         R"(Designs the smoothest tangent field (Fisher et al. 2007; SEC §4.3): `limsurf vector-field`.
 
 Minimises the anti-holomorphic energy ½ wᵀ L1 w (SEC Eq. 4) plus soft penalties; vertex_mass 'exact' (default:

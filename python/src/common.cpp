@@ -68,6 +68,24 @@ void check_threads(int threads) {
     LIMSURF_CHECK(threads >= 0, InputError, "threads: expected 0 (all cores) or a positive count, got ", threads);
 }
 
+int level_for(const std::string& method, const std::optional<int>& level) {
+    if (!level) {
+        return 3;
+    }
+    LIMSURF_CHECK(has_level(parse_laplacian_method(method)), InputError,
+                  "level applies to method 'sec' and 'secsnap', not to '", method, "'");
+    return *level;
+}
+
+void require_iga_for_quadrature(LaplacianMethod method, const std::string& method_name,
+                                const std::optional<int>& degree, const std::optional<int>& tiles) {
+    if (method == LaplacianMethod::Iga) {
+        return;
+    }
+    LIMSURF_CHECK(!degree, InputError, "degree applies to method 'iga', not to '", method_name, "'");
+    LIMSURF_CHECK(!tiles, InputError, "tiles applies to method 'iga', not to '", method_name, "'");
+}
+
 std::string located_message(const Error& error, const SourceMap& source) {
     const std::string message = error.what();
     if (source.file.empty() || message.compare(0, source.file.size() + 1, source.file + ":") == 0) {

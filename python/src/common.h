@@ -8,6 +8,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include "limsurf/apps/laplacian_method.h"
 #include "limsurf/core/error.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/mesh/control_mesh.h"
@@ -56,6 +57,17 @@ struct RuleNames {
 /// @brief Refuses a negative thread count (0 means all cores), as every binding with `threads` does.
 /// @throws InputError "threads: …"
 void check_threads(int threads);
+
+/// @brief The SEC level L of @p method: @p level when given, else 3 (the CLI's default).
+/// @throws InputError when a level is given to a method that has none (dec, decsnap, iga): it would be
+///   ignored without a word (the CLI refuses --level alike); as parse_laplacian_method for a bad name
+[[nodiscard]] int level_for(const std::string& method, const std::optional<int>& level);
+
+/// @brief Refuses `degree` or `tiles` (iga's quadrature) given with another method, which would
+///   ignore them without a word (the CLI refuses --degree and --tiles alike).
+/// @throws InputError naming the argument and the method
+void require_iga_for_quadrature(LaplacianMethod method, const std::string& method_name,
+                                const std::optional<int>& degree, const std::optional<int>& tiles);
 
 /// The message of @p error prefixed with the file and line of the mesh element it is about (when
 /// the mesh came from a file and the error is about one of its elements), as the CLI does.

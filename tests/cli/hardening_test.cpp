@@ -697,5 +697,43 @@ TEST(CliHardening, DegenerateNumbersAreNamedForWhatTheyAre) {
     EXPECT_GT(json_number(long_but_fine.out, "distance_max"), 0.5) << long_but_fine.out;
 }
 
+// Before: --level with dec or iga, and --degree or --tiles with dec or sec, were ignored without a word
+// (a user comparing "sec --level 1" with "dec --level 1" compared nothing); --lumped with iga already
+// was refused.
+TEST(CliHardening, OptionsTheMethodDoesNotUseAreRefused) {
+    const std::string cube = bundled("cube");
+    const std::vector<std::string> poisson{"poisson", cube, "--scheme", "catmull-clark", "--rhs", "x"};
+    const auto with = [](std::vector<std::string> args, const std::vector<std::string>& more) {
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    };
+    expect_one_error(limsurf(with(poisson, {"--method", "dec", "--level", "2"})),
+                     "--level applies to --method sec and secsnap, not to dec");
+    expect_one_error(limsurf(with(poisson, {"--method", "iga", "--level", "2"})),
+                     "--level applies to --method sec and secsnap, not to iga");
+    expect_one_error(limsurf(with(poisson, {"--degree", "4"})), "--degree applies to --method iga, not to sec");
+    expect_one_error(limsurf(with(poisson, {"--method", "secsnap", "--tiles", "2"})),
+                     "--tiles applies to --method iga, not to secsnap");
+    expect_one_error(limsurf({"geodesic", cube, "--scheme", "catmull-clark", "--source", "0", "--method", "decsnap",
+                              "--level", "1"}),
+                     "--level applies to --method sec and secsnap, not to decsnap");
+    expect_one_error(
+        limsurf({"hodge", cube, "--scheme", "catmull-clark", "--method", "dec", "--level", "1", "--random", "1"}),
+        "--level applies to --method sec and secsnap, not to dec");
+    expect_one_error(limsurf({"vector-field", cube, "--scheme", "catmull-clark", "--method", "dec", "--level", "1",
+                              "--source", "0:1"}),
+                     "--level applies to --method sec and secsnap, not to dec");
+    expect_one_error(
+        limsurf({"parameterize", bundled("quad_grid"), "--scheme", "catmull-clark", "--method", "iga", "--level", "1"}),
+        "--level applies to --method sec and secsnap, not to iga");
+    // What each method uses still runs: iga's quadrature, sec's level, and parameterize's distortion
+    // quadrature (--degree there is not iga's) with any method.
+    EXPECT_EQ(limsurf(with(poisson, {"--method", "iga", "--degree", "2", "--tiles", "1"})).exit_code, 0);
+    EXPECT_EQ(limsurf(with(poisson, {"--method", "sec", "--level", "1"})).exit_code, 0);
+    const CliRun dec_distortion = limsurf({"parameterize", bundled("quad_grid"), "--scheme", "catmull-clark",
+                                           "--method", "dec", "--degree", "2", "--tiles", "1"});
+    EXPECT_EQ(dec_distortion.exit_code, 0) << dec_distortion.err;
+}
+
 }  // namespace
 }  // namespace limsurf

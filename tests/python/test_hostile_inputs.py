@@ -118,3 +118,68 @@ def test_a_memory_budget_must_be_positive(mesh_path):
     with pytest.raises(limsurf.InputError, match=r"the memory budget \(max_memory\) must be positive, got -1"):
         limsurf.poisson(mesh, "catmull-clark", lambda P: P[:, 0], method="sec", level=1, reference_level=2,
                         max_memory=-1)
+
+
+def test_arguments_the_method_does_not_use_are_refused(mesh_path):
+    """degree and tiles are iga's quadrature: with sec or dec they were ignored without a word; a
+    gradient_level of -1 was the library's 'not given' and silently meant None."""
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"degree applies to method 'iga', not to 'sec'"):
+        limsurf.poisson(mesh, "catmull-clark", np.arange(8.0), degree=4)
+    with pytest.raises(limsurf.InputError, match=r"tiles applies to method 'iga', not to 'dec'"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", 0, method="dec", tiles=2)
+    with pytest.raises(limsurf.InputError, match=r"degree applies to method 'iga', not to 'secsnap'"):
+        limsurf.HeatGeodesics(mesh, "catmull-clark", method="secsnap", level=1, degree=3)
+    with pytest.raises(limsurf.InputError, match=r"gradient_level must be >= 0 \(or None\), not -1"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", 0, level=1, gradient="subdivided", gradient_level=-1)
+    iga = limsurf.geodesic_distance(mesh, "catmull-clark", 0, method="iga", degree=2, tiles=1)
+    assert iga["quadrature"] == {"degree": 2, "tiles": 1}
+    default = limsurf.poisson(mesh, "catmull-clark", np.arange(8.0), method="iga")
+    assert default["quadrature"] == {"degree": 8, "tiles": 6}
+
+
+def test_a_complex_macroscopic_deformation_is_refused(mesh_path):
+    """The imaginary part was dropped with only numpy's ComplexWarning."""
+    mesh = limsurf.read_mesh(mesh_path("rve_block"))
+    with pytest.raises(limsurf.InputError, match=r"macro_deformation: expected real numbers, got dtype complex128"):
+        limsurf.elasticity(mesh, macro_deformation=np.eye(2) * (1 + 0.5j))
+
+
+def test_conflicting_repeated_tags_warn_and_the_last_wins(mesh_path):
+    """Two tags of one edge with different sharpness were taken without a word, and a later 0 was
+    skipped (OpenSubdiv, and now limsurf, use the last tag)."""
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    V, F = np.array(mesh.V), np.array(mesh.F)
+    a, b = F[0][0], F[0][1]
+    with pytest.warns(limsurf.MeshWarning, match=r"crease \(.*\) has sharpness 0 here and 2 at tag 0; the last tag is used"):
+        cleared = limsurf.Mesh(V, F, creases=[(a, b, 2.0), (b, a, 0.0)])
+    assert len(cleared.creases) == 0
+    with pytest.warns(limsurf.MeshWarning, match=r"corner 3 has sharpness 1\.5 here and 10 at tag 0"):
+        later = limsurf.Mesh(V, F, corners=[(3, 10.0), (3, 1.5)])
+    assert later.corners.tolist() == [[3.0, 1.5]]
+
+
+def test_a_level_is_refused_by_methods_without_one(mesh_path):
+    """level (SEC's L) with dec, decsnap or iga was ignored without a word, as --level in the CLI was."""
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"level applies to method 'sec' and 'secsnap', not to 'dec'"):
+        limsurf.operators(mesh, "catmull-clark", method="dec", level=2)
+    with pytest.raises(limsurf.InputError, match=r"not to 'iga'"):
+        limsurf.poisson(mesh, "catmull-clark", np.arange(8.0), method="iga", level=2)
+    with pytest.raises(limsurf.InputError, match=r"not to 'decsnap'"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", 0, method="decsnap", level=1)
+    with pytest.raises(limsurf.InputError, match=r"not to 'dec'"):
+        limsurf.harmonic_basis(mesh, "catmull-clark", method="dec", level=1)
+    with pytest.raises(limsurf.InputError, match=r"not to 'dec'"):
+        limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], method="dec", level=1)
+    assert limsurf.poisson(mesh, "catmull-clark", np.arange(8.0))["level"] == 3  # the default, for sec
+    assert limsurf.operators(mesh, "catmull-clark", method="dec")["d0"].shape == (12, 8)
+
+
+def test_a_weight_too_stiff_for_the_energy_is_refused(mesh_path):
+    """weight=2**63 failed as 'not positive definite (degenerate geometry?)' on genus2, and on the cube a
+    weight of 1e18 gave 4 000 times the minimal energy without an error."""
+    for name in ("genus2", "cube"):
+        mesh = limsurf.read_mesh(mesh_path(name))
+        with pytest.raises(limsurf.InputError, match=r"times stiffer than the energy: .* may have here is about"):
+            limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], sinks=[(6, 1.0)], weight=2**63)
