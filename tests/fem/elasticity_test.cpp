@@ -84,6 +84,25 @@ Solved solve_periodic(const Cell& c, const ElasticBody& body, const Eigen::Matri
     return s;
 }
 
+// A mechanism (the reduced stiffness singular) is an exception and nothing else: CHOLMOD used to print
+// "CHOLMOD warning: matrix not positive definite" to stdout by itself, and a library prints nothing.
+TEST(ElasticitySolve, AMechanismIsAnExceptionAndPrintsNothing) {
+    SparseMatrix K(4, 4);
+    K.insert(0, 0) = 1.0;
+    K.insert(1, 1) = 0.0;
+    K.insert(2, 2) = 1.0;
+    K.insert(3, 3) = 1.0;
+    const Points X = Points::Zero(2, 3);
+    ElasticConstraints constraints;
+    constraints.fixed = {false, false, false, true};
+    constraints.values = Eigen::VectorXd::Zero(4);
+    testing::internal::CaptureStdout();
+    testing::internal::CaptureStderr();
+    EXPECT_THROW((void)solve_elasticity(K, Eigen::VectorXd::Ones(4), X, constraints), NumericalError);
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(ElasticityMatrix, PlaneStrainAndStressFromLame) {
     const ElasticMaterial m{2.5, 0.3};
     const double mu = m.E / (2.0 * (1.0 + m.nu));

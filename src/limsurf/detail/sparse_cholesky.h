@@ -30,6 +30,11 @@ class SparseCholesky {
                       "the matrix of ", what,
                       " has an entry that is not finite: its data overflowed (a material constant, weight or "
                       "coordinate too large?)");
+#ifdef LIMSURF_HAVE_CHOLMOD
+        // CHOLMOD prints its warnings ("matrix not positive definite") to stdout by itself; the library
+        // prints nothing: the failure is reported by the exception below.
+        solver_.cholmod().print = 0;
+#endif
         solver_.compute(A_);
         LIMSURF_CHECK(solver_.info() == Eigen::Success, NumericalError, "the Cholesky factorisation of ", what,
                       " failed: the matrix is not positive definite (degenerate geometry?)");
