@@ -26,10 +26,11 @@ struct OsdPoint {
     }
 };
 
-/// @brief Far's refiner for @p t under Loop, bilinear or Catmull–Clark (any other kind), with @p o
-///   mapped onto Sdc::Options; nullptr when Far refuses the topology.
-inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner(const Topology& t, SchemeKind kind,
-                                                                                 const SchemeOptions& o) {
+/// @brief Far's refiner for the faces of @p t with the tags @p tags as a file would list them (repeats
+///   included: Far applies them in order) under Loop, bilinear or Catmull–Clark (any other kind), with
+///   @p o mapped onto Sdc::Options; nullptr when Far refuses the topology.
+inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner>
+make_opensubdiv_refiner(const Topology& t, const SharpnessTags& tags, SchemeKind kind, const SchemeOptions& o) {
     namespace Far = OpenSubdiv::Far;
     namespace Sdc = OpenSubdiv::Sdc;
     Sdc::Options options;
@@ -43,26 +44,21 @@ inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner
                                                                               : Sdc::Options::TRI_SUB_CATMARK);
     // The factory copies everything out of the descriptor during Create().
     std::vector<int> degrees;
-    std::vector<Far::Index> crease_pairs, corners, holes;
-    std::vector<float> crease_weights, corner_weights;
     for (Index f = 0; f < t.num_faces(); ++f) {
         degrees.push_back(t.face_degree(f));
-        if (t.is_hole(f)) {
-            holes.push_back(f);
-        }
     }
-    for (Index e = 0; e < t.num_edges(); ++e) {
-        if (t.edge_sharpness(e) > 0.0) {
-            crease_pairs.push_back(t.edge_vertices(e)[0]);
-            crease_pairs.push_back(t.edge_vertices(e)[1]);
-            crease_weights.push_back(static_cast<float>(t.edge_sharpness(e)));
-        }
+    std::vector<Far::Index> crease_pairs, corners, holes;
+    std::vector<float> crease_weights, corner_weights;
+    for (const CreaseTag& c : tags.creases) {
+        crease_pairs.insert(crease_pairs.end(), {c.v0, c.v1});
+        crease_weights.push_back(static_cast<float>(c.sharpness));
     }
-    for (Index v = 0; v < t.num_vertices(); ++v) {
-        if (t.vertex_sharpness(v) > 0.0) {
-            corners.push_back(v);
-            corner_weights.push_back(static_cast<float>(t.vertex_sharpness(v)));
-        }
+    for (const CornerTag& c : tags.corners) {
+        corners.push_back(c.vertex);
+        corner_weights.push_back(static_cast<float>(c.sharpness));
+    }
+    for (const HoleTag& h : tags.holes) {
+        holes.push_back(h.face);
     }
     Far::TopologyDescriptor desc;
     desc.numVertices = t.num_vertices();
@@ -82,6 +78,13 @@ inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner
                       : kind == SchemeKind::Bilinear ? Sdc::SCHEME_BILINEAR
                                                      : Sdc::SCHEME_CATMARK;
     return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(type, options)));
+}
+
+/// @brief Far's refiner for @p t with its own sharpness and holes (Topology::sharpness_tags(): each
+///   sharp edge and vertex once, in index order).
+inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_opensubdiv_refiner(const Topology& t, SchemeKind kind,
+                                                                                 const SchemeOptions& o) {
+    return make_opensubdiv_refiner(t, t.sharpness_tags(), kind, o);
 }
 
 /// The volume enclosed by the faces of a refined level (each face fanned from its first corner), about

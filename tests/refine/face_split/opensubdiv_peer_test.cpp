@@ -107,36 +107,7 @@ TEST(OpenSubdivPeer, TheLastOfRepeatedTagsWins) {
     tags.corners = {{4, 10.0, 0}, {4, 0.0, 0}, {6, 1.0, 0}, {6, 2.5, 0}};
     const Topology ours = with_tags(plain, tags);
 
-    std::vector<int> degrees;
-    for (Index f = 0; f < plain.num_faces(); ++f) {
-        degrees.push_back(plain.face_degree(f));
-    }
-    std::vector<Far::Index> pairs;
-    std::vector<float> weights;
-    for (const CreaseTag& c : tags.creases) {
-        pairs.insert(pairs.end(), {c.v0, c.v1});
-        weights.push_back(static_cast<float>(c.sharpness));
-    }
-    std::vector<Far::Index> corners;
-    std::vector<float> corner_weights;
-    for (const CornerTag& c : tags.corners) {
-        corners.push_back(c.vertex);
-        corner_weights.push_back(static_cast<float>(c.sharpness));
-    }
-    Far::TopologyDescriptor desc;
-    desc.numVertices = plain.num_vertices();
-    desc.numFaces = plain.num_faces();
-    desc.numVertsPerFace = degrees.data();
-    desc.vertIndicesPerFace = plain.all_face_vertices().data();
-    desc.numCreases = static_cast<int>(weights.size());
-    desc.creaseVertexIndexPairs = pairs.data();
-    desc.creaseWeights = weights.data();
-    desc.numCorners = static_cast<int>(corners.size());
-    desc.cornerVertexIndices = corners.data();
-    desc.cornerWeights = corner_weights.data();
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    const std::unique_ptr<Far::TopologyRefiner> far(
-        Factory::Create(desc, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, OpenSubdiv::Sdc::Options())));
+    const auto far = make_opensubdiv_refiner(plain, tags, SchemeKind::CatmullClark, SchemeOptions{});
     ASSERT_NE(far, nullptr);
     const Far::TopologyLevel& level = far->GetLevel(0);
     int sharp_edges = 0;
