@@ -84,23 +84,27 @@ Solved solve_periodic(const Cell& c, const ElasticBody& body, const Eigen::Matri
     return s;
 }
 
-// A mechanism (the reduced stiffness singular) is an exception and nothing else: CHOLMOD used to print
-// "CHOLMOD warning: matrix not positive definite" to stdout by itself, and a library prints nothing.
-TEST(ElasticitySolve, AMechanismIsAnExceptionAndPrintsNothing) {
-    SparseMatrix K(4, 4);
-    K.insert(0, 0) = 1.0;
-    K.insert(1, 1) = 0.0;
-    K.insert(2, 2) = 1.0;
-    K.insert(3, 3) = 1.0;
-    const Points X = Points::Zero(2, 3);
-    ElasticConstraints constraints;
-    constraints.fixed = {false, false, false, true};
-    constraints.values = Eigen::VectorXd::Zero(4);
-    testing::internal::CaptureStdout();
-    testing::internal::CaptureStderr();
-    EXPECT_THROW((void)solve_elasticity(K, Eigen::VectorXd::Ones(4), X, constraints), NumericalError);
-    EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
-    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+// A mechanism (the reduced stiffness singular) or an indefinite stiffness is an exception and nothing
+// else. Before: CHOLMOD printed "CHOLMOD warning: matrix not positive definite" to stdout by itself (a
+// library prints nothing), and its simplicial LDLᵀ, which flags only zero pivots, solved the indefinite
+// system (pivot −1) without a word.
+TEST(ElasticitySolve, AMechanismOrAnIndefiniteStiffnessIsAnExceptionAndPrintsNothing) {
+    for (const double pivot : {0.0, -1.0, -1e-6}) {
+        SparseMatrix K(4, 4);
+        K.insert(0, 0) = 1.0;
+        K.insert(1, 1) = pivot;
+        K.insert(2, 2) = 1.0;
+        K.insert(3, 3) = 1.0;
+        const Points X = Points::Zero(2, 3);
+        ElasticConstraints constraints;
+        constraints.fixed = {false, false, false, true};
+        constraints.values = Eigen::VectorXd::Zero(4);
+        testing::internal::CaptureStdout();
+        testing::internal::CaptureStderr();
+        EXPECT_THROW((void)solve_elasticity(K, Eigen::VectorXd::Ones(4), X, constraints), NumericalError) << pivot;
+        EXPECT_EQ(testing::internal::GetCapturedStdout(), "") << pivot;
+        EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << pivot;
+    }
 }
 
 TEST(ElasticityMatrix, PlaneStrainAndStressFromLame) {

@@ -36,7 +36,8 @@ class SparseCholesky {
         solver_.cholmod().print = 0;
 #endif
         solver_.compute(A_);
-        LIMSURF_CHECK(solver_.info() == Eigen::Success, NumericalError, "the Cholesky factorisation of ", what,
+        LIMSURF_CHECK(solver_.info() == Eigen::Success && smallest_relative_pivot() >= min_relative_pivot,
+                      NumericalError, "the Cholesky factorisation of ", what,
                       " failed: the matrix is not positive definite (degenerate geometry?)");
     }
     [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
@@ -63,9 +64,49 @@ class SparseCholesky {
     }
 
   private:
+    // The simplicial LDLᵀ factorisations (CHOLMOD's for small or very sparse systems, and Eigen's) flag
+    // only a zero pivot: an indefinite matrix was solved without a word. A negative pivot of rounding
+    // size is not refused: singular but consistent systems (the Galerkin stiffness of the cube, whose
+    // limit basis is linearly dependent) have pivots that round to either sign.
+    static constexpr double min_relative_pivot = -1e-10;
+
+    /// The smallest pivot D_k of an LDLᵀ factor over the largest |D_k|; 1 for an LLᵀ factor, whose
+    /// factorisation refuses a non-positive pivot itself.
+    [[nodiscard]] double smallest_relative_pivot() const {
+#ifdef LIMSURF_HAVE_CHOLMOD
+        return solver_.smallest_relative_pivot();
+#else
+        return relative_minimum(solver_.vectorD());
+#endif
+    }
+    static double relative_minimum(const Eigen::VectorXd& d) {
+        const double largest = d.cwiseAbs().maxCoeff();
+        return largest > 0.0 ? d.minCoeff() / largest : 1.0;
+    }
+
+#ifdef LIMSURF_HAVE_CHOLMOD
+    // Eigen's wrapper, with the factor's pivots read (Eigen keeps the factor protected).
+    class Cholmod : public Eigen::CholmodDecomposition<ColMatrix, Eigen::Lower> {
+      public:
+        [[nodiscard]] double smallest_relative_pivot() const {
+            const cholmod_factor* f = this->m_cholmodFactor;
+            if (f == nullptr || f->is_super != 0 || f->is_ll != 0 || f->n == 0) {
+                return 1.0;
+            }
+            const auto* starts = static_cast<const ColMatrix::StorageIndex*>(f->p);
+            const auto* values = static_cast<const double*>(f->x);
+            Eigen::VectorXd d(static_cast<Eigen::Index>(f->n));
+            for (Eigen::Index k = 0; k < d.size(); ++k) {
+                d[k] = values[starts[k]];  // the diagonal comes first in each column of an LDLᵀ factor
+            }
+            return relative_minimum(d);
+        }
+    };
+#endif
+
     ColMatrix A_;
 #ifdef LIMSURF_HAVE_CHOLMOD
-    Eigen::CholmodDecomposition<ColMatrix, Eigen::Lower> solver_;
+    Cholmod solver_;
 #else
     Eigen::SimplicialLDLT<ColMatrix> solver_;
 #endif
