@@ -3,6 +3,7 @@
 #include <array>
 
 #include "arrays.h"
+#include "limsurf/sec/inner_products.h"
 
 namespace limsurf::python {
 namespace {
@@ -70,7 +71,7 @@ void check_threads(int threads) {
 
 int level_for(const std::string& method, const std::optional<int>& level) {
     if (!level) {
-        return 3;
+        return InnerProductOptions{}.level;  // the library's default, as every application's options use
     }
     LIMSURF_CHECK(has_level(parse_laplacian_method(method)), InputError,
                   "level applies to method 'sec' and 'secsnap', not to '", method, "'");

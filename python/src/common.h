@@ -58,7 +58,7 @@ struct RuleNames {
 /// @throws InputError "threads: …"
 void check_threads(int threads);
 
-/// @brief The SEC level L of @p method: @p level when given, else 3 (the CLI's default).
+/// @brief The SEC level L of @p method: @p level when given, else InnerProductOptions' default (3).
 /// @throws InputError when a level is given to a method that has none (dec, decsnap, iga): it would be
 ///   ignored without a word (the CLI refuses --level alike); as parse_laplacian_method for a bad name
 [[nodiscard]] int level_for(const std::string& method, const std::optional<int>& level);
