@@ -1,11 +1,11 @@
 // Uniform refinement, 2 levels, topology + positions, on ~100k-face meshes:
 // limsurf (Hierarchy: every level's child topology, S0, provenance, then S0
-// products; refine_finest: the same, keeping only the finest level; refine_finest_faces: of the finest level
-// only its face list, as `limsurf subdivide` and Far's default rows) against OpenSubdiv Far
-// (TopologyRefiner::RefineUniform + PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's uniform
-// subdividers, each in the same binary and run. CGAL and OpenMesh refine in place, so each iteration starts from a copy
-// made outside the timer. limsurf's rows take the thread count as argument (/1: single-threaded, as the peers; /2: two
-// threads).
+// products, or carried as the rows are built (Hierarchy with its control points, "points"); refine_finest: the same,
+// keeping only the finest level; refine_finest_faces: of the finest level only its face list, as `limsurf subdivide`
+// and Far's default rows) against OpenSubdiv Far (TopologyRefiner::RefineUniform + PrimvarRefiner::Interpolate), CGAL
+// Subdivision_method_3 and OpenMesh's uniform subdividers, each in the same binary and run. CGAL and OpenMesh refine in
+// place, so each iteration starts from a copy made outside the timer. limsurf's rows take the thread count as argument
+// (/1: single-threaded, as the peers; /2: two threads).
 #include <vector>
 
 #include <CGAL/Simple_cartesian.h>
@@ -114,6 +114,16 @@ void limsurf_refine(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKi
     });
 }
 
+/// The Hierarchy built with the control points: every level's topology, S0, provenance and positions,
+/// the positions carried as each step builds its rows (the same bits as the S0 products above).
+void limsurf_refine_points(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, const limsurf::RefineOptions& options) {
+        const limsurf::Hierarchy hierarchy(base, options, mesh.positions);
+        benchmark::DoNotOptimize(hierarchy.positions(levels).data());
+        return hierarchy.topology(levels).num_faces();
+    });
+}
+
 /// refine_finest: the same topology and positions, only the finest level kept.
 void limsurf_refine_finest(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
     limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, const limsurf::RefineOptions& options) {
@@ -138,6 +148,15 @@ void BM_limsurf_CatmullClark(benchmark::State& state) {
 }
 void BM_limsurf_Loop(benchmark::State& state) {
     limsurf_refine(state, triangles(), limsurf::SchemeKind::Loop);
+}
+void BM_limsurf_points_CatmullClark(benchmark::State& state) {
+    limsurf_refine_points(state, quads(), limsurf::SchemeKind::CatmullClark);
+}
+void BM_limsurf_points_Loop(benchmark::State& state) {
+    limsurf_refine_points(state, triangles(), limsurf::SchemeKind::Loop);
+}
+void BM_limsurf_points_DooSabin(benchmark::State& state) {
+    limsurf_refine_points(state, quads(), limsurf::SchemeKind::DooSabin);
 }
 void BM_limsurf_finest_CatmullClark(benchmark::State& state) {
     limsurf_refine_finest(state, quads(), limsurf::SchemeKind::CatmullClark);
@@ -329,6 +348,7 @@ void BM_OpenMesh_Loop(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_limsurf_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_points_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_faces_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -336,6 +356,7 @@ BENCHMARK(BM_OpenSubdiv_full_CatmullClark)->Unit(benchmark::kMillisecond)->UseRe
 BENCHMARK(BM_CGAL_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_points_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_faces_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -343,6 +364,7 @@ BENCHMARK(BM_OpenSubdiv_full_Loop)->Unit(benchmark::kMillisecond)->UseRealTime()
 BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_points_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_faces_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_DooSabin)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -44,14 +44,12 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
                      SourceMap{}, ValidationReport{}});
         }
         std::optional<Hierarchy> hierarchy;
-        Points positions;
         {
             const py::gil_scoped_release release;
-            hierarchy.emplace(mesh.mesh.topology(), options);
-            positions = hierarchy->positions(levels, mesh.mesh.positions());
+            hierarchy.emplace(mesh.mesh.topology(), options, mesh.mesh.positions());  // positions carried
         }
         py::object finest =
-            py::cast(Mesh{ControlMesh(hierarchy->topology(levels), std::move(positions), mesh.mesh.hints()),
+            py::cast(Mesh{ControlMesh(hierarchy->topology(levels), hierarchy->positions(levels), mesh.mesh.hints()),
                           SourceMap{}, ValidationReport{}});
         py::dict ops;
         ops["S0"] = to_scipy(hierarchy->accumulated(levels));

@@ -295,10 +295,14 @@ void expect_faces_equal_finest(const FinestFaces& faces, const FinestLevel& fine
     }
 }
 
+void expect_built_with_points_equals_plain(const Hierarchy& plain, const Topology& base, const Points& control_points,
+                                           const RefineOptions& options);
+
 void expect_finest_equals_hierarchy(const Topology& base, const Points& control_points, const RefineOptions& options,
                                     const std::string& name) {
     SCOPED_TRACE(name + " " + to_string(options.scheme) + " L = " + std::to_string(options.levels));
     const Hierarchy hierarchy(base, options);
+    expect_built_with_points_equals_plain(hierarchy, base, control_points, options);
     const FinestLevel finest = refine_finest(base, control_points, options);
     const Topology& expected = hierarchy.topology(options.levels);
     ASSERT_EQ(finest.topology.num_faces(), expected.num_faces());
@@ -482,6 +486,53 @@ void expect_same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
     EXPECT_TRUE(std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr()));
 }
 
+/// A Hierarchy built with its control points carries them through each step's rows
+/// (StepRun::keep_matrix): every level's topology, S0 and provenance must be the plain Hierarchy's,
+/// and its positions those of positions(level, X), bit for bit.
+void expect_built_with_points_equals_plain(const Hierarchy& plain, const Topology& base, const Points& control_points,
+                                           const RefineOptions& options) {
+    const Hierarchy carried(base, options, control_points);
+    ASSERT_TRUE(carried.has_positions());
+    EXPECT_FALSE(plain.has_positions());
+    ASSERT_EQ(carried.num_steps(), plain.num_steps());
+    EXPECT_TRUE((carried.positions(0).array() == control_points.array()).all());
+    for (int l = 1; l <= plain.num_steps(); ++l) {
+        SCOPED_TRACE("carried, level " + std::to_string(l));
+        expect_same_topology(carried.topology(l), plain.topology(l));
+        expect_same_matrix(carried.step(l).S0, plain.step(l).S0);
+        const Provenance& got = carried.step(l).provenance;
+        const Provenance& want = plain.step(l).provenance;
+        EXPECT_EQ(got.vertex_parent_kind, want.vertex_parent_kind);
+        EXPECT_EQ(got.vertex_parent, want.vertex_parent);
+        EXPECT_EQ(got.face_parent_kind, want.face_parent_kind);
+        EXPECT_EQ(got.face_parent, want.face_parent);
+        EXPECT_EQ(got.face_parent_corner, want.face_parent_corner);
+        const Points expected = plain.positions(l, control_points);
+        ASSERT_EQ(carried.positions(l).rows(), expected.rows());
+        EXPECT_TRUE((carried.positions(l).array() == expected.array()).all()) << "positions differ";
+    }
+}
+
+/// The steps with forms (refine_with_forms) build their S0 first: the positions are its products,
+/// as positions(level, X) takes them. Asking a hierarchy built without points for them, or giving
+/// points of the wrong size, is an InputError.
+TEST(Hierarchy, BuiltWithPointsCarriesThemToEveryLevel) {
+    for (const char* name : {"cube", "icosahedron"}) {
+        SCOPED_TRACE(name);
+        const BuildResult built = read_mesh(test::find_bundled(name).path);
+        RefineOptions options =
+            options_for(std::string(name) == "cube" ? SchemeKind::CatmullClark : SchemeKind::Loop, 3);
+        options.forms = true;
+        const Hierarchy plain(built.mesh.topology(), options);
+        expect_built_with_points_equals_plain(plain, built.mesh.topology(), built.mesh.positions(), options);
+        EXPECT_THROW((void)plain.positions(1), InputError);
+        const Points too_few = built.mesh.positions().topRows(built.mesh.positions().rows() - 1);
+        EXPECT_THROW(Hierarchy(built.mesh.topology(), options, too_few), InputError);
+        const Hierarchy carried(built.mesh.topology(), options, built.mesh.positions());
+        EXPECT_THROW((void)carried.positions(4), InputError);
+    }
+}
+
 /// With two threads each step builds the child topology on a second thread while the first builds
 /// S0 or carries the points (RefineOptions::num_threads): every level, every S0 and the positions
 /// must be those of one thread, bit for bit. The meshes are refined until a step's parent has at
@@ -509,6 +560,13 @@ TEST(RefineThreads, TwoThreadsGiveWhatOneGivesBitForBit) {
             SCOPED_TRACE("level " + std::to_string(l));
             expect_same_topology(serial.topology(l), parallel.topology(l));
             expect_same_matrix(serial.step(l).S0, parallel.step(l).S0);
+        }
+        const Hierarchy carried(built.mesh.topology(), two, built.mesh.positions());
+        for (int l = 1; l <= c.levels; ++l) {
+            SCOPED_TRACE("carried, level " + std::to_string(l));
+            expect_same_matrix(serial.step(l).S0, carried.step(l).S0);
+            const Points expected = serial.positions(l, built.mesh.positions());
+            EXPECT_TRUE((carried.positions(l).array() == expected.array()).all()) << "positions differ";
         }
         const FinestLevel finest_one = refine_finest(built.mesh.topology(), built.mesh.positions(), one);
         const FinestLevel finest_two = refine_finest(built.mesh.topology(), built.mesh.positions(), two);

@@ -102,6 +102,14 @@ class Hierarchy {
     ///   options.forms is set and form subdivision has no rules for the mesh (require_form_rules)
     Hierarchy(Topology base, const RefineOptions& options);
 
+    /// @brief Refines @p base as above and carries @p control_points (#V_0 × 3) to every level as
+    ///   each step builds its rows: positions(level) then gives what positions(level, control_points)
+    ///   would, bit for bit, without a second pass over every S0 (Catmull–Clark, 100k → 1.6M quads:
+    ///   docs/BENCHMARKS.md). Holds every level's positions (24 bytes per vertex and level).
+    /// @throws as the constructor above; InputError when @p control_points does not have a row per
+    ///   base vertex; NumericalError as positions(level, control_points)
+    Hierarchy(Topology base, const RefineOptions& options, const Points& control_points);
+
     Hierarchy(Hierarchy&&) noexcept = default;
     Hierarchy& operator=(Hierarchy&&) noexcept = default;
 
@@ -133,12 +141,22 @@ class Hierarchy {
     ///   positions (an overflow, for coordinates near the range of a double)
     [[nodiscard]] Points positions(int level, const Points& control_points) const;
 
+    /// Whether the hierarchy was built with its control points (positions(level) is available).
+    [[nodiscard]] bool has_positions() const noexcept { return !positions_.empty(); }
+
+    /// Positions at level @p level (0: the control points) of a hierarchy built with its control
+    /// points. @throws InputError when out of range or built without control points
+    [[nodiscard]] const Points& positions(int level) const;
+
   private:
     void check_level(int level, int lowest) const;
+    /// Builds the levels; with @p control_points (not null) carries them to every level too.
+    void build(const Points* control_points);
 
     RefineOptions options_;
     Topology base_;
     std::vector<Level> steps_;
+    std::vector<Points> positions_;  ///< [level], when built with control points; otherwise empty
     // Lazily built accumulated operators; the mutex lives on the heap so that
     // the hierarchy stays movable.
     mutable std::array<std::vector<std::optional<SparseMatrix>>, 3> accumulated_;  // [k][level]

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <initializer_list>
 #include <limits>
 #include <utility>
 
@@ -34,26 +35,38 @@ EffectiveSharpness effective_sharpness(const Topology& parent, BoundaryInterpola
     return result;
 }
 
-Provenance quad_split_provenance(const Topology& parent) {
-    const Index V = parent.num_vertices();
-    const Index F = parent.num_faces();
-    const Index E = parent.num_edges();
-    Provenance p;
-    const auto num_child_vertices = at(V + F + E);
-    p.vertex_parent_kind.reserve(num_child_vertices);
-    p.vertex_parent.reserve(num_child_vertices);
-    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(V), ParentKind::Vertex);
-    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(F), ParentKind::Face);
-    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(E), ParentKind::Edge);
-    for (const Index count : {V, F, E}) {
+namespace {
+
+/// Child vertices numbered by the parent elements they come from, in blocks of @p counts in turn:
+/// each block's parents are 0, 1, ... (the face splits' vertex order, refine/level.h). The tables
+/// are advised for huge pages and written once (no zero fill before).
+void number_child_vertices(std::initializer_list<std::pair<Index, ParentKind>> counts, Provenance& p) {
+    std::size_t total = 0;
+    for (const auto& block : counts) {
+        total += at(block.first);
+    }
+    reserve_huge(p.vertex_parent_kind, total);
+    reserve_huge(p.vertex_parent, total);
+    for (const auto& [count, kind] : counts) {
+        p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(count), kind);
         for (Index i = 0; i < count; ++i) {
             p.vertex_parent.push_back(i);
         }
     }
+}
+
+}  // namespace
+
+Provenance quad_split_provenance(const Topology& parent) {
+    const Index F = parent.num_faces();
+    Provenance p;
+    number_child_vertices(
+        {{parent.num_vertices(), ParentKind::Vertex}, {F, ParentKind::Face}, {parent.num_edges(), ParentKind::Edge}},
+        p);
     const auto num_child_faces = at(parent.num_corners());
-    p.face_parent_kind.assign(num_child_faces, ParentKind::Face);
-    p.face_parent.reserve(num_child_faces);
-    p.face_parent_corner.reserve(num_child_faces);
+    assign_huge(p.face_parent_kind, num_child_faces, ParentKind::Face);
+    reserve_huge(p.face_parent, num_child_faces);
+    reserve_huge(p.face_parent_corner, num_child_faces);
     for (Index f = 0; f < F; ++f) {
         const Index n = parent.face_degree(f);
         for (Index k = 0; k < n; ++k) {
@@ -65,22 +78,13 @@ Provenance quad_split_provenance(const Topology& parent) {
 }
 
 Provenance tri_split_provenance(const Topology& parent) {
-    const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
-    const Index E = parent.num_edges();
     Provenance p;
-    p.vertex_parent_kind.reserve(at(V + E));
-    p.vertex_parent.reserve(at(V + E));
-    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(V), ParentKind::Vertex);
-    p.vertex_parent_kind.insert(p.vertex_parent_kind.end(), at(E), ParentKind::Edge);
-    for (const Index count : {V, E}) {
-        for (Index i = 0; i < count; ++i) {
-            p.vertex_parent.push_back(i);
-        }
-    }
-    p.face_parent_kind.assign(4 * at(F), ParentKind::Face);
-    p.face_parent.reserve(4 * at(F));
-    p.face_parent_corner.reserve(4 * at(F));
+    number_child_vertices({{parent.num_vertices(), ParentKind::Vertex}, {parent.num_edges(), ParentKind::Edge}}, p);
+    const auto num_child_faces = 4 * at(F);
+    assign_huge(p.face_parent_kind, num_child_faces, ParentKind::Face);
+    reserve_huge(p.face_parent, num_child_faces);
+    reserve_huge(p.face_parent_corner, num_child_faces);
     for (Index f = 0; f < F; ++f) {
         for (Index k = 0; k < 4; ++k) {
             p.face_parent.push_back(f);
@@ -230,14 +234,15 @@ void require_triangles(const Topology& parent, const char* scheme) {
     }
 }
 
-SparseRowBuilder::SparseRowBuilder(Index rows, Index cols, Index nnz_hint, CarriedPoints* carried)
-    : matrix_(rows, cols), carried_(carried) {
+SparseRowBuilder::SparseRowBuilder(Index rows, Index cols, Index nnz_hint, const StepRun& run)
+    : matrix_(rows, cols), carried_(run.carried), keep_matrix_(run.keeps_matrix()) {
     if (carried_ != nullptr) {
         LIMSURF_ASSERT(carried_->parent.rows() == cols, "carried points: ", carried_->parent.rows(), " rows for ", cols,
                        " columns");
         carried_->child.resize(rows, 3);
         advise_huge_pages(carried_->child.data(), sizeof(double) * static_cast<std::size_t>(carried_->child.size()));
-    } else {
+    }
+    if (keep_matrix_) {
         matrix_.reserve(nnz_hint);
         advise_huge_pages(matrix_.valuePtr(), sizeof(double) * static_cast<std::size_t>(nnz_hint));
         advise_huge_pages(matrix_.innerIndexPtr(), sizeof(Index) * static_cast<std::size_t>(nnz_hint));
@@ -281,7 +286,8 @@ void SparseRowBuilder::end_row() {
         carried_->child(current_, 0) = x;
         carried_->child(current_, 1) = y;
         carried_->child(current_, 2) = z;
-    } else {
+    }
+    if (keep_matrix_) {
         // Appended straight into the compressed arrays (Eigen's insertBack checks and grows per
         // entry); the storage doubles when the hint was short.
         auto& data = matrix_.data();
@@ -363,7 +369,7 @@ int step_threads(int requested, const Topology& parent) {
 Level finish_step(const Topology& parent, std::future<Topology>& child, SparseRowBuilder& rows, const StepRun& run,
                   Provenance (*provenance_of)(const Topology&)) {
     SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried != nullptr ? Provenance{} : provenance_of(parent);
+    Provenance provenance = run.keeps_matrix() ? provenance_of(parent) : Provenance{};
     return Level{child.get(), std::move(S0), std::move(provenance)};
 }
 

@@ -72,11 +72,16 @@ struct CarriedPoints {
 /// How one step of a face-split scheme runs.
 struct StepRun {
     /// When not null: its points are carried through the step (SparseRowBuilder), and the Level has
-    /// an S0 without entries and no provenance.
+    /// an S0 without entries and no provenance unless keep_matrix.
     CarriedPoints* carried = nullptr;
+    /// With carried: also keep S0 and the provenance (a Hierarchy built with its control points:
+    /// the rows' products are taken while each row is in cache, not in a second pass over S0).
+    bool keep_matrix = false;
     /// 2 or more: the child topology is built on a second thread while the calling thread builds the
     /// rows (the two read the parent only; the result does not depend on it). 1: one after the other.
     int threads = 1;
+    /// Whether the step keeps S0 and the provenance (no points carried, or keep_matrix).
+    [[nodiscard]] bool keeps_matrix() const noexcept { return carried == nullptr || keep_matrix; }
     /// When not null: the step writes the child's face list and sharpness tags here (face_offsets,
     /// face_vertices and sharpness, as to_polygon_soup() of the child Topology would, tag for tag)
     /// and builds no Topology (the Level's is empty): the last step of refine_finest_faces().
@@ -123,14 +128,14 @@ template <class Tags>
 
 /// Builds a row-major sparse matrix row by row, in order, without triplets:
 /// duplicates within a row are merged and the row is sorted before it is appended.
-/// With CarriedPoints it stores nothing and writes each row's product with the parent points
-/// instead, summed as Eigen sums S0 · points (each coordinate from +0, entries in column order):
-/// the same bits.
+/// With StepRun::carried it writes each row's product with the parent points, summed as Eigen sums
+/// S0 · points (each coordinate from +0, entries in column order): the same bits; it then stores
+/// the matrix only when StepRun::keep_matrix asks for it.
 class SparseRowBuilder {
   public:
-    /// @param carried when not null: carry its parent points into its child table (resized here)
-    ///   and keep no matrix; @pre carried->parent has @p cols rows
-    SparseRowBuilder(Index rows, Index cols, Index nnz_hint, CarriedPoints* carried = nullptr);
+    /// @param run its carried points (when not null) are carried into their child table (resized
+    ///   here), and the matrix is kept as run.keeps_matrix() says; @pre carried->parent has @p cols rows
+    SparseRowBuilder(Index rows, Index cols, Index nnz_hint, const StepRun& run);
     /// Adds @p weight to column @p col of the current row (exact zeros are skipped); a repeated
     /// column's weights are summed in the order they come.
     void add(Index col, double weight) {
@@ -161,6 +166,7 @@ class SparseRowBuilder {
     void sort_row();
     SparseMatrix matrix_;
     CarriedPoints* carried_ = nullptr;
+    bool keep_matrix_ = true;
     std::vector<Entry> row_;
     /// Per column, its index in row_ when the current row has it (otherwise anything): a repeated
     /// column is found in O(1), also in an n-gon's long rows.
@@ -283,8 +289,10 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 
 /// @brief refine(parent, kind, options, weights) on @p threads threads (StepRun::threads; the
 ///   result does not depend on it).
+/// @param carried when not null: @p carried's points are carried to the child as the rows are built
+///   (S0 · parent, bit for bit), and S0 and the provenance are kept too (StepRun::keep_matrix)
 [[nodiscard]] Level refine_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                                const TunedWeights& weights, int threads);
+                                const TunedWeights& weights, int threads, CarriedPoints* carried = nullptr);
 
 /// @brief refine(parent, kind, options, weights)'s child topology, with @p carried's points carried to
 ///   it: S0 · parent, bit for bit, without storing S0 (every scheme builds its rows in order).
@@ -297,7 +305,7 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 
 /// @brief The end of every face-split step: the Level of the child topology (detail::quad_split_topology
 ///   or detail::tri_split_topology, waited for), the S0 of @p rows (taken over, not copied: Eigen 3.4's
-///   SparseMatrix has no move constructor) and @p provenance_of(@p parent) unless @p run carried points.
+///   SparseMatrix has no move constructor) and @p provenance_of(@p parent) when @p run keeps the matrix.
 [[nodiscard]] Level finish_step(const Topology& parent, std::future<Topology>& child, SparseRowBuilder& rows,
                                 const StepRun& run, Provenance (*provenance_of)(const Topology&));
 

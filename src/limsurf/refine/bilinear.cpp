@@ -17,7 +17,7 @@ Level detail::refine_bilinear_step(const Topology& parent, const StepRun& run) {
     auto child = detail::split_child(parent, detail::Split::Quads, run, [&] {
         return detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false);
     });
-    detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E, run.carried);
+    detail::SparseRowBuilder rows(V + F + E, V, V + parent.num_corners() + 2 * E, run);
     detail::add_identity_rows(V, rows);
     for (Index f = 0; f < F; ++f) {
         const auto verts = parent.face_vertices(f);

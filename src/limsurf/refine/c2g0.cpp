@@ -19,7 +19,7 @@ Level detail::refine_c2g0_step(const Topology& parent, const StepRun& run) {
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
     auto child = detail::split_child(parent, detail::Split::Triangles, run, [] { return SharpnessTags{}; });
-    detail::SparseRowBuilder rows(V + E, V, 7 * V + 10 * E, run.carried);
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 10 * E, run);
     detail::C2g0Row row;
     const auto emit = [&] {
         for (const auto& [v, w] : row) {

@@ -117,7 +117,7 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
     });
 
     // Regular interior rows: 9 (vertex), 4 (face), 6 (edge) entries.
-    detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E, run.carried);
+    detail::SparseRowBuilder rows(V + F + E, V, 9 * V + parent.num_corners() + 6 * E, run);
 
     // The paper's convention (iga-tuned-catmull-clark-weights Fig. 1): α, β, γ are an
     // extraordinary vertex's own weights in its vertex rule, in the edge rule of its edges and in the

@@ -222,10 +222,10 @@ Level detail::refine_doo_sabin_step(const Topology& parent, const SchemeOptions&
     });
 
     detail::SparseRowBuilder rows(parent.num_corners(), parent.num_vertices(),
-                                  run.carried == nullptr ? row_nonzeros(parent, boundary_rule) : 0, run.carried);
+                                  run.keeps_matrix() ? row_nonzeros(parent, boundary_rule) : 0, run);
     add_corner_rows(parent, boundary_rule, rows);
     SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.carried == nullptr ? doo_sabin_provenance(parent, boundary_rule) : Provenance{};
+    Provenance provenance = run.keeps_matrix() ? doo_sabin_provenance(parent, boundary_rule) : Provenance{};
     return Level{child.get(), std::move(S0), std::move(provenance)};
 }
 

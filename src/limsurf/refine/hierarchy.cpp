@@ -272,13 +272,52 @@ std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, bo
 
 Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(options), base_(std::move(base)) {
     check_refinement(base_, options, Keeping::EveryLevel);
-    steps_.reserve(static_cast<std::size_t>(options.levels));
-    for (int l = 0; l < options.levels; ++l) {
+    build(nullptr);
+}
+
+Hierarchy::Hierarchy(Topology base, const RefineOptions& options, const Points& control_points)
+    : options_(options), base_(std::move(base)) {
+    check_refinement(base_, options, Keeping::EveryLevel);
+    LIMSURF_CHECK(control_points.rows() == base_.num_vertices(), InputError, "data has ", control_points.rows(),
+                  " rows but level 0 has ", base_.num_vertices(), " vertices");
+    build(&control_points);
+}
+
+void Hierarchy::build(const Points* control_points) {
+    steps_.reserve(static_cast<std::size_t>(options_.levels));
+    // With control points every face-split and Doo–Sabin step carries them as it builds its rows
+    // (detail::SparseRowBuilder: S0 · points, bit for bit, while each row is in cache); steps with
+    // forms build theirs first and multiply after, as positions(level, X) does.
+    detail::CarriedPoints carried;
+    if (control_points != nullptr) {
+        positions_.reserve(static_cast<std::size_t>(options_.levels) + 1);
+        positions_.push_back(*control_points);
+        if (!options_.forms && options_.levels > 0) {
+            carried.parent = *control_points;
+        }
+    }
+    for (int l = 0; l < options_.levels; ++l) {
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;
-        steps_.push_back(options.forms
-                             ? refine_with_forms(parent, options.scheme, options.scheme_options, options.weights)
-                             : detail::refine_step(parent, options.scheme, options.scheme_options, options.weights,
-                                                   detail::step_threads(options.num_threads, parent)));
+        const bool carry = control_points != nullptr && !options_.forms;
+        steps_.push_back(options_.forms
+                             ? refine_with_forms(parent, options_.scheme, options_.scheme_options, options_.weights)
+                             : detail::refine_step(parent, options_.scheme, options_.scheme_options, options_.weights,
+                                                   detail::step_threads(options_.num_threads, parent),
+                                                   carry ? &carried : nullptr));
+        if (control_points == nullptr) {
+            continue;
+        }
+        if (carry) {
+            if (l + 1 < options_.levels) {
+                carried.parent = carried.child;  // row-major again, for the next step's rows
+            }
+            positions_.push_back(std::move(carried.child));
+        } else {
+            Points next(steps_.back().S0.rows(), 3);
+            next.noalias() = steps_.back().S0 * positions_.back();  // Eigen's sums, as apply() makes them
+            positions_.push_back(std::move(next));
+        }
+        check_finite(*control_points, positions_.back(), l + 1);
     }
     for (auto& cache : accumulated_) {
         cache.resize(steps_.size() + 1);
@@ -344,6 +383,13 @@ Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {
         values.swap(next);
     }
     return values;
+}
+
+const Points& Hierarchy::positions(int level) const {
+    check_level(level, 0);
+    LIMSURF_CHECK(has_positions(), InputError,
+                  "this hierarchy was built without control points: use positions(level, control_points)");
+    return positions_[static_cast<std::size_t>(level)];
 }
 
 Points Hierarchy::positions(int level, const Points& control_points) const {

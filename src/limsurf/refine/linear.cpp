@@ -16,7 +16,7 @@ Level detail::refine_linear_step(const Topology& parent, const StepRun& run) {
     auto child = detail::split_child(parent, detail::Split::Triangles, run, [&] {
         return detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V, true);
     });
-    detail::SparseRowBuilder rows(V + E, V, V + 2 * E, run.carried);
+    detail::SparseRowBuilder rows(V + E, V, V + 2 * E, run);
     detail::add_identity_rows(V, rows);
     detail::add_midpoint_rows(parent, rows);
     return detail::finish_step(parent, child, rows, run, detail::tri_split_provenance);

@@ -28,7 +28,7 @@ Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& opti
         return detail::child_sharpness(parent, effective, options.creasing, V, true);
     });
 
-    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E, run.carried);
+    detail::SparseRowBuilder rows(V + E, V, 7 * V + 4 * E, run);
 
     // Vertex points: Loop's weights, β = (5/8 − (3/8 + cos(2π/n)/4)²)/n per neighbour.
     const auto smooth = [](Index, detail::VertexMask& mask) {

@@ -68,8 +68,9 @@ Level run_step(const Topology& parent, SchemeKind kind, const SchemeOptions& opt
 }  // namespace
 
 Level detail::refine_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                          const TunedWeights& weights, int threads) {
-    return run_step(parent, kind, options, weights, StepRun{.carried = nullptr, .threads = threads});
+                          const TunedWeights& weights, int threads, CarriedPoints* carried) {
+    return run_step(parent, kind, options, weights,
+                    StepRun{.carried = carried, .keep_matrix = true, .threads = threads});
 }
 
 Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
