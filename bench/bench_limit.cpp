@@ -9,7 +9,8 @@
 //               "weights" = the warm pass through LimitBasis::evaluate(point, weights,
 //               order) + LimitWeights::apply (what a user who needs the weights pays);
 //               "store" = the warm pass as a batch loop: points ahead prefetched
-//               (prefetch_ahead), every point's rows kept in a reused array.
+//               (prefetch_ahead), every point's rows kept in a reused array; "fresh" = the same
+//               into arrays allocated in every pass, one per row (Python without out=).
 //   OpenSubdiv: Far::TopologyRefiner + RefineAdaptive + PatchTableFactory
 //               (Gregory-basis end caps, double precision) + PatchMap; refined
 //               vertices by PrimvarRefiner, local (end-cap) points by the patch
@@ -266,6 +267,38 @@ void limsurf_store(benchmark::State& state, const Mesh& mesh, DerivativeOrder or
     report(state, mesh, values.sum());
 }
 
+/// limsurf_store, but into arrays allocated afresh in every pass, one N × 3 array per row (position,
+/// first and second derivatives), freed at its end — what Python's evaluate(...) without out= does
+/// with its new numpy arrays. Run cold (LIMSURF_BENCH_PREFAULT_GIB=0) it pays the fresh memory's
+/// page faults as Python does.
+void limsurf_fresh(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
+    if (!mesh.warm) {
+        mesh.warm = std::make_unique<limsurf::LimitBasis>(mesh.topology, mesh.scheme);
+    }
+    using Array = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+    const int rows = rows_of(order);
+    const auto n = static_cast<limsurf::Index>(mesh.points.size());
+    double sum = 0.0;
+    const auto pass = [&] {
+        std::vector<Array> arrays(static_cast<std::size_t>(rows), Array(n, 3));
+        limsurf::LimitPoint point;
+        for (limsurf::Index i = 0; i < n; ++i) {
+            limsurf::prefetch_ahead(*mesh.warm, mesh.interleaved, mesh.points, i, n);
+            mesh.warm->evaluate(mesh.interleaved, mesh.points[static_cast<std::size_t>(i)], point, order);
+            for (int r = 0; r < rows; ++r) {
+                arrays[static_cast<std::size_t>(r)].row(i) = point.d.row(r);
+            }
+        }
+        sum = arrays.back()(n - 1, 2);
+    };
+    pass();  // warms the basis
+    for (auto _ : state) {
+        pass();
+        benchmark::DoNotOptimize(sum);
+    }
+    report(state, mesh, sum);
+}
+
 /// Warm evaluation as one batch (limit/batch_evaluation.h) on state.range(0) threads: the
 /// multi-threaded form of limsurf_warm (same points, same basis, results independent of threads).
 void limsurf_batch(benchmark::State& state, const Mesh& mesh, DerivativeOrder order) {
@@ -454,6 +487,12 @@ void BM_limsurf_store_CCsparse_d1(benchmark::State& s) {
 void BM_limsurf_store_CCsparse_d2(benchmark::State& s) {
     limsurf_store(s, cc_sparse(), DerivativeOrder::Second);
 }
+void BM_limsurf_fresh_CCsparse_d1(benchmark::State& s) {
+    limsurf_fresh(s, cc_sparse(), DerivativeOrder::First);
+}
+void BM_limsurf_fresh_CCsparse_d2(benchmark::State& s) {
+    limsurf_fresh(s, cc_sparse(), DerivativeOrder::Second);
+}
 
 void BM_limsurf_first_CCdense_d1(benchmark::State& s) {
     limsurf_first(s, cc_dense(), DerivativeOrder::First);
@@ -568,6 +607,8 @@ LIMSURF_ONCE(BM_limsurf_batch_Loop_d1)->ArgName("threads")->Arg(1)->Arg(2);
 // Warm passes that keep their results (bench/python_eval.py's C++ side).
 LIMSURF_ONCE(BM_limsurf_store_CCsparse_d1);
 LIMSURF_ONCE(BM_limsurf_store_CCsparse_d2);
+LIMSURF_ONCE(BM_limsurf_fresh_CCsparse_d1);
+LIMSURF_ONCE(BM_limsurf_fresh_CCsparse_d2);
 
 int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);

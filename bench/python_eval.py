@@ -11,7 +11,7 @@ with a fresh basis (its local patches built on first use), "warm" a second pass,
 into the first pass's arrays (out=). Python's time includes turning the point arrays into C++ points
 and the results into numpy arrays; the issue's target is within 1.2x of C++. Two C++ passes stand
 for the warm ones: "warm" sums each point's values and keeps nothing, "store" keeps them in a reused
-array, as out= does.
+array, as out= does, and "fresh" in arrays allocated in every pass, as the new arrays are.
 
 The project's VM drifts by a third within minutes, so the two sides alternate for R rounds (default
 5; each round one C++ process, then the Python passes): the table gives each side's fastest round
@@ -33,7 +33,8 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 PAIRS = [(f"{kind}_CCsparse_{d}{arrays}", f"BM_limsurf_{cpp}_CCsparse_{d}")
          for d in ("d1", "d2")
          for kind, arrays, cpp in (("first", "", "first"), ("warm", " (new arrays)", "warm"),
-                                   ("warm", " (out=)", "warm"), ("warm", " (out=)", "store"))]
+                                   ("warm", " (new arrays)", "fresh"), ("warm", " (out=)", "warm"),
+                                   ("warm", " (out=)", "store"))]
 
 
 def cpp_times(build, points):
@@ -41,7 +42,7 @@ def cpp_times(build, points):
     # faults are expensive on the project's VM (bench_limit.cpp's header).
     env = dict(os.environ, LIMSURF_BENCH_POINTS=str(points), LIMSURF_BENCH_PREFAULT_GIB="0")
     out = subprocess.run([str(build / "bench" / "bench_limit"),
-                          "--benchmark_filter=BM_limsurf_(first|warm|store)_CCsparse", "--benchmark_format=json"],
+                          "--benchmark_filter=BM_limsurf_(first|warm|store|fresh)_CCsparse", "--benchmark_format=json"],
                          capture_output=True, text=True, check=True, env=env)
     return {b["name"].split("/")[0]: b["real_time"] / 1e3 for b in json.loads(out.stdout)["benchmarks"]}
 
