@@ -214,10 +214,9 @@ GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind s
     refine.levels = gradient_level;
     refine.scheme_options = options.scheme_options;
     refine.num_threads = options.num_threads;
-    const Hierarchy h(t, refine);
+    const Hierarchy h(t, refine, X);
     const Topology& fine = h.topology(gradient_level);
-    const Points XL =
-        evaluation_positions(fine, h.positions(gradient_level, X), method, scheme, options.scheme_options);
+    const Points XL = evaluation_positions(fine, h.positions(gradient_level), method, scheme, options.scheme_options);
     GradientMesh mesh(fine, XL);
     mesh.A = h.accumulated(gradient_level);
     return mesh;
@@ -600,9 +599,9 @@ ReferenceComparison compare_geodesics_with_reference(const Topology& topology, c
     refine.levels = level;
     refine.scheme_options = scheme_options;
     refine.max_memory = max_memory;
-    const Hierarchy h(topology, refine);
+    const Hierarchy h(topology, refine, X);
     const Topology& fine = h.topology(level);
-    const Points XK = h.positions(level, X);
+    const Points& XK = h.positions(level);
     HeatGeodesicsOptions dec;
     dec.method = LaplacianMethod::Dec;
     dec.time_step = t;

@@ -96,9 +96,9 @@ Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKi
     refine.levels = level;
     refine.scheme_options = scheme_options;
     refine.num_threads = options.num_threads;
-    const Hierarchy h(topology, refine);
+    const Hierarchy h(topology, refine, X0);
     const Points XL =
-        evaluation_positions(h.topology(level), h.positions(level, X0), options.method, scheme, scheme_options);
+        evaluation_positions(h.topology(level), h.positions(level), options.method, scheme, scheme_options);
     const Eigen::VectorXd values = f(XL);
     LIMSURF_CHECK(values.size() == XL.rows() && values.allFinite(), InputError,
                   "the right-hand side must give one finite value per point (", XL.rows(), ")");
