@@ -14,7 +14,11 @@ edges of a double (option_cases), a run must:
 Runs whose inputs are huge (10^5 corners or edges) must also finish, accepted or refused, within
 a second. The last line is "N passed, M failed".
 
-Usage: replay.py LIMSURF REPO_ROOT WORK_DIR [--huge N] [--time-scale F]
+Usage: replay.py LIMSURF REPO_ROOT WORK_DIR [--huge N] [--time-scale F] [--inputs DIR]
+
+With --inputs DIR, the meshes of DIR (every .obj, .off and .ply) go through every command instead,
+nothing else: e.g. --inputs tests/data/opensubdiv_shapes (122 shapes, about 5 minutes on 2 cores;
+run by hand, not by the suite).
 """
 import argparse
 import concurrent.futures
@@ -447,26 +451,40 @@ def main():
     parser.add_argument("--huge", type=int, default=100000, help="face corners of each huge input")
     parser.add_argument("--time-scale", type=float, default=1.0,
                         help="multiply the time bounds (Debug and sanitizer builds run 5-20x slower)")
+    parser.add_argument("--inputs", help="a folder of meshes to replay instead of the corpus and generated inputs")
     args = parser.parse_args()
+    # Each run's working directory is its output folder: relative paths would not resolve there.
+    args.limsurf, args.root, args.work = (os.path.abspath(p) for p in (args.limsurf, args.root, args.work))
+    args.inputs = os.path.abspath(args.inputs) if args.inputs else None
     global HUGE_SECONDS, SLOW_SECONDS
     HUGE_SECONDS *= args.time_scale
     SLOW_SECONDS *= args.time_scale
     if os.path.exists(args.work):
         shutil.rmtree(args.work)
     os.makedirs(args.work)
-    inputs = dict(corpus(args.root))
-    inputs.update(generate(args.work, args.huge))
+    if args.inputs:
+        inputs = {name: (os.path.join(args.inputs, name), False) for name in sorted(os.listdir(args.inputs))
+                  if os.path.splitext(name)[1] in (".obj", ".off", ".ply")}
+    else:
+        inputs = dict(corpus(args.root))
+        inputs.update(generate(args.work, args.huge))
     jobs = []
     for index, (name, (path, is_huge)) in enumerate(sorted(inputs.items())):
         for label, argv, outputs in commands(path, "@OUT@", is_huge):
             jobs.append((name, label, argv, outputs, is_huge, index))
+    if args.inputs:
+        return run_jobs(args, jobs)
     for label, argv, outputs in standalone("@OUT@"):
         jobs.append(("no input", label, argv, outputs, False, len(inputs)))
     for label, argv, outputs in elasticity_cases(args.root, args.work, "@OUT@"):
         jobs.append(("bundled cells", label, argv, outputs, False, len(inputs)))
     for label, argv, outputs in option_cases(args.root, "@OUT@"):
         jobs.append(("options", label, argv, outputs, False, len(inputs)))
+    return run_jobs(args, jobs)
 
+
+def run_jobs(args, jobs):
+    """Runs @p jobs (two at a time, the huge ones alone); prints the failures and the count."""
     local = threading.local()  # one output folder per worker thread
 
     def run_job(job):
