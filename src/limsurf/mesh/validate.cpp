@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -641,40 +642,41 @@ class ConnectivityChecker {
     // names both tags. Equal repeats are harmless and pass silently.
     void check_conflicting_tags() {
         const auto in_range = [nv = faces_.num_vertices](Index v) { return v >= 0 && v < nv; };
-        std::unordered_map<std::uint64_t, std::size_t> last_crease;
-        for (std::size_t i = 0; i < sharpness_.creases.size(); ++i) {
-            const CreaseTag& c = sharpness_.creases[i];
-            if (!in_range(c.v0) || !in_range(c.v1)) {
-                continue;  // named as a bad tag already
-            }
-            const auto [it, first] = last_crease.try_emplace(edge_key(c.v0, c.v1), i);
-            if (!first) {
-                const CreaseTag& before = sharpness_.creases[it->second];
-                if (before.sharpness != c.sharpness) {
-                    add(Problem::ConflictingTag, source_.line_location(c.line),
-                        concat("crease (", c.v0, ", ", c.v1, ") has sharpness ", c.sharpness, " here and ",
-                               before.sharpness, " at ", tag_origin(before.line, it->second),
-                               "; the last tag is used"));
-                }
-                it->second = i;
-            }
-        }
-        std::unordered_map<Index, std::size_t> last_corner;
-        for (std::size_t i = 0; i < sharpness_.corners.size(); ++i) {
-            const CornerTag& c = sharpness_.corners[i];
-            if (!in_range(c.vertex)) {
+        warn_conflicting(
+            sharpness_.creases,
+            [&](const CreaseTag& c) {
+                return in_range(c.v0) && in_range(c.v1) ? std::optional(edge_key(c.v0, c.v1)) : std::nullopt;
+            },
+            [](const CreaseTag& c) { return concat("crease (", c.v0, ", ", c.v1, ")"); });
+        warn_conflicting(
+            sharpness_.corners,
+            [&](const CornerTag& c) {
+                return in_range(c.vertex) ? std::optional(static_cast<std::uint64_t>(c.vertex)) : std::nullopt;
+            },
+            [](const CornerTag& c) { return concat("corner ", c.vertex); });
+    }
+
+    // One ConflictingTag warning per tag whose element (@p key_of; nullopt: out of range, named as a
+    // bad tag already) was tagged before with another sharpness, naming @p name_of it and the tag before.
+    template <class Tags, class KeyOf, class NameOf>
+    void warn_conflicting(const Tags& tags, const KeyOf& key_of, const NameOf& name_of) {
+        std::unordered_map<std::uint64_t, std::size_t> last;
+        for (std::size_t i = 0; i < tags.size(); ++i) {
+            const std::optional<std::uint64_t> key = key_of(tags[i]);
+            if (!key) {
                 continue;
             }
-            const auto [it, first] = last_corner.try_emplace(c.vertex, i);
-            if (!first) {
-                const CornerTag& before = sharpness_.corners[it->second];
-                if (before.sharpness != c.sharpness) {
-                    add(Problem::ConflictingTag, source_.line_location(c.line),
-                        concat("corner ", c.vertex, " has sharpness ", c.sharpness, " here and ", before.sharpness,
-                               " at ", tag_origin(before.line, it->second), "; the last tag is used"));
-                }
-                it->second = i;
+            const auto [it, first] = last.try_emplace(*key, i);
+            if (first) {
+                continue;
             }
+            const auto& before = tags[it->second];
+            if (before.sharpness != tags[i].sharpness) {
+                add(Problem::ConflictingTag, source_.line_location(tags[i].line),
+                    concat(name_of(tags[i]), " has sharpness ", tags[i].sharpness, " here and ", before.sharpness,
+                           " at ", tag_origin(before.line, it->second), "; the last tag is used"));
+            }
+            it->second = i;
         }
     }
 
