@@ -184,6 +184,12 @@ void check_finite(const Points& control_points, const Points& out, int level) {
                   "): rescale the mesh");
 }
 
+/// Per-vertex data must have a row per base vertex (apply, positions, refine_finest).
+void check_rows(const Topology& base, Eigen::Index rows) {
+    LIMSURF_CHECK(rows == base.num_vertices(), InputError, "data has ", rows, " rows but level 0 has ",
+                  base.num_vertices(), " vertices");
+}
+
 }  // namespace
 
 std::vector<LevelSize> predict_sizes(const Topology& base, SchemeKind scheme, int levels) {
@@ -278,8 +284,7 @@ Hierarchy::Hierarchy(Topology base, const RefineOptions& options) : options_(opt
 Hierarchy::Hierarchy(Topology base, const RefineOptions& options, const Points& control_points)
     : options_(options), base_(std::move(base)) {
     check_refinement(base_, options, Keeping::EveryLevel);
-    LIMSURF_CHECK(control_points.rows() == base_.num_vertices(), InputError, "data has ", control_points.rows(),
-                  " rows but level 0 has ", base_.num_vertices(), " vertices");
+    check_rows(base_, control_points.rows());
     build(&control_points);
 }
 
@@ -372,8 +377,7 @@ const SparseMatrix& Hierarchy::accumulated_form(int k, int level) const {
 
 Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {
     check_level(level, 0);
-    LIMSURF_CHECK(data.rows() == base_.num_vertices(), InputError, "data has ", data.rows(), " rows but level 0 has ",
-                  base_.num_vertices(), " vertices");
+    check_rows(base_, data.rows());
     Eigen::MatrixXd values = data;
     for (int l = 1; l <= level; ++l) {
         const SparseMatrix& S0 = step(l).S0;
@@ -405,8 +409,7 @@ namespace {
 FinestLevel refine_to_finest(const Topology& base, const Points& control_points, const RefineOptions& options,
                              PolygonSoup* faces) {
     check_refinement(base, options, faces != nullptr ? Keeping::FinestFaces : Keeping::FinestLevel);
-    LIMSURF_CHECK(control_points.rows() == base.num_vertices(), InputError, "data has ", control_points.rows(),
-                  " rows but level 0 has ", base.num_vertices(), " vertices");
+    check_rows(base, control_points.rows());
     const auto counts = [](const Topology& t) {
         return std::array<Index, 3>{t.num_vertices(), t.num_edges(), t.num_faces()};
     };
