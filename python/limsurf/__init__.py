@@ -59,6 +59,7 @@ from ._limsurf import (
     write_mesh,
 )
 from ._limsurf import subdivide as _subdivide
+from . import _arguments, _limsurf
 
 __all__ = [
     "Error",
@@ -126,3 +127,20 @@ def subdivide(*args, **kwargs):
             raise TypeError("subdivide(V, F, scheme, levels=1): F is missing")
         args = (Mesh(args[0], args[1]),) + tuple(args[2:])
     return _subdivide(*args, **kwargs)
+
+
+def _explain_refused_calls():
+    """Every public function and method wrapped so that a call pybind11 refuses names the argument
+    (see _arguments.py); the same objects otherwise, the same docstrings."""
+    classes = {n: c for n, c in vars(_limsurf).items() if isinstance(c, type)}
+    namespace = globals()
+    for name in __all__:
+        value = namespace[name]
+        if type(value).__name__ == "builtin_function_or_method":
+            namespace[name] = _arguments.explained(value, classes)
+        elif isinstance(value, type) and value.__module__ == _limsurf.__name__ and not issubclass(value, BaseException):
+            _arguments.explain_methods(value, classes)
+    namespace["_subdivide"] = _arguments.explained(_subdivide, classes)
+
+
+_explain_refused_calls()
