@@ -89,7 +89,8 @@ nlohmann::json tuned_vertex_json(const PlateTunedVertex& v) {
         out["decomposition"] = {{"k3", d.k3},
                                 {"k4", d.k4},
                                 {"k5", d.k5},
-                                {"ratio", d.ratio},
+                                {"ratio", d.ratio},  // NaN (null) where has_quadratic_part is false
+                                {"has_quadratic_part", d.has_quadratic_part},
                                 {"position", array(d.position)},
                                 {"tangents", {array(d.tangent1), array(d.tangent2)}}};
     }
@@ -204,7 +205,11 @@ int run_plate(const PlateOptions& options) {
                 std::cout << "  vertex " << v["vertex"] << " (valence " << v["valence"] << "): " << v["shape"]
                           << " weights, lambda " << v["lambda"];
                 if (v.contains("decomposition")) {
-                    std::cout << ", R = " << v["decomposition"]["ratio"];
+                    if (v["decomposition"]["has_quadratic_part"]) {
+                        std::cout << ", R = " << v["decomposition"]["ratio"];
+                    } else {
+                        std::cout << ", flat (no quadratic part: R undefined)";
+                    }
                     if (options.decide_level) {
                         std::cout << " (decided on level " << *options.decide_level << ")";
                     }

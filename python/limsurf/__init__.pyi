@@ -401,7 +401,8 @@ class ShapeDecomposition(TypedDict):
     k3: float
     k4: float
     k5: float
-    ratio: float
+    ratio: float  # inf without a saddle part, nan where flat
+    has_quadratic_part: bool  # False where P is flat there to rounding (k3 = k4 = k5 = 0)
     normal: FloatArray
     position: FloatArray
     tangents: FloatArray

@@ -186,6 +186,22 @@ def test_verdicts_on_planted_quadratics(mesh_path):
     assert limsurf.decompose_shapes(mesh, min_valence=6) == []
 
 
+def test_a_flat_vertex_has_no_ratio(mesh_path):
+    # A plane (the flat plate itself, then tilted and far from the origin) is no shape: before, R was inf on
+    # the flat plate and 5 to 53 on the tilted one (rounding read as a verdict).
+    mesh = limsurf.read_mesh(mesh_path("plate_ev35"))
+    x, y = mesh.V[:, 0], mesh.V[:, 1]
+    for P in (mesh.V, np.c_[x + 1e4, y - 3e3, 0.1 * x + 0.3 * y + 2e3]):
+        parts = limsurf.decompose_shapes(mesh, P)
+        assert len(parts) == 4
+        for p in parts:
+            assert not p["has_quadratic_part"] and not p["cup_dominates"] and np.isnan(p["ratio"])
+            assert p["k3"] == p["k4"] == p["k5"] == 0.0
+    # A faint cup on the same tilted plane is seen (2e-9 against a floor of 2e-15 × 1e4).
+    parts = limsurf.decompose_shapes(mesh, np.c_[x + 1e4, y - 3e3, 0.1 * x + 0.3 * y + 2e3 + 2e-9 * (x * x + y * y)])
+    assert all(p["has_quadratic_part"] and p["cup_dominates"] for p in parts)
+
+
 def test_superposition_and_the_ratio(mesh_path):
     # The disk's one-ring is a regular pentagon: the cup has no frequency-2 part and the saddles no frequency-0
     # part, so the coefficients of a sum are those of its terms.

@@ -162,10 +162,15 @@ struct TuningResult {
 struct ShapeDecomposition {
     Index vertex = invalid_index;
     int valence = 0;
-    double k3 = 0.0;     ///< cup coefficient of ξ₁² + ξ₂²
-    double k4 = 0.0;     ///< saddle coefficient of ξ₁² − ξ₂²
-    double k5 = 0.0;     ///< saddle coefficient of 2ξ₁ξ₂
-    double ratio = 0.0;  ///< R = k₃² / (k₄² + k₅²) · (1 + μ)/(1 − μ); +inf when k₄ = k₅ = 0
+    double k3 = 0.0;  ///< cup coefficient of ξ₁² + ξ₂²
+    double k4 = 0.0;  ///< saddle coefficient of ξ₁² − ξ₂²
+    double k5 = 0.0;  ///< saddle coefficient of 2ξ₁ξ₂
+    /// R = k₃² / (k₄² + k₅²) · (1 + μ)/(1 − μ); +inf when k₄ = k₅ = 0, NaN when k₃ = k₄ = k₅ = 0
+    double ratio = 0.0;
+    /// False where P is flat at the vertex to rounding (|k| ≤ 2e-15 of the one-ring's size or its
+    /// distance from the origin, whichever is larger; a plane in any position stays 30× below):
+    /// k₃ = k₄ = k₅ = 0 then, and R is NaN. A part below that floor alone is 0 too (R = +inf or 0).
+    bool has_quadratic_part = true;
     /// (34), oriented by the faces' order around the vertex (their area vector): k₃ > 0 for a cup
     /// that opens towards the side the faces face.
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
@@ -179,6 +184,7 @@ struct ShapeDecomposition {
     /// its limit; docs/tuning.md).
     Eigen::Vector3d tangent1 = Eigen::Vector3d::Zero();
     Eigen::Vector3d tangent2 = Eigen::Vector3d::Zero();
+    /// R ≥ 1; false at a flat vertex (no quadratic part), where neither shape dominates.
     [[nodiscard]] bool cup_dominates() const noexcept { return ratio >= 1.0; }
 };
 

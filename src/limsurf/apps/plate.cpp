@@ -325,7 +325,7 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
             const auto found = std::find_if(parts.begin(), parts.end(),
                                             [&](const ShapeDecomposition& d) { return d.vertex == c.vertex; });
             LIMSURF_CHECK(found != parts.end(), NumericalError, "plate: no decomposition at vertex ", c.vertex);
-            if (!found->cup_dominates()) {
+            if (found->has_quadratic_part && !found->cup_dominates()) {  // flat: keep the cup pass's weights
                 c = choice(c.vertex, c.valence, QuadraticShape::Saddle);
             }
             c.decomposition = *found;
