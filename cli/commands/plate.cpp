@@ -15,6 +15,7 @@
 // and their checks are solve_plate_levels (apps/plate.h).
 #include "limsurf/apps/plate.h"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -89,7 +90,10 @@ nlohmann::json tuned_vertex_json(const PlateTunedVertex& v) {
         out["decomposition"] = {{"k3", d.k3},
                                 {"k4", d.k4},
                                 {"k5", d.k5},
-                                {"ratio", d.ratio},  // NaN (null) where has_quadratic_part is false
+                                // R is +inf without a saddle part and NaN without either: JSON has no
+                                // such numbers, so null, with the verdict and whether there is a shape
+                                {"ratio", std::isfinite(d.ratio) ? nlohmann::json(d.ratio) : nlohmann::json(nullptr)},
+                                {"cup_dominates", d.cup_dominates()},
                                 {"has_quadratic_part", d.has_quadratic_part},
                                 {"position", array(d.position)},
                                 {"tangents", {array(d.tangent1), array(d.tangent2)}}};
@@ -205,10 +209,13 @@ int run_plate(const PlateOptions& options) {
                 std::cout << "  vertex " << v["vertex"] << " (valence " << v["valence"] << "): " << v["shape"]
                           << " weights, lambda " << v["lambda"];
                 if (v.contains("decomposition")) {
-                    if (v["decomposition"]["has_quadratic_part"]) {
-                        std::cout << ", R = " << v["decomposition"]["ratio"];
-                    } else {
+                    const auto& d = v["decomposition"];
+                    if (!d["has_quadratic_part"]) {
                         std::cout << ", flat (no quadratic part: R undefined)";
+                    } else if (d["ratio"].is_null()) {
+                        std::cout << ", R = inf (no saddle part)";
+                    } else {
+                        std::cout << ", R = " << d["ratio"];
                     }
                     if (options.decide_level) {
                         std::cout << " (decided on level " << *options.decide_level << ")";

@@ -207,6 +207,29 @@ TEST(CliPlate, TunedWeightsAtTheValenceFiveVertices) {
     }
 }
 
+// A rotationally symmetric plate (the regular pentagonal disk under uniform load) has no saddle
+// part at its valence-5 centre: R = inf, which JSON cannot hold — the command printed "not a
+// finite number (an overflow)" and exited 1. Now R is null with the verdict beside it.
+TEST(CliPlate, APureCupHasAnInfiniteRatioAndItsVerdict) {
+    const std::string mesh = (test::mesh_dir() / "disk_ev5_quads.obj").string();
+    const CliRun run = limsurf({"plate", mesh, "--tuned", "auto", "--levels", "1", "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    for (const auto& level : nlohmann::json::parse(run.out).at("levels")) {
+        const auto& v = level.at("tuned_vertices").at(0);
+        const auto& d = v.at("decomposition");
+        EXPECT_TRUE(d.at("ratio").is_null());
+        EXPECT_TRUE(d.at("has_quadratic_part").get<bool>());
+        EXPECT_TRUE(d.at("cup_dominates").get<bool>());
+        EXPECT_EQ(d.at("k4").get<double>(), 0.0);
+        EXPECT_EQ(d.at("k5").get<double>(), 0.0);
+        EXPECT_NE(d.at("k3").get<double>(), 0.0);
+        EXPECT_EQ(v.at("shape"), "cup");
+    }
+    const CliRun text = limsurf({"plate", mesh, "--tuned", "auto"});
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("R = inf (no saddle part)"), std::string::npos) << text.out;
+}
+
 /// The Hessian (w_xx, w_yy, w_xy) of Navier's deflection of the simply supported square [0, 10]² up
 /// to a common factor (R does not see it): the uniform load's double series over odd m, n, or the
 /// sinusoidal load sin(2πx/10) sin(2πy/10) (Table 2), whose deflection is that same product.
