@@ -1,18 +1,17 @@
-// limsurf plate MESH (--load uniform|sinusoidal|single-wave|FORMULA [--pressure P] | --load-file FILE)
+// limsurf plate MESH [--scheme catmull-clark|loop]
+//   (--load uniform|sinusoidal|single-wave|FORMULA [--pressure P] | --load-file FILE)
 //   --support simply|clamped [--levels L] [--thickness T] [--E E] [--nu NU] [--degree D] [--threads N] [--json]
 //   [--tuned none|cup|saddle|auto [--decide-level K]] [-o deflection.vtk]:
 // Kirchhoff–Love bending of the planar plate bounded by the limit surface of a planar Catmull–Clark
-// control mesh (fem/plate.h). For each level 0..L (the control mesh refined l times: the same
-// plate) it reports the deflection at the centre and at (a/4, b/4) of the bounding box, the largest
-// deflection, and, for a simply supported rectangle under the uniform or sine loads, the relative
-// errors against the Navier solution (centre, L2 and energy norm). --load-file reads one load value
-// per control vertex, taken as control values of the load: p_h = Σ p_i φ_i, so b = M p with the
-// mass matrix M of the limit basis; at level l the values are carried by the subdivision matrices,
-// p_l = S0 p_{l−1}, so every level sees the same load p_h. --tuned puts IGA-tuned weights at the
-// interior extraordinary vertices of valence >= 5 (iga-tuned-catmull-clark-weights §3.4, §4; auto:
-// two passes per level, R per vertex; with --decide-level K one cup pass on level K decides for every
-// level, as the paper's §4). Parsing and printing only: the levels
-// and their checks are solve_plate_levels (apps/plate.h).
+// (or, with --scheme loop, Loop) control mesh (fem/plate.h). For each level 0..L (the control mesh refined l times: the
+// same plate) it reports the deflection at the centre and at (a/4, b/4) of the bounding box, the largest deflection,
+// and, for a simply supported rectangle under the uniform or sine loads, the relative errors against the Navier
+// solution (centre, L2 and energy norm). --load-file reads one load value per control vertex, taken as control values
+// of the load: p_h = Σ p_i φ_i, so b = M p with the mass matrix M of the limit basis; at level l the values are carried
+// by the subdivision matrices, p_l = S0 p_{l−1}, so every level sees the same load p_h. --tuned puts IGA-tuned weights
+// at the interior extraordinary vertices of valence >= 5 (iga-tuned-catmull-clark-weights §3.4, §4; auto: two passes
+// per level, R per vertex; with --decide-level K one cup pass on level K decides for every level, as the paper's §4).
+// Parsing and printing only: the levels and their checks are solve_plate_levels (apps/plate.h).
 #include "limsurf/apps/plate.h"
 
 #include <cmath>
@@ -39,6 +38,7 @@ namespace {
 
 struct PlateOptions {
     std::string input;
+    std::string scheme = "catmull-clark";
     std::string load = "uniform";
     std::string load_file;  ///< one load value per control vertex (control values of p), or empty
     double pressure = 1e4;
@@ -112,6 +112,7 @@ int run_plate(const PlateOptions& options) {
         PlateStudyOptions study;
         study.material = PlateMaterial{options.E, options.nu, options.thickness};
         study.support = parse_plate_support(options.support);
+        study.scheme = options.scheme == "loop" ? SchemeKind::Loop : SchemeKind::CatmullClark;
         study.levels = options.levels;
         study.quadrature = SamplerOptions{options.degree, 6, options.threads};
         study.tuning = parse_plate_tuning(options.tuned);
@@ -156,6 +157,7 @@ int run_plate(const PlateOptions& options) {
         const PlateRectangle& box = result.rectangle;
         const double D = result.bending_rigidity;
         nlohmann::json out{
+            {"scheme", options.scheme},
             {"load", per_vertex ? "file" : options.load},
             {"pressure", per_vertex ? nlohmann::json(nullptr) : nlohmann::json(options.pressure)},
             {"support", options.support},
@@ -224,6 +226,9 @@ int run_plate(const PlateOptions& options) {
                 std::cout << '\n';
             }
         }
+        if (out.contains("navier")) {
+            std::cout << "Navier      " << out["navier"].get<std::string>() << '\n';
+        }
         return exit_ok;
     });
 }
@@ -232,9 +237,13 @@ int run_plate(const PlateOptions& options) {
 
 void add_plate_command(CLI::App& app, CommandStatus& status) {
     auto options = std::make_shared<PlateOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "plate", "Kirchhoff-Love plate bending on the limit surface of a planar catmull-clark control mesh");
+    CLI::App* cmd =
+        app.add_subcommand("plate", "Kirchhoff-Love plate bending on the limit surface of a planar control mesh");
     cmd->add_option("input", options->input, "Planar control mesh (z = 0; .obj, .off, .ply)")->required();
+    cmd->add_option("--scheme", options->scheme,
+                    "catmull-clark (default) or loop (a triangle mesh; tag its square corners with 't corner' to "
+                    "keep a rectangle a rectangle)")
+        ->check(CLI::IsMember({"catmull-clark", "loop"}));
     auto* load = cmd->add_option(
         "--load", options->load,
         "uniform, sinusoidal (p sin(2pi x/a) sin(2pi y/b), Table 2), single-wave, or a formula in x, y");

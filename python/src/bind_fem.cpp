@@ -176,7 +176,7 @@ py::dict plate(const Mesh& mesh, const std::string& scheme, const py::handle& lo
             rows.append(plate_level_dict(level, options.tuning != PlateTuning::None));
         }
         const PlateRectangle& box = r.rectangle;
-        py::dict out("load"_a = to_string(spec.shape),
+        py::dict out("scheme"_a = scheme, "load"_a = to_string(spec.shape),
                      "pressure"_a = named ? py::object(py::float_(spec.pressure)) : py::object(py::none()),
                      "support"_a = support, "E"_a = E, "nu"_a = nu, "thickness"_a = thickness,
                      "bending_rigidity"_a = r.bending_rigidity, "tuned"_a = tuned, "decide_level"_a = decide_level,
@@ -489,7 +489,7 @@ saddle once, from the cup pass on that level (0..6), and keep the choice on ever
 §4 does (`--decide-level`; 'first_pass' then only on that level).
 
 Returns 'load' ('uniform', 'sinusoidal', 'single-wave', 'function' or 'values'), 'pressure' (None
-for a function or values), 'support', 'E', 'nu', 'thickness', 'bending_rigidity', 'rectangle',
+for a function or values), 'scheme', 'support', 'E', 'nu', 'thickness', 'bending_rigidity', 'rectangle',
 'levels' (per level: 'level', 'vertices', 'faces', 'centre_deflection', 'quarter_deflection' (None off
 the plate), 'max_deflection', 'residual', for a simply supported rectangle under a uniform or sine
 load 'navier' with the exact deflections and relative errors, and the arrays 'w' (#V control values

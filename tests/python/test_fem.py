@@ -48,6 +48,7 @@ def assert_same_levels(ours, theirs):
     ("plate_asym", "single-wave", ["--load", "single-wave"], dict(levels=1, tiles=6)),
     # a polynomial: numpy and the CLI's formula parser compute bit-identical values
     ("plate_ev35", lambda P: 1000 * P[:, 0] * P[:, 1], ["--load", "1000*x*y"], dict(levels=1)),
+    ("tri_grid", "uniform", ["--load", "uniform", "--scheme", "loop"], dict(levels=1, scheme="loop")),
 ])
 def test_plate_equals_the_cli(mesh_path, cli, tmp_path, name, python_load, cli_load, options):
     flags = {"support": "--support", "E": "--E", "nu": "--nu", "thickness": "--thickness", "degree": "--degree",
@@ -55,8 +56,10 @@ def test_plate_equals_the_cli(mesh_path, cli, tmp_path, name, python_load, cli_l
     args = [a for k, v in options.items() if k in flags for a in (flags[k], v)]
     out = tmp_path / "plate.vtu"
     theirs = cli("plate", mesh_path(name), *cli_load, *args, "--json", "-o", out)
-    ours = limsurf.plate(limsurf.read_mesh(mesh_path(name)), "catmull-clark", python_load, **options)
-    for key in ("support", "E", "nu", "thickness", "bending_rigidity", "rectangle"):
+    options = dict(options)
+    scheme = options.pop("scheme", "catmull-clark")
+    ours = limsurf.plate(limsurf.read_mesh(mesh_path(name)), scheme, python_load, **options)
+    for key in ("scheme", "support", "E", "nu", "thickness", "bending_rigidity", "rectangle"):
         assert ours[key] == theirs[key], key
     assert ours.get("navier") == theirs.get("navier")
     if not callable(python_load):
