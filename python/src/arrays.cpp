@@ -15,12 +15,23 @@ char dtype_kind(const py::array& a) {
     return a.dtype().kind();
 }
 
+/// @p object as a numpy array. pybind11's ensure() does not throw when numpy refuses (a ragged
+/// list, say): it clears the error and returns a null array, whose use crashed the interpreter. The
+/// refusal is an InputError here, with numpy's own reason.
 py::array as_array(const py::handle& object, const std::string& name) {
-    try {
-        return py::array::ensure(object);
-    } catch (const py::error_already_set&) {
+    py::array a = py::array::ensure(object);
+    if (a) {
+        return a;
     }
-    throw InputError(name + ": not an array (got " + std::string(py::str(py::type::of(object).attr("__name__"))) + ")");
+    std::string reason;
+    try {
+        (void)py::module_::import("numpy").attr("asarray")(object);
+    } catch (const py::error_already_set& e) {
+        reason = e.what();
+        reason = ": " + reason.substr(0, reason.find('\n'));
+    }
+    throw InputError(name + ": not an array of numbers (got " +
+                     std::string(py::str(py::type::of(object).attr("__name__"))) + reason + ")");
 }
 
 std::string shape_of(const py::array& a) {

@@ -137,14 +137,16 @@ ElasticityStudyOptions study_from(const ElasticityArgs& args, Index num_faces, s
         study.macro_deformation = matrix2_from(args.macro_deformation, "macro_deformation");
     }
     for (const py::handle side : args.clamp) {
-        study.clamped.push_back(parse_rectangle_side(py::cast<std::string>(side)));
+        study.clamped.push_back(
+            parse_rectangle_side(cast_as<std::string>(side, "clamp", "a side name (left, right, bottom, top)")));
     }
     for (const py::handle item : args.tractions) {
         LIMSURF_CHECK(py::isinstance<py::sequence>(item) && py::len(item) == 2, InputError,
                       "tractions: expected (side, (tx, ty)) pairs");
         const py::sequence pair = py::reinterpret_borrow<py::sequence>(item);
         study.tractions.push_back(
-            {parse_rectangle_side(py::cast<std::string>(pair[0])), pair_from(pair[1], "tractions (tx, ty)")});
+            {parse_rectangle_side(cast_as<std::string>(pair[0], "tractions", "a side name (left, right, bottom, top)")),
+             pair_from(pair[1], "tractions (tx, ty)")});
     }
     const bool loaded = study.boundary == ElasticBoundary::Loaded;
     LIMSURF_CHECK(loaded || (study.clamped.empty() && study.tractions.empty()), InputError,

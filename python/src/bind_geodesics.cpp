@@ -1,6 +1,7 @@
 // Heat-method geodesics (SEC §4.2, apps/geodesics.h): limsurf.geodesic_distance (one field with the
 // report of `limsurf geodesic --json`) and limsurf.HeatGeodesics (set up and factorised once, then
 // one call per source set).
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,16 +18,13 @@ namespace {
 
 using namespace pybind11::literals;
 
-/// One vertex index or a sequence of them.
-std::vector<Index> sources_from(const py::handle& sources) {
-    if (py::isinstance<py::int_>(sources)) {
-        return {sources.cast<Index>()};
+/// One vertex index or a sequence of them (HeatGeodesics checks the range, naming the vertex).
+/// As an index array: pybind11's vector cast of a 3-d array raised numpy's "circular base" ValueError.
+std::vector<Index> sources_from(const py::handle& sources, const std::string& name = "sources") {
+    if (py::isinstance<py::int_>(sources) && !py::isinstance<py::bool_>(sources)) {
+        return {cast_as<Index>(sources, name, "a vertex index")};
     }
-    try {
-        return sources.cast<std::vector<Index>>();
-    } catch (const py::cast_error&) {
-        throw InputError("sources must be a vertex index or a sequence of vertex indices");
-    }
+    return indices_from(sources, name, std::numeric_limits<Index>::max());
 }
 
 /// The keyword arguments method, level, degree and tiles (iga; None: the default).
@@ -180,8 +178,11 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
             [](const HeatGeodesics& self, const py::sequence& source_sets) {
                 std::vector<std::vector<Index>> sets;
                 sets.reserve(source_sets.size());
-                for (const py::handle sources : source_sets) {
-                    sets.push_back(sources_from(sources));
+                // By index into owned objects: a py::sequence's range-for yields handles into
+                // temporaries, and the items of a numpy array are new objects (a use after free).
+                for (std::size_t k = 0; k < source_sets.size(); ++k) {
+                    const py::object sources = source_sets[k];
+                    sets.push_back(sources_from(sources, "source_sets[" + std::to_string(k) + "]"));
                 }
                 Eigen::MatrixXd d;
                 {

@@ -92,7 +92,7 @@ Eigen::VectorXd field_values(const py::handle& field, const LimitTessellation& t
 }
 
 std::array<int, 2> size_from(const py::handle& size) {
-    const auto wh = size.cast<std::array<int, 2>>();
+    const auto wh = cast_as<std::array<int, 2>>(size, "size", "(width, height), two integers");
     LIMSURF_CHECK(wh[0] >= 16 && wh[0] <= 8192 && wh[1] >= 16 && wh[1] <= 8192, InputError,
                   "size: expected (width, height), each in 16..8192, got (", wh[0], ", ", wh[1], ")");
     return wh;
@@ -102,7 +102,7 @@ View view_from(const py::handle& view) {
     if (py::isinstance<py::str>(view)) {
         return parse_view(view.cast<std::string>());
     }
-    const auto ae = view.cast<std::array<double, 2>>();
+    const auto ae = cast_as<std::array<double, 2>>(view, "view", "iso, front, top or (azimuth, elevation) in degrees");
     return parse_view(std::to_string(ae[0]) + "," + std::to_string(ae[1]));
 }
 

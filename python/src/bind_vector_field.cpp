@@ -17,12 +17,15 @@ namespace {
 
 using namespace pybind11::literals;
 
-/// (element, value) or (element, value, weight).
-std::tuple<py::handle, double, double> spec(const py::handle& item, const char* name, double weight) {
+/// (element, value) or (element, value, weight). The element is returned owned: an item of a numpy
+/// row is a new object that a handle would outlive.
+std::tuple<py::object, double, double> spec(const py::handle& item, const char* name, double weight) {
     const py::sequence s = py::reinterpret_borrow<py::sequence>(item);
     LIMSURF_CHECK(py::isinstance<py::sequence>(item) && (s.size() == 2 || s.size() == 3), InputError, name,
                   ": each constraint is (element, value) or (element, value, weight)");
-    return {s[0], s[1].cast<double>(), s.size() == 3 ? s[2].cast<double>() : weight};
+    const std::string where = std::string(name) + " (value, weight)";
+    return {s[0], cast_as<double>(s[1], where, "a number"),
+            s.size() == 3 ? cast_as<double>(s[2], where, "a number") : weight};
 }
 
 VectorFieldConstraints constraints_from(const py::iterable& sources, const py::iterable& sinks,
@@ -30,19 +33,19 @@ VectorFieldConstraints constraints_from(const py::iterable& sources, const py::i
     VectorFieldConstraints c;
     for (const py::handle item : sources) {
         const auto [v, s, w] = spec(item, "sources", weight);
-        c.sources.push_back({v.cast<Index>(), s, w});
+        c.sources.push_back({cast_as<Index>(v, "sources", "a vertex index"), s, w});
     }
     for (const py::handle item : sinks) {
         const auto [v, s, w] = spec(item, "sinks", weight);
-        c.sources.push_back({v.cast<Index>(), -s, w});
+        c.sources.push_back({cast_as<Index>(v, "sinks", "a vertex index"), -s, w});
     }
     for (const py::handle item : vortices) {
         const auto [f, s, w] = spec(item, "vortices", weight);
-        c.vortices.push_back({f.cast<Index>(), s, w});
+        c.vortices.push_back({cast_as<Index>(f, "vortices", "a face index"), s, w});
     }
     for (const py::handle item : strokes) {
         const auto [path, s, w] = spec(item, "strokes", weight);
-        c.strokes.push_back({path.cast<std::vector<Index>>(), s, w});
+        c.strokes.push_back({cast_as<std::vector<Index>>(path, "strokes", "a path of vertex indices"), s, w});
     }
     return c;
 }

@@ -54,6 +54,23 @@ struct RuleNames {
 /// finite values (InputError naming "<name>(P) result"). A Python exception in f propagates as itself.
 [[nodiscard]] SurfaceFunction surface_function(const py::function& f, const std::string& name);
 
+/// @brief @p value as T, for values a binding converts itself (elements of a list, a tuple's
+///   parts): pybind11's own refusal (cast_error, a RuntimeError) named only the C++ type.
+/// @throws InputError "<name>: expected <expected>, got <the value's repr>"
+template <class T>
+[[nodiscard]] T cast_as(const py::handle& value, const std::string& name, const char* expected) {
+    try {
+        return value.cast<T>();
+    } catch (const py::cast_error&) {
+        std::string got = py::repr(value).cast<std::string>();
+        if (got.size() > 60) {
+            got = got.substr(0, 57) + "...";
+        }
+        throw InputError(name + ": expected " + expected + ", got " +
+                         py::str(py::type::of(value).attr("__name__")).cast<std::string>() + " " + got);
+    }
+}
+
 /// @brief Refuses a negative thread count (0 means all cores), as every binding with `threads` does.
 /// @throws InputError "threads: …"
 void check_threads(int threads);

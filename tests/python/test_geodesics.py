@@ -80,5 +80,7 @@ def test_errors(mesh_path):
         limsurf.HeatGeodesics(mesh, "catmull-clark", gradient="limit", gradient_level=1)
     with pytest.raises(limsurf.InputError, match="unknown heat gradient"):
         limsurf.HeatGeodesics(mesh, "catmull-clark", gradient="faces")
-    with pytest.raises(limsurf.InputError, match="sources must be"):
+    with pytest.raises(limsurf.InputError, match=r"^sources: expected integers, got dtype <U4"):
         limsurf.geodesic_distance(mesh, "catmull-clark", "zero")
+    with pytest.raises(limsurf.InputError, match=r"^sources: expected a vector, got 2 dimensions"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", [[0, 1]])

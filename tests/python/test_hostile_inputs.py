@@ -183,3 +183,69 @@ def test_a_weight_too_stiff_for_the_energy_is_refused(mesh_path):
         mesh = limsurf.read_mesh(mesh_path(name))
         with pytest.raises(limsurf.InputError, match=r"times stiffer than the energy: .* may have here is about"):
             limsurf.design_vector_field(mesh, "catmull-clark", sources=[(0, 1.0)], sinks=[(6, 1.0)], weight=2**63)
+
+
+def test_a_ragged_list_is_an_error_not_a_crash(mesh_path):
+    # pybind11's array ensure() returns a null array when numpy refuses, and that null array was used:
+    # a segmentation fault (tests/python/adversarial/sweep.py, 2026-12-06).
+    mesh = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"^X: not an array of numbers \(got list: ValueError: setting an "
+                                                 r"array element with a sequence"):
+        limsurf.volume(mesh, "catmull-clark", X=[[0, 1], [2]])
+    with pytest.raises(limsurf.InputError, match=r"^V: not an array of numbers"):
+        limsurf.Mesh([[0.0, 1.0], [2.0]], [[0, 1, 2]])
+    with pytest.raises(limsurf.InputError, match=r"^rhs: not an array of numbers"):
+        limsurf.poisson(mesh, "catmull-clark", [[1.0], [2.0, 3.0]], method="dec")
+
+
+def test_values_a_binding_converts_itself_are_named(mesh_path):
+    # pybind11's cast_error (a RuntimeError naming only the C++ type, e.g. "Unable to cast Python instance of
+    # type <class 'numpy.float64'> to C++ type 'int'") for elements the bindings convert themselves.
+    cube = limsurf.read_mesh(mesh_path("cube"))
+    with pytest.raises(limsurf.InputError, match=r"^sources: expected a vertex index, got float64 nan"):
+        limsurf.design_vector_field(cube, "catmull-clark", sources=np.full((3, 3), np.nan), level=1)
+    with pytest.raises(limsurf.InputError, match=r"^sinks \(value, weight\): expected a number, got str 'a'"):
+        limsurf.design_vector_field(cube, "catmull-clark", sinks=[(0, "a")], level=1)
+    with pytest.raises(limsurf.InputError, match=r"^strokes: expected a path of vertex indices, got float 1\.5"):
+        limsurf.design_vector_field(cube, "catmull-clark", strokes=[(1.5, 1.0)], level=1)
+    block = limsurf.read_mesh(mesh_path("rve_block"))
+    with pytest.raises(limsurf.InputError, match=r"^clamp: expected a side name \(left, right, bottom, top\), got int 3"):
+        limsurf.elasticity(block, boundary="loaded", clamp=[3], tractions=[("right", (0.1, 0.0))])
+    with pytest.raises(limsurf.InputError, match=r"^size: expected \(width, height\), two integers, got str 'abc'"):
+        limsurf.render(cube, "catmull-clark", size="abc")
+    with pytest.raises(limsurf.InputError, match=r"^view: expected iso, front, top or \(azimuth, elevation\)"):
+        limsurf.render(cube, "catmull-clark", view=[1.0, 2.0, 3.0])
+
+
+def test_points_near_the_largest_double_give_finite_results(mesh_path):
+    # rigid_body_modes of points at 1e308 were inf and nan (the mean overflowed); reverse_catmull_clark
+    # of a mesh 1e300 across reported residual_max = inf (the squares in the norm overflowed).
+    cube = limsurf.read_mesh(mesh_path("cube"))
+    modes = limsurf.rigid_body_modes(np.full((4, 3), 1e308))
+    assert np.all(np.isfinite(modes))
+    assert np.array_equal(limsurf.rigid_body_modes(cube.V * 2.0**1000), limsurf.rigid_body_modes(cube.V))
+    fine = limsurf.subdivide(cube, "catmull-clark", 1)
+    _, small = limsurf.reverse_catmull_clark(fine)
+    _, huge = limsurf.reverse_catmull_clark(fine.with_positions(fine.V * 1e300))
+    for key in ("residual_max", "residual_rms"):
+        assert np.isfinite(huge["per_level"][0][key])
+        assert huge["per_level"][0][key] < 1e-12 * 1e300
+        assert small["per_level"][0][key] < 1e-12
+
+
+def test_source_sets_that_are_rows_of_an_array(mesh_path):
+    # A py::sequence's range-for gave handles into temporaries; the rows of a numpy array are new objects,
+    # so the loop read freed memory: numpy's "Cannot create a circular NumPy array 'base' dependency"
+    # ValueError, then a segmentation fault on the next call (tests/python/adversarial/sweep.py).
+    cube = limsurf.read_mesh(mesh_path("cube"))
+    heat = limsurf.HeatGeodesics(cube, "catmull-clark", method="dec")
+    for _ in range(3):
+        with pytest.raises(limsurf.InputError, match=r"^source_sets\[0\]: expected a vector, got 2 dimensions"):
+            heat.distances(np.zeros((2, 2, 2), dtype=int))
+        with pytest.raises(limsurf.InputError, match=r"^source_sets\[0\]: expected integers, got dtype float64"):
+            heat.distances([[0.0, 1.0]])
+    rows = heat.distances(np.array([[0, 1], [2, 3]]))
+    assert np.array_equal(rows, heat.distances([[0, 1], [2, 3]]))
+    field = limsurf.design_vector_field(cube, "catmull-clark", sources=np.array([[0, 1]]), level=1)
+    assert np.array_equal(field["w"], limsurf.design_vector_field(cube, "catmull-clark", sources=[(0, 1.0)],
+                                                                   level=1)["w"])

@@ -163,11 +163,16 @@ Eigen::MatrixXd rigid_body_modes(const Points& X) {
     LIMSURF_CHECK(X.rows() > 0 && X.cols() == 3, InputError, "rigid_body_modes: X has ", X.rows(), " × ", X.cols(),
                   " entries: give at least one point with 3 coordinates");
     LIMSURF_CHECK(X.allFinite(), InputError, "rigid_body_modes: a coordinate is not finite");
-    const Eigen::RowVector3d centre = X.colwise().mean();
-    const double extent = std::max((X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff(), 1e-300);
+    // The modes do not depend on the scale: the points are scaled by a power of two (exact, the
+    // same bits) to a largest coordinate in [1, 2), so that the mean and the extent of points near
+    // the largest double do not overflow (they gave inf and nan modes).
+    const double largest = X.cwiseAbs().maxCoeff();
+    const Points Y = largest > 0.0 ? Points(X * std::ldexp(1.0, -std::ilogb(largest))) : X;
+    const Eigen::RowVector3d centre = Y.colwise().mean();
+    const double extent = std::max((Y.colwise().maxCoeff() - Y.colwise().minCoeff()).maxCoeff(), 1e-300);
     Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * X.rows(), 6);
     for (Index v = 0; v < X.rows(); ++v) {
-        const Eigen::Vector3d r = (X.row(v) - centre).transpose() / extent;
+        const Eigen::Vector3d r = (Y.row(v) - centre).transpose() / extent;
         for (int c = 0; c < 3; ++c) {
             R(3 * v + c, c) = 1.0;
             R.block<3, 1>(3 * v, 3 + c) = Eigen::Vector3d::Unit(c).cross(r);

@@ -388,7 +388,8 @@ Candidate fit(const ControlMesh& fine, const std::vector<Role>& role, const Sche
     c.error.assign(at(fine.num_vertices()), 0.0);
     for (std::size_t i = 0; i < perm.size(); ++i) {
         const auto row = static_cast<Index>(i);
-        c.error[at(perm[i])] = (refit.row(row) - target.row(row)).norm();
+        // stableNorm: near the largest double the squares of a plain norm overflow to inf
+        c.error[at(perm[i])] = (refit.row(row) - target.row(row)).stableNorm();
     }
     return c;
 }
@@ -520,16 +521,19 @@ ReverseResult reverse_catmull_clark(const ControlMesh& fine, int max_levels, con
             throw InputError(detail::concat("level ", level + 1, " of ", max_levels, " cannot be reversed (", level,
                                             " could): ", error.what()));
         }
-        double sum = 0.0;
         double largest = 0.0;
         for (const double e : c.error) {
             largest = std::max(largest, e);
-            sum += e * e;
+        }
+        double sum = 0.0;  // of (e / largest)²: the squares of errors near the largest double overflow
+        for (const double e : c.error) {
+            sum += largest > 0.0 ? (e / largest) * (e / largest) : 0.0;
         }
         if (max_levels == -1 && level > 0) {
             // Past the first level, "as many as possible" takes only levels that fit.
             const Points& p = current.positions();
-            const double diagonal = (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
+            const Eigen::RowVector3d box = p.colwise().maxCoeff() / 2.0 - p.colwise().minCoeff() / 2.0;
+            const double diagonal = 2.0 * box.stableNorm();  // halves: max − min itself may overflow
             if (!(largest <= tolerance * diagonal)) {
                 break;
             }
@@ -540,7 +544,7 @@ ReverseResult reverse_catmull_clark(const ControlMesh& fine, int max_levels, con
         step.coarse_vertices = c.coarse.num_vertices();
         step.coarse_faces = c.coarse.num_faces();
         step.residual_max = largest;
-        step.residual_rms = std::sqrt(sum / static_cast<double>(c.error.size()));
+        step.residual_rms = largest * std::sqrt(sum / static_cast<double>(c.error.size()));
         step.unique = c.unique;
         step.fine_vertex = std::move(c.fine_vertex);
         result.steps.push_back(std::move(step));
