@@ -799,10 +799,11 @@ std::vector<ShapeDecomposition> decompose_shapes(const Topology& topology, const
         std::vector<Complex> ge(at(n)), gf(at(n)), u3e(at(n)), u3f(at(n)), z2e(at(n)), z2f(at(n));
         // The scale of g's rounding: the one-ring's size, or its distance from the origin where that
         // is larger (the points themselves are rounded to it).
-        double scale = P.row(v).norm();
+        double scale = P.row(v).stableNorm();  // stable: squares of coordinates near 1e300 overflow
         for (int j = 0; j < n; ++j) {
             const Eigen::RowVector3d de = P.row(e[at(j)]) - P.row(v), df = P.row(fv[at(j)]) - P.row(v);
-            scale = std::max({scale, de.norm(), df.norm(), P.row(e[at(j)]).norm(), P.row(fv[at(j)]).norm()});
+            scale = std::max({scale, de.stableNorm(), df.stableNorm(), P.row(e[at(j)]).stableNorm(),
+                              P.row(fv[at(j)]).stableNorm()});
             ge[at(j)] = de.dot(normal);
             gf[at(j)] = df.dot(normal);
             u3e[at(j)] = std::norm(ze[at(j)]);

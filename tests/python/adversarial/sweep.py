@@ -11,7 +11,11 @@ empty, nan, ragged, of the wrong rank or dtype, meshes scaled to 1e-300 and 1e30
 a point). Every call runs in its own interpreter with a time limit, so a crash or a hang is caught
 and named. The last line is "N calls: M flagged".
 
-Usage: PYTHONPATH=build/ci/python sweep.py MESH_DIR [--only NAME...] [--jobs N] [--timeout S]
+Usage: PYTHONPATH=build/ci/python sweep.py MESH_DIR [--only NAME...] [--jobs N] [--timeout S] [--meshes DIR]
+
+With --meshes DIR every mesh of DIR (.obj, .off, .ply; e.g. tests/data/opensubdiv_shapes) is given,
+in turn, to every parameter annotated as a Mesh, instead of the hostile values above: each call must
+then return a finite result or refuse by a limsurf.Error.
 Run by hand (a few minutes on 2 cores), not by the suite; tests/python/test_hostile_inputs.py keeps
 what earlier sweeps found.
 """
@@ -161,8 +165,14 @@ def signatures(function):
     return out
 
 
-def hostile_values(annotation, mesh):
+def mesh_files(folder):
+    return sorted(str(p) for p in pathlib.Path(folder).iterdir() if p.suffix in (".obj", ".off", ".ply"))
+
+
+def hostile_values(annotation, mesh, meshes_dir=None):
     annotation = annotation.replace("Optional[", "").rstrip("]") if annotation.startswith("Optional[") else annotation
+    if meshes_dir and not annotation.endswith("Mesh"):
+        return []
     if annotation == "float":
         return [(repr(v), v) for v in FLOATS]
     if annotation == "int":
@@ -170,13 +180,15 @@ def hostile_values(annotation, mesh):
     if annotation == "str":
         return [(repr(v[:20]), v) for v in STRINGS]
     if annotation.endswith("Mesh"):
+        if meshes_dir:
+            return [(pathlib.Path(f).name, f) for f in mesh_files(meshes_dir)]  # read in the child
         return list(hostile_meshes(mesh).items())
     if annotation in ("handle", "object", "Iterable", "sequence") or annotation.startswith(("List[", "Tuple[")):
         return list(hostile_arrays().items())
     return []
 
 
-def cases(mesh_dir, only):
+def cases(mesh_dir, only, meshes_dir=None):
     """(name, parameter, label) of every call to make."""
     with tempfile.TemporaryDirectory() as tmp:
         table, m = baselines(mesh_dir, tmp)
@@ -187,12 +199,12 @@ def cases(mesh_dir, only):
             for parameters in signatures(function)[:1]:
                 mesh = args[0] if args and type(args[0]).__name__ == "Mesh" else m["cube"]
                 for parameter, annotation, _, _ in parameters:
-                    for label, _ in hostile_values(annotation, mesh):
+                    for label, _ in hostile_values(annotation, mesh, meshes_dir):
                         out.append((name, parameter, label))
         return out
 
 
-def run_case(mesh_dir, name, parameter, label):
+def run_case(mesh_dir, name, parameter, label, meshes_dir=None):
     """In the child: builds the baseline, replaces one argument, calls, and prints a JSON verdict."""
     import numpy as np
     import limsurf
@@ -202,7 +214,12 @@ def run_case(mesh_dir, name, parameter, label):
         parameters = signatures(function)[0]
         mesh = args[0] if args and type(args[0]).__name__ == "Mesh" else m["cube"]
         annotation = next(a for p, a, _, _ in parameters if p == parameter)
-        value = dict(hostile_values(annotation, mesh))[label]
+        value = dict(hostile_values(annotation, mesh, meshes_dir))[label]
+        if meshes_dir:
+            try:
+                value = limsurf.read_mesh(value)
+            except limsurf.Error as error:
+                return {"verdict": "refused", "message": "read_mesh: " + str(error).splitlines()[0][:200]}
         names = [p for p, _, _, keyword_only in parameters if not keyword_only]
         args = list(args)
         kwargs = dict(kwargs)
@@ -252,10 +269,11 @@ def main():
     parser.add_argument("--only", nargs="*", default=[])
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--timeout", type=float, default=120.0)
+    parser.add_argument("--meshes", default=None)
     parser.add_argument("--case", help=argparse.SUPPRESS)  # JSON [name, parameter, label]: labels may start with -
     options = parser.parse_args()
     if options.case:
-        print(json.dumps(run_case(options.mesh_dir, *json.loads(options.case))))
+        print(json.dumps(run_case(options.mesh_dir, *json.loads(options.case), options.meshes)))
         return 0
     with tempfile.TemporaryDirectory() as tmp:  # every baseline must succeed, or its mutations prove nothing
         for name, (function, args, kwargs) in baselines(options.mesh_dir, tmp)[0].items():
@@ -266,11 +284,12 @@ def main():
             except Exception as error:  # noqa: BLE001
                 print(f"baseline {name} fails: {type(error).__name__}: {error}")
                 return 2
-    todo = cases(options.mesh_dir, set(options.only))
+    todo = cases(options.mesh_dir, set(options.only), options.meshes)
 
     def child(case):
         try:
-            done = subprocess.run([sys.executable, __file__, options.mesh_dir, "--case=" + json.dumps(case)],
+            meshes = ["--meshes", options.meshes] if options.meshes else []
+            done = subprocess.run([sys.executable, __file__, options.mesh_dir, *meshes, "--case=" + json.dumps(case)],
                                   capture_output=True, text=True, timeout=options.timeout)
         except subprocess.TimeoutExpired:
             return case, {"verdict": "hang", "message": f"over {options.timeout} s"}
