@@ -81,6 +81,21 @@ def _explain(text, args, kwargs, classes):
     return "\n".join(lines)
 
 
+def docstring_signatures(doc):
+    """The parameter lists of the overloads a pybind11 docstring shows ("name(a: int, ...) -> T", or
+    "Overloaded function." and numbered lines), each as _parameters gives it; None for one it cannot read."""
+    lines = (doc or "").splitlines()
+    if lines[1:2] == ["Overloaded function."]:
+        lines = [line.split(". ", 1)[1] for line in lines if re.match(r"^\d+\. [\w.]*\(", line)]
+    else:
+        lines = lines[:1]
+    out = []
+    for line in lines:
+        match = re.match(r"^[\w.]*\((.*)\)(?: -> .*)?$", line.strip())
+        out.append(_parameters(match.group(1)) if match else None)
+    return out
+
+
 def _parameters(signature):
     """[(name, annotation, has_default, keyword_only)] of one overload's parameter list."""
     parameters, keyword_only = [], False
@@ -192,17 +207,9 @@ def _fits(annotation, value, classes):
         verdicts = [_fits(a, value, classes) for a in inner]
         return True if any(v is True for v in verdicts) else (None if None in verdicts else False)
     if outer in ("List", "Sequence", "list"):
-        return _elements_fit(inner[0], value, classes)
+        return _is_sequence(value) and _elements_fit([inner[0]] * len(value), value, classes)
     if outer in ("Tuple", "tuple"):
-        if not _is_sequence(value) or len(value) != len(inner):
-            return False
-        for index, (element_annotation, element) in enumerate(zip(inner, value)):
-            verdict = _fits(element_annotation, element, classes)
-            if verdict is False:
-                return f"[{index}]", _readable(element_annotation)
-            if isinstance(verdict, tuple):
-                return f"[{index}]{verdict[0]}", verdict[1]
-        return True
+        return _is_sequence(value) and len(value) == len(inner) and _elements_fit(inner, value, classes)
     if outer in ("Dict", "dict"):
         return isinstance(value, collections.abc.Mapping)
     if outer == "Callable" or annotation == "Callable":
@@ -213,10 +220,9 @@ def _fits(annotation, value, classes):
     return None
 
 
-def _elements_fit(annotation, value, classes):
-    if not _is_sequence(value):
-        return False
-    for index, element in enumerate(value):
+def _elements_fit(annotations, elements, classes):
+    """True, or (element path, expected) for the first element that does not fit its annotation."""
+    for index, (annotation, element) in enumerate(zip(annotations, elements)):
         verdict = _fits(annotation, element, classes)
         if verdict is False:
             return f"[{index}]", _readable(annotation)

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <ostream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -34,15 +35,20 @@ CliRun limsurf(const std::vector<std::string>& args) {
     return test::run_limsurf(args, temp_dir());
 }
 
-/// The seed's square plate, L = 10, as a 4 × 4 quad grid.
-std::string square_plate() {
-    const fs::path path = temp_dir() / "square.obj";
-    std::ofstream out(path);
+/// The 5 × 5 vertices of the seed's square plate, L = 10, as OBJ lines.
+void square_vertices(std::ostream& out) {
     for (int j = 0; j <= 4; ++j) {
         for (int i = 0; i <= 4; ++i) {
             out << "v " << 2.5 * i << ' ' << 2.5 * j << " 0\n";
         }
     }
+}
+
+/// The seed's square plate as a 4 × 4 quad grid.
+std::string square_plate() {
+    const fs::path path = temp_dir() / "square.obj";
+    std::ofstream out(path);
+    square_vertices(out);
     for (int j = 0; j < 4; ++j) {
         for (int i = 0; i < 4; ++i) {
             const int a = j * 5 + i + 1;
@@ -74,11 +80,7 @@ TEST(CliPlate, UniformLoadConvergesToNavier) {
 std::string triangulated_square_plate() {
     const fs::path path = temp_dir() / "square_tris.obj";
     std::ofstream out(path);
-    for (int j = 0; j <= 4; ++j) {
-        for (int i = 0; i <= 4; ++i) {
-            out << "v " << 2.5 * i << ' ' << 2.5 * j << " 0\n";
-        }
-    }
+    square_vertices(out);
     for (int j = 0; j < 4; ++j) {
         for (int i = 0; i < 4; ++i) {
             const int a = j * 5 + i + 1;

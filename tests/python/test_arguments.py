@@ -2,7 +2,6 @@
 input": "Python exceptions naming the array, the row and the problem"), for every public function
 and method: each parameter whose annotation can be judged is given a value of the wrong type while
 the others get values of the right type, and the message must name that parameter."""
-import re
 
 import numpy as np
 import pytest
@@ -48,16 +47,8 @@ def _callables(mesh, basis, geodesics):
 
 def _signatures(doc):
     """The parameter lists of each overload that the docstring shows."""
-    lines = doc.splitlines()
-    if lines[1:2] == ["Overloaded function."]:
-        lines = [line.split(". ", 1)[1] for line in lines if re.match(r"^\d+\. \w+\(", line)]
-    else:
-        lines = lines[:1]
-    signatures = []
-    for line in lines:
-        match = re.match(r"^\w+\((.*)\)(?: -> .*)?$", line)
-        assert match is not None, f"cannot read a signature from {line!r}"
-        signatures.append(_arguments._parameters(match.group(1)))
+    signatures = _arguments.docstring_signatures(doc)
+    assert signatures and None not in signatures, f"cannot read a signature from {doc.splitlines()[0]!r}"
     return signatures
 
 

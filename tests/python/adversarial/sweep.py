@@ -25,7 +25,6 @@ import json
 import math
 import os
 import pathlib
-import re
 import subprocess
 import sys
 import tempfile
@@ -150,19 +149,9 @@ def baselines(mesh_dir, tmp):
 def signatures(function):
     """The parameter lists of the overloads of a pybind11 callable (self dropped for methods)."""
     from limsurf import _arguments
-    doc = getattr(function, "__wrapped__", function).__doc__ or ""
-    lines = doc.splitlines()
-    if lines[1:2] == ["Overloaded function."]:
-        lines = [line.split(". ", 1)[1] for line in lines if re.match(r"^\d+\. \w+\(", line)]
-    else:
-        lines = lines[:1]
-    out = []
-    for line in lines:
-        match = re.match(r"^(?:[\w.]+)?\((.*)\)(?: -> .*)?$", line.strip())
-        if match:
-            parameters = _arguments._parameters(match.group(1)) or []
-            out.append([p for p in parameters if p[0] != "self"])
-    return out
+    doc = getattr(function, "__wrapped__", function).__doc__
+    return [[p for p in parameters if p[0] != "self"]
+            for parameters in _arguments.docstring_signatures(doc) if parameters is not None]
 
 
 def mesh_files(folder):
