@@ -169,7 +169,17 @@ def _must_be(argument, expected, value, where, annotation):
     phrase = f"argument '{argument}' must be {expected}, got {_describe(shown)}"
     if _readable(annotation) == "limsurf.Mesh" and not where:
         phrase += " (make one with limsurf.Mesh(V, F) or limsurf.read_mesh(path))"
+    if annotation == "os.PathLike" and _has_nul(value):
+        phrase += " (a path cannot hold a NUL character)"
     return phrase
+
+
+def _has_nul(value):
+    try:
+        path = os.fspath(value)
+    except TypeError:
+        return False
+    return ("\0" if isinstance(path, str) else b"\0") in path
 
 
 def _mismatch(annotation, value, classes):
@@ -190,7 +200,7 @@ def _fits(annotation, value, classes):
         "handle": lambda v: True,
         "object": lambda v: True,
         "str": lambda v: isinstance(v, str),
-        "os.PathLike": lambda v: isinstance(v, (str, bytes, os.PathLike)),
+        "os.PathLike": lambda v: isinstance(v, (str, bytes, os.PathLike)) and not _has_nul(v),
         "function": callable,
         "sequence": lambda v: isinstance(v, collections.abc.Sequence) or _is_sequence(v),
         "int": _is_integer,

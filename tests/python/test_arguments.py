@@ -103,6 +103,9 @@ def test_the_message_says_what_was_given_and_how_to_fix_it(mesh_path):
         limsurf.Mesh(mesh.V)
     with pytest.raises(TypeError, match=r"^LimitBasis\(\): takes at most 2 positional arguments \(mesh, scheme\), got 3"):
         limsurf.LimitBasis(mesh, "catmull-clark", "bilinear")
+    with pytest.raises(TypeError, match=r"^read_mesh\(\): argument 'path' must be os\.PathLike, got str 'cube\\x00\.obj' "
+                                        r"\(a path cannot hold a NUL character\)"):
+        limsurf.read_mesh("cube\0.obj")
 
 
 def test_a_list_element_of_the_wrong_type_is_named_by_its_index():
