@@ -59,12 +59,11 @@ def _explain(text, args, kwargs, classes):
     if refusal is None:
         return None
     name, kind = refusal.groups()
-    if kind == "constructor":
-        args = args[1:]  # the signature of a constructor omits self
     matches = [m for m in map(_OVERLOAD.match, text.splitlines()) if m]
     if not matches:
         return None
-    if kind == "constructor":  # "limsurf._limsurf.Mesh(V: handle, ...)": the class names the call
+    if kind == "constructor":  # "limsurf._limsurf.Mesh(V: handle, ...)": no self, the class names the call
+        args = args[1:]
         name = matches[0].group(1).split(".")[-1] or name
     overloads = [m.group(2) for m in matches]
     problems = []

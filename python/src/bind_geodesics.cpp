@@ -18,12 +18,10 @@ namespace {
 
 using namespace pybind11::literals;
 
-/// One vertex index or a sequence of them (HeatGeodesics checks the range, naming the vertex).
-/// As an index array: pybind11's vector cast of a 3-d array raised numpy's "circular base" ValueError.
+/// One vertex index or a sequence of them, as an index array: pybind11's vector cast of a 3-d array
+/// raised numpy's "circular base" ValueError. The library checks the range, naming the vertex and
+/// the mesh's size; only a negative index is refused here.
 std::vector<Index> sources_from(const py::handle& sources, const std::string& name = "sources") {
-    if (py::isinstance<py::int_>(sources) && !py::isinstance<py::bool_>(sources)) {
-        return {cast_as<Index>(sources, name, "a vertex index")};
-    }
     return indices_from(sources, name, std::numeric_limits<Index>::max());
 }
 

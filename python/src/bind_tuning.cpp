@@ -260,9 +260,10 @@ quads: decompose_shapes(mesh, P=None, ...) or decompose_shapes(V, F, P=None, ...
 positions). A list of dicts 'vertex', 'valence', 'k3' (cup coefficient of ξ₁² + ξ₂²), 'k4', 'k5' (saddle
 coefficients of ξ₁² − ξ₂² and 2ξ₁ξ₂), 'ratio' (R = k₃² / (k₄² + k₅²) · (1 + μ)/(1 − μ), inf without a
 saddle part, nan without either), 'has_quadratic_part' (False where P is flat there to rounding: every
-k below 2e-15 of the one-ring's size or distance from the origin, set to 0), 'normal' (a 3-array), 'position' (the vertex's limit point), 'tangents' (2 × 3: ∂P/∂ξ₁,
-∂P/∂ξ₂ there; with J their in-plane parts as columns, a smooth field's Hessian H gives the ξ-Hessian
-JᵀHJ = 2[[k₃+k₄, k₅], [k₅, k₃−k₄]]) and 'cup_dominates' (R ≥ 1; False where flat). weights: None (Catmull–Clark), a preset
+k below 2e-15 of the one-ring's size or distance from the origin, set to 0), 'normal' (a 3-array),
+'position' (the vertex's limit point), 'tangents' (2 × 3: ∂P/∂ξ₁, ∂P/∂ξ₂ there; with J their in-plane
+parts as columns, a smooth field's Hessian H gives the ξ-Hessian JᵀHJ = 2[[k₃+k₄, k₅], [k₅, k₃−k₄]])
+and 'cup_dominates' (R ≥ 1; False where flat). weights: None (Catmull–Clark), a preset
 'cup', 'saddle', 'catmull-clark' or a weights file (as `limsurf subdivide --weights`), or a dict
 {'valence': {n: w}, 'vertex': {i: w}} with w (alpha, beta, gamma) or a dict W. Raises limsurf.InputError
 for bad P or weights, or a one-ring holding another tuned vertex.)";

@@ -521,14 +521,9 @@ ReverseResult reverse_catmull_clark(const ControlMesh& fine, int max_levels, con
             throw InputError(detail::concat("level ", level + 1, " of ", max_levels, " cannot be reversed (", level,
                                             " could): ", error.what()));
         }
-        double largest = 0.0;
-        for (const double e : c.error) {
-            largest = std::max(largest, e);
-        }
-        double sum = 0.0;  // of (e / largest)²: the squares of errors near the largest double overflow
-        for (const double e : c.error) {
-            sum += largest > 0.0 ? (e / largest) * (e / largest) : 0.0;
-        }
+        // stableNorm: the squares of errors near the largest double overflow in a plain norm
+        const Eigen::Map<const Eigen::VectorXd> errors(c.error.data(), static_cast<Eigen::Index>(c.error.size()));
+        const double largest = errors.size() > 0 ? errors.maxCoeff() : 0.0;
         if (max_levels == -1 && level > 0) {
             // Past the first level, "as many as possible" takes only levels that fit.
             const Points& p = current.positions();
@@ -544,7 +539,7 @@ ReverseResult reverse_catmull_clark(const ControlMesh& fine, int max_levels, con
         step.coarse_vertices = c.coarse.num_vertices();
         step.coarse_faces = c.coarse.num_faces();
         step.residual_max = largest;
-        step.residual_rms = largest * std::sqrt(sum / static_cast<double>(c.error.size()));
+        step.residual_rms = errors.stableNorm() / std::sqrt(static_cast<double>(c.error.size()));
         step.unique = c.unique;
         step.fine_vertex = std::move(c.fine_vertex);
         result.steps.push_back(std::move(step));
