@@ -1,6 +1,7 @@
 // limsurf membrane MESH --scheme c2g0|loop|catmull-clark --area A0 (--volume V0 | --reduced-volume v0)
 //   [--mean-curvature M0 | --reduced-mean-curvature m0] [--spontaneous-curvature H0]
-//   [--regularize-harmonic EPS] [--max-iterations K] [--tolerance T] [--degree D] [--threads N]
+//   [--regularize-harmonic EPS] [--max-iterations K] [--tolerance T] [--hessian limited-memory|exact]
+//   [--degree D] [--threads N]
 //   -o OUT.obj [--field-output OUT.vtk] [--resolution N] [--intersection-resolution N] [--json]
 // limsurf membrane MESH --scheme S --evaluate-only [--spontaneous-curvature H0] [--field-output OUT.vtk] [--json]:
 // biomembrane shapes (c2g0-sphere-scheme-biomembranes §3; apps/membrane.h, docs/guide/membrane.md):
@@ -56,6 +57,7 @@ struct MembraneCommandOptions {
     int max_iterations = 1000;
     double tolerance = 1e-8;
     double objective_tolerance = 1e-7;
+    std::string hessian = "limited-memory";
     int degree = 8;
     int threads = 0;
     bool evaluate_only = false;
@@ -161,6 +163,7 @@ MembraneRequest request_of(const MembraneCommandOptions& options) {
     request.max_iterations = options.max_iterations;
     request.tolerance = options.tolerance;
     request.objective_tolerance = options.objective_tolerance;
+    request.hessian = options.hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
     return request;
 }
 
@@ -292,6 +295,7 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
                        {"samples", functionals.num_samples()},
                        {"degree", options.degree},
                        {"volume_is_exact", functionals.volume_is_exact()},
+                       {"hessian", options.hessian},
                        {"initial_area", run.initial_area},
                        {"scale", run.scale},
                        {"spontaneous_curvature", optional_json(request.spontaneous_curvature)}};
@@ -417,6 +421,11 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
         "--objective-tolerance", options->objective_tolerance,
         "Also converged when the objective's relative change stays below this for 15 iterations with the "
         "constraints met (default 1e-7; 0: the KKT tolerance only)");
+    CLI::Option* hessian =
+        cmd->add_option("--hessian", options->hessian,
+                        "Second derivatives of the solver: limited-memory (BFGS from the gradients) or exact "
+                        "(Newton steps; docs/membrane.md)")
+            ->check(CLI::IsMember({"limited-memory", "exact"}));
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (default 8)");
     add_threads_option(cmd, options->threads);
     CLI::Option* evaluate = cmd->add_flag(
@@ -435,7 +444,7 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
                     "(1..256; default: about 40000 points)")
         ->check(CLI::Range(1, 256));
     for (CLI::Option* solve_only : {area, volume, reduced_volume, mean, reduced_mean, regularize, iterations, tolerance,
-                                    objective_tolerance, output}) {
+                                    objective_tolerance, hessian, output}) {
         evaluate->excludes(solve_only);
     }
     cmd->add_flag("--json", options->json, "Print JSON on stdout (progress still goes to stderr)");

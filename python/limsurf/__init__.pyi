@@ -285,6 +285,8 @@ def shell(mesh: Mesh, scheme: FemScheme, *, levels: int = 0, E: float = 1.0, nu:
 
 # Biomembrane shapes (docs/guide/membrane.md).
 MembraneScheme = Literal["c2g0", "loop", "catmull-clark"]
+MembraneHessian = Literal["limited-memory", "exact"]
+ShapeFunctionalName = Literal["area", "volume", "mean_curvature", "willmore", "gaussian", "harmonic"]
 
 class ShapeFunctionals(TypedDict, total=False):
     area: float
@@ -322,7 +324,7 @@ def minimize_membrane(mesh: Mesh, scheme: MembraneScheme, *, area: float, volume
                       reduced_volume: float | None = None, mean_curvature: float | None = None,
                       reduced_mean_curvature: float | None = None, spontaneous_curvature: float | None = None,
                       regularize_harmonic: float | None = None, max_iterations: int = 1000, tolerance: float = 1e-8,
-                      objective_tolerance: float = 1e-7,
+                      objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
 @overload
@@ -331,9 +333,18 @@ def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Memb
                       mean_curvature: float | None = None, reduced_mean_curvature: float | None = None,
                       spontaneous_curvature: float | None = None, regularize_harmonic: float | None = None,
                       max_iterations: int = 1000, tolerance: float = 1e-8,
-                      objective_tolerance: float = 1e-7,
+                      objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
+
+@overload
+def shape_hessian(mesh: Mesh, scheme: MembraneScheme, coefficients: dict[ShapeFunctionalName, float], *,
+                  X: ArrayLike | None = None, degree: int = 8, subdivide_near_extraordinary: int = 3,
+                  threads: int = 0) -> scipy.sparse.csr_matrix: ...
+@overload
+def shape_hessian(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: MembraneScheme,
+                  coefficients: dict[ShapeFunctionalName, float], *, X: ArrayLike | None = None, degree: int = 8,
+                  subdivide_near_extraordinary: int = 3, threads: int = 0) -> scipy.sparse.csr_matrix: ...
 
 class SelfIntersections(TypedDict):
     intersects: bool

@@ -202,6 +202,7 @@ def _fits(annotation, value, classes):
         "os.PathLike": lambda v: isinstance(v, (str, bytes, os.PathLike)) and not _has_nul(v),
         "function": callable,
         "sequence": lambda v: isinstance(v, collections.abc.Sequence) or _is_sequence(v),
+        "dict": lambda v: isinstance(v, collections.abc.Mapping),
         "int": _is_integer,
         "float": lambda v: not isinstance(v, (str, bytes)) and (hasattr(type(v), "__float__") or _is_integer(v)),
         "bool": lambda v: v is None or (not isinstance(v, (str, bytes, collections.abc.Sequence))

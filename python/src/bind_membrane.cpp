@@ -1,5 +1,6 @@
 // Biomembrane shapes (membrane/, apps/membrane.h): limsurf.shape_functionals (the functionals of
-// c2g0-sphere-scheme-biomembranes §3 and their exact gradients), limsurf.minimize_membrane (the
+// c2g0-sphere-scheme-biomembranes §3 and their exact gradients), limsurf.shape_hessian (the Hessian
+// of a combination of them, scipy.sparse), limsurf.minimize_membrane (the
 // dict of `limsurf membrane --json` plus the positions) and limsurf.self_intersections (whether a
 // limit surface passes through itself, apps/self_intersection.h). Each takes a Mesh, or arrays V, F.
 #include <cmath>
@@ -121,6 +122,41 @@ py::dict shape_functionals(const Mesh& mesh, const std::string& scheme, const st
     });
 }
 
+/// {name: weight} → the weights of ShapeFunctionals::hessian; names as shape_functionals returns them.
+ShapeCoefficients coefficients_from(const py::dict& weights) {
+    ShapeCoefficients out{};
+    for (const auto& [key, value] : weights) {
+        const auto name = cast_as<std::string>(key, "coefficients: a key", "a str");
+        int index = -1;
+        for (int f = 0; f < num_shape_functionals; ++f) {
+            if (name == name_of(static_cast<ShapeFunctional>(f))) {
+                index = f;
+            }
+        }
+        LIMSURF_CHECK(index >= 0, InputError, "coefficients: '", name,
+                      "' is not a shape functional (area, volume, mean_curvature, willmore, gaussian, harmonic)");
+        const auto weight = cast_as<double>(value, "coefficients['" + name + "']", "a float");
+        LIMSURF_CHECK(std::isfinite(weight), InputError, "coefficients['", name, "'] must be finite, not ", weight);
+        out[static_cast<std::size_t>(index)] = weight;
+    }
+    return out;
+}
+
+py::object shape_hessian(const Mesh& mesh, const std::string& scheme, const py::dict& weights,
+                         const std::optional<py::object>& X, const ShapeArguments& args) {
+    const ShapeCoefficients coefficients = coefficients_from(weights);
+    return naming_source(mesh, [&] {
+        const Points positions = X ? points_from(*X, "X") : mesh.mesh.positions();
+        const ShapeFunctionals functionals = functionals_of(basis_of(mesh, scheme), args);
+        SparseMatrix H;
+        {
+            const py::gil_scoped_release release;
+            H = functionals.hessian(positions, coefficients);
+        }
+        return to_scipy(H);
+    });
+}
+
 py::object optional_value(const std::optional<double>& value) {
     return value ? py::object(py::float_(*value)) : py::object(py::none());
 }
@@ -163,7 +199,7 @@ py::dict run_dict(const std::string& scheme, const Mesh& mesh, const ShapeFuncti
     py::dict out("scheme"_a = scheme, "vertices"_a = mesh.mesh.num_vertices(),
                  "unknowns"_a = 3 * mesh.mesh.num_vertices(), "samples"_a = functionals.num_samples(),
                  "degree"_a = args.degree, "volume_is_exact"_a = functionals.volume_is_exact(),
-                 "initial_area"_a = run.initial_area, "scale"_a = run.scale,
+                 "hessian"_a = to_string(request.hessian), "initial_area"_a = run.initial_area, "scale"_a = run.scale,
                  "spontaneous_curvature"_a = optional_value(request.spontaneous_curvature));
     for (const auto& [key, value] : stage_dict(run.problem, run.shape, request.spontaneous_curvature)) {
         out[key] = value;
@@ -225,7 +261,10 @@ py::dict minimize_membrane(const Mesh& mesh, const std::string& scheme, const Me
 MembraneRequest request_of(double area, std::optional<double> volume, std::optional<double> reduced_volume,
                            std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
                            std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
-                           int max_iterations, double tolerance, double objective_tolerance) {
+                           int max_iterations, double tolerance, double objective_tolerance,
+                           const std::string& hessian) {
+    LIMSURF_CHECK(hessian == "limited-memory" || hessian == "exact", InputError,
+                  "hessian: 'limited-memory' or 'exact', not '", hessian, "'");
     MembraneRequest request;
     request.area = area;
     request.volume = volume;
@@ -237,6 +276,7 @@ MembraneRequest request_of(double area, std::optional<double> volume, std::optio
     request.max_iterations = max_iterations;
     request.tolerance = tolerance;
     request.objective_tolerance = objective_tolerance;
+    request.hessian = hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
     return request;
 }
 
@@ -256,6 +296,8 @@ constraints (Ipopt), from the mesh as initial guess scaled about its centroid to
 regularize_harmonic=ε then (3.12): min harmonic energy s.t. the same constraints and W ≤ W0 + ε.
 minimize_membrane(mesh, scheme, area=..., ...) or minimize_membrane(V, F, scheme, area=..., ...).
 Returns the dict of `limsurf membrane --json` plus 'positions' (#V × 3, the last stage's control points).
+hessian: 'limited-memory' (BFGS from the gradients, the default) or 'exact' (Newton steps with
+shape_hessian's matrices; fewer iterations, each dearer: docs/guide/membrane.md).
 callback(dict) is called after every iteration with 'stage', 'iteration', 'objective',
 'constraint_violation', 'dual_infeasibility', 'step'; returning False stops the solve (converged False);
 an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
@@ -263,6 +305,18 @@ has 'projected' True when the points returned hold the constraints: the lowest o
 or its last iterate, projected onto them (a feasible point, not a minimiser; 'status' says which). Raises limsurf.InputError for an infeasible request
 (area outside [1e-100, 1e100], reduced volume outside [1e-6, 1], both or neither volume options) or an open mesh,
 limsurf.UnsupportedError for Doo–Sabin or without Ipopt.)";
+
+constexpr const char* hessian_doc = R"(The Hessian of a combination of the shape functionals with respect to
+the control points: shape_hessian(mesh, scheme, coefficients, ...) or shape_hessian(V, F, scheme,
+coefficients, ...), coefficients a dict {name: weight} with names as shape_functionals returns them
+('area', 'volume', 'mean_curvature', 'willmore', 'gaussian', 'harmonic'; missing ones weigh 0).
+Returns a symmetric scipy.sparse.csr_matrix (3 #V × 3 #V), row and column 3 v + c for coordinate c of
+control point v; its pattern (explicit zeros included) holds every pair of control points that share
+a limit patch's support and depends on the faces only. Per sample the integrand's second derivatives
+are central differences of its exact gradients (relative error ~1e-10); the volume's term is its
+quadrature's with the centroid held fixed (docs/guide/membrane.md). X: other positions (#V × 3).
+Raises limsurf.InputError for an unknown name, a weight that is not finite or an open mesh,
+limsurf.NumericalError where the surface is degenerate.)";
 
 constexpr const char* self_intersections_doc = R"(Whether the limit surface passes through itself
 (c2g0-sphere-scheme-biomembranes Fig. 7): self_intersections(mesh, scheme, ...) or
@@ -317,35 +371,53 @@ void bind_membrane(py::module_& m) {
                              std::optional<double> reduced_volume, std::optional<double> mean_curvature,
                              std::optional<double> reduced_mean_curvature, std::optional<double> spontaneous_curvature,
                              std::optional<double> regularize_harmonic, int max_iterations, double tolerance,
-                             double objective_tolerance, std::optional<py::function> callback, int degree,
-                             int subdivide_near_extraordinary, int threads) {
+                             double objective_tolerance, const std::string& hessian,
+                             std::optional<py::function> callback, int degree, int subdivide_near_extraordinary,
+                             int threads) {
         const MembraneRequest request =
             request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature, spontaneous_curvature,
-                       regularize_harmonic, max_iterations, tolerance, objective_tolerance);
+                       regularize_harmonic, max_iterations, tolerance, objective_tolerance, hessian);
         return minimize_membrane(mesh, scheme, request, callback, {degree, subdivide_near_extraordinary, threads});
     };
     m.def("minimize_membrane", minimize, "mesh"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(),
           "reduced_volume"_a = py::none(), "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
           "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
-          "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "callback"_a = py::none(), "degree"_a = 8,
-          "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, minimize_doc);
+          "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
+          "callback"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0,
+          minimize_doc);
     m.def(
         "minimize_membrane",
         [minimize](const py::object& V, const py::object& F, const std::string& scheme, double area,
                    std::optional<double> volume, std::optional<double> reduced_volume,
                    std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
                    std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
-                   int max_iterations, double tolerance, double objective_tolerance,
+                   int max_iterations, double tolerance, double objective_tolerance, const std::string& hessian,
                    std::optional<py::function> callback, int degree, int subdivide_near_extraordinary, int threads) {
             return minimize(mesh_from(V, F), scheme, area, volume, reduced_volume, mean_curvature,
                             reduced_mean_curvature, spontaneous_curvature, regularize_harmonic, max_iterations,
-                            tolerance, objective_tolerance, std::move(callback), degree, subdivide_near_extraordinary,
-                            threads);
+                            tolerance, objective_tolerance, hessian, std::move(callback), degree,
+                            subdivide_near_extraordinary, threads);
         },
         "V"_a, "F"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(), "reduced_volume"_a = py::none(),
         "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
         "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
-        "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "callback"_a = py::none(), "degree"_a = 8,
+        "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory", "callback"_a = py::none(),
+        "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
+
+    const auto hessian = [](const Mesh& mesh, const std::string& scheme, const py::dict& coefficients,
+                            std::optional<py::object> X, int degree, int subdivide_near_extraordinary, int threads) {
+        return shape_hessian(mesh, scheme, coefficients, X, {degree, subdivide_near_extraordinary, threads});
+    };
+    m.def("shape_hessian", hessian, "mesh"_a, "scheme"_a, "coefficients"_a, py::kw_only(), "X"_a = py::none(),
+          "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, hessian_doc);
+    m.def(
+        "shape_hessian",
+        [hessian](const py::object& V, const py::object& F, const std::string& scheme, const py::dict& coefficients,
+                  std::optional<py::object> X, int degree, int subdivide_near_extraordinary, int threads) {
+            return hessian(mesh_from(V, F), scheme, coefficients, std::move(X), degree, subdivide_near_extraordinary,
+                           threads);
+        },
+        "V"_a, "F"_a, "scheme"_a, "coefficients"_a, py::kw_only(), "X"_a = py::none(), "degree"_a = 8,
         "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
 }
 

@@ -215,6 +215,49 @@ TEST(CliMembrane, HelfrichSolveThenTheHarmonicRegularisation) {
                 1e-12 * number(r, "harmonic"));
 }
 
+TEST(CliMembrane, ExactHessiansSolveTheSameProblemToTheKktTolerance) {
+    // The problem above with --hessian exact and no objective tolerance: both stages stop at Ipopt's
+    // own tolerance ("solved"), the Helfrich stage at the quasi-Newton run's minimum.
+    const auto quasi_newton =
+        run_json({"membrane", mesh("octahedron"), "--scheme", "loop", "--area", "12.566370614359172",
+                  "--reduced-volume", "0.9", "--reduced-mean-curvature", "1.06", "--spontaneous-curvature", "0.5", "-o",
+                  (temp_dir() / "helfrich_lm.obj").string(), "--json"});
+    const auto out = run_json({"membrane",
+                               mesh("octahedron"),
+                               "--scheme",
+                               "loop",
+                               "--area",
+                               "12.566370614359172",
+                               "--reduced-volume",
+                               "0.9",
+                               "--reduced-mean-curvature",
+                               "1.06",
+                               "--spontaneous-curvature",
+                               "0.5",
+                               "--regularize-harmonic",
+                               "0.05",
+                               "--hessian",
+                               "exact",
+                               "--objective-tolerance",
+                               "0",
+                               "-o",
+                               (temp_dir() / "helfrich_exact.obj").string(),
+                               "--json"});
+    EXPECT_EQ(quasi_newton.at("hessian"), "limited-memory");
+    EXPECT_EQ(out.at("hessian"), "exact");
+    ASSERT_TRUE(out.at("converged").get<bool>()) << out.at("status");
+    EXPECT_EQ(out.at("status").get<std::string>().rfind("solved", 0), 0U) << out.at("status");
+    EXPECT_EQ(out.at("status").get<std::string>().find("objective tolerance"), std::string::npos) << out.at("status");
+    EXPECT_NEAR(number(out, "helfrich"), number(quasi_newton, "helfrich"), 1e-6 * number(quasi_newton, "helfrich"));
+    EXPECT_LE(number(out, "max_relative_residual"), 1e-8);
+    const auto& r = out.at("regularization");
+    ASSERT_TRUE(r.at("converged").get<bool>()) << r.at("status");
+    EXPECT_EQ(r.at("status").get<std::string>().find("objective tolerance"), std::string::npos) << r.at("status");
+    EXPECT_LE(number(r, "willmore"), (number(out, "willmore") + 0.05) * (1 + 1e-8));
+    EXPECT_LT(number(r, "harmonic"), number(out, "harmonic"));
+    EXPECT_LE(number(r, "max_relative_residual"), 1e-8);
+}
+
 TEST(CliMembrane, AnUnfinishedSolveExitsZeroWithConvergedFalseAndAWarning) {
     const fs::path obj = temp_dir() / "unfinished.obj";
     const CliRun run = limsurf({"membrane", mesh("icosahedron"), "--scheme", "loop", "--area", "1", "--reduced-volume",
@@ -373,6 +416,9 @@ TEST(CliMembrane, BadInputExitsWithOneClearLineAndNoFile) {
         {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--volume", "4", "--reduced-volume", "0.9"},
          2,
          "excludes"},
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--reduced-volume", "0.9", "--hessian", "newton"},
+         2,
+         "--hessian"},
     };
     for (const Case& c : cases) {
         std::vector<std::string> args{"membrane"};

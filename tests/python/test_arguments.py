@@ -10,13 +10,13 @@ import limsurf
 from limsurf import _arguments
 
 WRONG = {"str": 3, "int": "x", "float": "x", "bool": "x", "limsurf._limsurf.Mesh": np.zeros((3, 3)), "os.PathLike": 3,
-         "function": 3, "sequence": 3}
+         "function": 3, "sequence": 3, "dict": [1.0]}
 
 
 def _right_values(mesh, basis):
     return {"str": "x", "int": 1, "float": 1.0, "bool": False, "handle": None, "object": None,
             "limsurf._limsurf.Mesh": mesh, "limsurf._limsurf.LimitBasis": basis, "os.PathLike": "x",
-            "function": abs, "sequence": []}
+            "function": abs, "sequence": [], "dict": {}}
 
 
 def _right(annotation, right):
@@ -81,10 +81,10 @@ def test_every_refused_argument_is_named(mesh_path):
                     assert message.startswith(f"{short}(): no overload takes these arguments:"), (qualified, message)
                     assert f"argument '{parameter}' must be " in message, (qualified, message)
                 checked.add(qualified)
-    # all 48 callables but the seven whose parameters are only arrays (handle) or none at all:
+    # all 49 callables but the seven whose parameters are only arrays (handle) or none at all:
     # LimitBasis.has_limit_surface, .limit_positions, .vertex_limit_matrix, HeatGeodesics.distance,
     # .source_values, Mesh.with_positions, rigid_body_modes
-    assert len(checked) == 41, sorted(checked)
+    assert len(checked) == 42, sorted(checked)
 
 
 def test_the_message_says_what_was_given_and_how_to_fix_it(mesh_path):

@@ -1,5 +1,6 @@
 """limsurf.shape_functionals and limsurf.minimize_membrane equal to `limsurf membrane --json` (the same
-numbers on the same input), their gradients against finite differences and the homogeneity identities,
+numbers on the same input, with either Hessian), their gradients and limsurf.shape_hessian's matrices
+against finite differences and the homogeneity identities,
 the iteration callback, and their errors (membrane/, apps/membrane.h, docs/guide/membrane.md)."""
 import math
 
@@ -52,6 +53,45 @@ def test_gradients_match_finite_differences_and_the_identities(mesh_path):
         fd = (limsurf.shape_functionals(mesh, "loop", X=Xp, gradients=False)["willmore"]
               - limsurf.shape_functionals(mesh, "loop", X=Xm, gradients=False)["willmore"]) / (2 * h)
         assert fd == pytest.approx(g["willmore"][i, k], rel=1e-6, abs=1e-8 * np.abs(g["willmore"]).max())
+
+
+def test_shape_hessian_matches_the_gradients_and_the_identities(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
+    X = mesh.V + 0.05 * np.random.default_rng(23).standard_normal(mesh.V.shape)
+    weights = {"willmore": 1.0, "area": 0.5, "mean_curvature": -0.25}
+    H = limsurf.shape_hessian(mesh, "loop", weights, X=X)
+    assert H.shape == (3 * mesh.num_vertices, 3 * mesh.num_vertices) and (H != H.T).nnz == 0
+    # Rows and columns 3 v + c: X.reshape(-1) is in that order. H D against central differences of the
+    # gradients of the same combination.
+    D = np.random.default_rng(29).standard_normal(X.shape)
+    h = 1e-5
+
+    def gradient(Y):
+        g = limsurf.shape_functionals(mesh, "loop", X=Y)["gradient"]
+        return sum(w * g[name] for name, w in weights.items()).reshape(-1)
+
+    central = (gradient(X + h * D) - gradient(X - h * D)) / (2 * h)
+    HD = H @ D.reshape(-1)
+    assert np.linalg.norm(HD - central) <= 1e-6 * np.linalg.norm(HD)
+    # Euler: ∇A is homogeneous of degree 1, so H_A X = ∇A; ∇W of degree −1: H_W X = −∇W.
+    g = limsurf.shape_functionals(mesh, "loop", X=X)["gradient"]
+    for name, factor in (("area", 1.0), ("willmore", -1.0)):
+        HX = limsurf.shape_hessian(mesh, "loop", {name: 1.0}, X=X) @ X.reshape(-1)
+        assert np.linalg.norm(HX - factor * g[name].reshape(-1)) <= 1e-8 * np.linalg.norm(HX), name
+    # Arrays instead of a Mesh; the pattern is the faces', whatever the weights.
+    same = limsurf.shape_hessian(mesh.V, mesh.F, "loop", weights, X=X)
+    assert (same != H).nnz == 0
+    assert limsurf.shape_hessian(mesh, "loop", {}).nnz == H.nnz
+
+
+def test_exact_hessians_equal_the_cli(mesh_path, cli, tmp_path):
+    theirs = cli("membrane", mesh_path("octahedron"), "--scheme", "loop", "--area", repr(A0), "--reduced-volume", 0.9,
+                 "--hessian", "exact", "--objective-tolerance", 0, "-o", tmp_path / "exact.obj", "--json")
+    ours = limsurf.minimize_membrane(limsurf.read_mesh(mesh_path("octahedron")), "loop", area=A0, reduced_volume=0.9,
+                                     hessian="exact", objective_tolerance=0)
+    assert ours["converged"] and ours["status"].startswith("solved") and ours["hessian"] == "exact"
+    for key in set(theirs) - {"seconds", "output"}:
+        assert ours[key] == theirs[key], key
 
 
 def test_minimize_membrane_equals_the_cli(mesh_path, cli, tmp_path):
@@ -157,3 +197,11 @@ def test_errors(mesh_path):
         limsurf.shape_functionals(limsurf.read_mesh(mesh_path("cube")), "doo-sabin")
     with pytest.raises(limsurf.InputError):
         limsurf.shape_functionals(sphere, "c2g0", X=np.zeros((3, 3)))
+    with pytest.raises(limsurf.InputError, match="hessian: 'limited-memory' or 'exact'"):
+        limsurf.minimize_membrane(sphere, "c2g0", area=A0, reduced_volume=0.9, hessian="newton")
+    with pytest.raises(limsurf.InputError, match="'wilmore' is not a shape functional"):
+        limsurf.shape_hessian(sphere, "c2g0", {"wilmore": 1.0})
+    with pytest.raises(limsurf.InputError, match="must be finite"):
+        limsurf.shape_hessian(sphere, "c2g0", {"willmore": math.inf})
+    with pytest.raises(limsurf.InputError):
+        limsurf.shape_hessian(sphere, "c2g0", {"willmore": 1.0}, X=np.zeros((3, 3)))

@@ -40,6 +40,7 @@ struct MembraneRequest {
     /// W is flat along tangential slides of the control points, so the KKT tolerance is often
     /// out of reach on fine meshes long after W has settled.
     double objective_tolerance = 1e-7;
+    MembraneHessian hessian = MembraneHessian::LimitedMemory;  ///< for both stages (MembraneOptions::hessian)
 };
 
 /// Which stage of solve_membrane_problem() an iteration belongs to.

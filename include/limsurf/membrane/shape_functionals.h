@@ -41,6 +41,9 @@ namespace limsurf {
 enum class ShapeFunctional { Area = 0, Volume, MeanCurvature, Willmore, Gaussian, Harmonic };
 constexpr int num_shape_functionals = 6;
 
+/// The weights c_f of a combination Σ_f c_f F_f of the functionals, indexed by ShapeFunctional.
+using ShapeCoefficients = std::array<double, num_shape_functionals>;
+
 /// Options of ShapeFunctionals.
 struct ShapeOptions {
     int degree = 8;                        ///< quadrature degree per tile (quadrature/rules.h)
@@ -98,6 +101,21 @@ class ShapeFunctionals {
     [[nodiscard]] ShapeValues evaluate(const Points& X, std::span<const ShapeFunctional> gradients = {}) const;
     /// evaluate() with the gradients of all six functionals.
     [[nodiscard]] ShapeValues evaluate_all(const Points& X) const;
+
+    /// @brief The Hessian of Σ_f coefficients[f] F_f at @p X: the symmetric (3 #V) × (3 #V) matrix of
+    ///   second derivatives, row and column 3 v + c for coordinate c of control point v.
+    /// @details The chain rule (3.10)–(3.11) once more: per sample, the 18 × 18 second derivatives of
+    ///   the integrand with respect to its position and derivatives (by central differences of their
+    ///   exact gradients, relative error ~1e-10: membrane/sample_hessians.h), pulled back through the
+    ///   sample's limit weights, summed per element and then in element order (the same bits for any
+    ///   thread count). The pattern holds every pair of control points that share an element's
+    ///   support, explicit zeros included, and depends on the topology only. The volume's term is
+    ///   that of its quadrature with the centroid held fixed, also where the values and gradients
+    ///   use exact trilinear forms (volume_is_exact()): it differs from their Hessian by the
+    ///   quadrature's error. Used by minimize_membrane for Newton steps (MembraneHessian::Exact).
+    /// @throws InputError as evaluate(), or for a non-finite coefficient
+    /// @throws NumericalError when the surface is degenerate at a sample, naming the ptex face
+    [[nodiscard]] SparseMatrix hessian(const Points& X, const ShapeCoefficients& coefficients) const;
 
     [[nodiscard]] Index num_vertices() const noexcept;
     [[nodiscard]] Index num_samples() const noexcept;

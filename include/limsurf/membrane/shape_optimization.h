@@ -1,7 +1,7 @@
 // Constrained shape optimisation of biomembranes with hard constraints: the Canham and Helfrich
 // problems (3.1) and the parameterisation regularisation (3.12) of c2g0-sphere-scheme-biomembranes
-// §3, solved by Ipopt (interior point, exact constraint Jacobians, limited-memory quasi-Newton
-// Hessian; docs/membrane.md says why Ipopt and not NLopt).
+// §3, solved by Ipopt (interior point, exact constraint Jacobians, a limited-memory quasi-Newton
+// Hessian or the exact one; docs/membrane.md says why Ipopt and not NLopt).
 //
 //   Canham      min W           s.t. A = A0, V = V0
 //   Helfrich    min ∫(H − H0)²  s.t. A = A0, V = V0 [, M = M0]
@@ -9,8 +9,9 @@
 //
 // The unknowns are the 3 #V control coordinates. The objective and constraints are invariant under
 // the six rigid motions, so their Hessians are singular along them; the limited-memory Hessian
-// keeps the KKT system regular, and the rigid motions are left free (the result is defined up to
-// them). Every functional comes from one ShapeFunctionals::evaluate() per iterate.
+// keeps the KKT system regular (with the exact one, Ipopt's inertia correction does), and the
+// rigid motions are left free (the result is defined up to them). Every functional comes from one
+// ShapeFunctionals::evaluate() per iterate.
 #pragma once
 
 #include <functional>
@@ -65,8 +66,21 @@ struct MembraneIteration {
     bool restoration = false;
 };
 
+/// How the solver takes the second derivatives of the Lagrangian.
+enum class MembraneHessian {
+    /// Ipopt's limited-memory BFGS from the gradients (20 pairs): cheap per iteration, for any size.
+    LimitedMemory,
+    /// ShapeFunctionals::hessian of the Lagrangian at every iteration: Newton steps, much fewer
+    /// iterations on small meshes where each costs more (docs/membrane.md, "Exact Hessians").
+    Exact
+};
+
+/// "limited-memory" or "exact" (the CLI's and Python's name).
+[[nodiscard]] const char* to_string(MembraneHessian hessian) noexcept;
+
 /// Options of minimize_membrane().
 struct MembraneOptions {
+    MembraneHessian hessian = MembraneHessian::LimitedMemory;
     int max_iterations = 1000;
     double tolerance = 1e-8;             ///< Ipopt's KKT tolerance (tol, on its scaled NLP error)
     double constraint_tolerance = 1e-9;  ///< relative to the constraint's target

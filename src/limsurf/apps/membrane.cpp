@@ -20,6 +20,7 @@ MembraneOptions stage_options(const MembraneRequest& request, MembraneStage stag
     options.max_iterations = request.max_iterations;
     options.tolerance = request.tolerance;
     options.objective_tolerance = request.objective_tolerance;
+    options.hessian = request.hessian;
     if (progress) {
         options.on_iteration = [&progress, stage](const MembraneIteration& it) { return progress(stage, it); };
     }

@@ -19,6 +19,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/core/parallel.h"
 #include "limsurf/membrane/element_products.h"
+#include "limsurf/membrane/sample_hessians.h"
 #include "limsurf/membrane/sample_integrands.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/volume/enclosed_volume.h"
@@ -137,6 +138,21 @@ struct ShapeFunctionals::Impl {
     [[nodiscard]] std::size_t intern(const ElementKernel& kernel, KernelIndex& index);
     void find_first_elements();
     [[nodiscard]] ShapeValues evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const;
+    void check_points(const Points& X) const;
+
+    // The Hessian (shape_functionals.h): the pattern of control-point pairs that share a support,
+    // one dense block per element, added into the pattern in element order.
+    struct HessianWorkspace {
+        Eigen::Matrix<double, Eigen::Dynamic, 3> element_points;
+        std::vector<double> derivatives, sample_hessians, scratch;
+        Eigen::MatrixXd weighted, pullback;  // W^cd and Bᵀ W^cd (element_hessian)
+    };
+    [[nodiscard]] SparseMatrix hessian_pattern() const;
+    [[nodiscard]] bool element_hessian(std::size_t e, const Points& X, const Vec3& centroid,
+                                       const ShapeCoefficients& coefficients, HessianWorkspace& ws,
+                                       Eigen::MatrixXd& block) const;
+    void add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H) const;
+    [[nodiscard]] SparseMatrix hessian(const Points& X, const ShapeCoefficients& coefficients) const;
 };
 
 void ShapeFunctionals::Impl::add_elements(const LimitSampler& piece, KernelIndex& index) {
@@ -222,10 +238,14 @@ void ShapeFunctionals::Impl::find_first_elements() {
     }
 }
 
-ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const {
+void ShapeFunctionals::Impl::check_points(const Points& X) const {
     LIMSURF_CHECK(X.rows() == num_vertices, InputError, "control points have ", X.rows(), " rows, the mesh has ",
                   num_vertices, " vertices");
     LIMSURF_CHECK(X.allFinite(), InputError, "the control points have a non-finite coordinate");
+}
+
+ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const {
+    check_points(X);
     std::array<bool, num_shape_functionals> wanted{};
     for (const ShapeFunctional f : gradients) {
         wanted[index_of(f)] = true;
@@ -404,6 +424,155 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     return out;
 }
 
+SparseMatrix ShapeFunctionals::Impl::hessian_pattern() const {
+    std::vector<std::vector<Index>> near(static_cast<std::size_t>(num_vertices));
+    for (std::size_t e = 0; e + 1 < element_slots.size(); ++e) {
+        for (std::size_t k = element_slots[e]; k < element_slots[e + 1]; ++k) {
+            auto& list = near[static_cast<std::size_t>(slot_vertex[k])];
+            list.insert(list.end(), slot_vertex.begin() + static_cast<std::ptrdiff_t>(element_slots[e]),
+                        slot_vertex.begin() + static_cast<std::ptrdiff_t>(element_slots[e + 1]));
+        }
+    }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (Index v = 0; v < num_vertices; ++v) {
+        auto& list = near[static_cast<std::size_t>(v)];
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+        for (const Index u : list) {
+            for (Index c = 0; c < 3; ++c) {
+                for (Index d = 0; d < 3; ++d) {
+                    entries.emplace_back(3 * v + c, 3 * u + d, 0.0);
+                }
+            }
+        }
+    }
+    SparseMatrix H(3 * num_vertices, 3 * num_vertices);
+    H.setFromTriplets(entries.begin(), entries.end());  // explicit zeros stay: the pattern is the topology's
+    return H;
+}
+
+/// Element @p e's block of the Hessian (3 slots × 3 slots, index 3 k + c): Σ_i B_iᵀ D_i B_i with B_i
+/// sample i's limit weights (6 rows, times the 3 × 3 identity) and D_i its integrand's Hessian.
+/// False when a sample is degenerate.
+bool ShapeFunctionals::Impl::element_hessian(std::size_t e, const Points& X, const Vec3& centroid,
+                                             const ShapeCoefficients& coefficients, HessianWorkspace& ws,
+                                             Eigen::MatrixXd& block) const {
+    const ElementKernel& kernel = kernels[element_kernel[e]];
+    const std::size_t first_slot = element_slots[e];
+    const auto slots = static_cast<Eigen::Index>(element_slots[e + 1] - first_slot);
+    ws.element_points.resize(slots, 3);
+    for (Eigen::Index k = 0; k < slots; ++k) {
+        ws.element_points.row(k) = X.row(slot_vertex[first_slot + static_cast<std::size_t>(k)]);
+    }
+    const Eigen::Index n = kernel.num_samples();
+    const Eigen::Index rows = kernel.rows.rows();  // 6 n
+    ws.derivatives.resize(static_cast<std::size_t>(3 * rows));
+    detail::element_forward(kernel.rows.data(), rows, rows, slots, ws.element_points.data(), ws.derivatives.data(),
+                            rows);
+    detail::SampleBatch batch;
+    batch.n = n;
+    batch.rows = ws.derivatives.data();
+    batch.weights = kernel.weights.data();
+    std::copy(centroid.data(), centroid.data() + 3, batch.centroid);
+    batch.triangle = triangle;
+    constexpr int inputs = detail::sample_inputs;
+    ws.sample_hessians.resize(static_cast<std::size_t>(n * inputs * inputs));
+    if (detail::sample_hessians(batch, coefficients.data(), ws.sample_hessians.data(), ws.scratch) >= 0) {
+        return false;
+    }
+    // B is the same for the three coordinates (the limit weights are scalars), so the block's 3 × 3
+    // parts are H^cd = Σ_i B_iᵀ D_i^cd B_i with D_i^cd the 6 × 6 part (r, s) of D_i at coordinates
+    // (c, d): one product Bᵀ W^cd per part, with W^cd (rows r n + i as B's) = Σ_s D_i^cd(r, s) B's row
+    // s n + i. The value rows enter only through the volume.
+    const Eigen::Index first = coefficients[static_cast<std::size_t>(ShapeFunctional::Volume)] != 0.0 ? 0 : 1;
+    const Eigen::Index used = (6 - first) * n;
+    const auto B = kernel.rows.bottomRows(used);
+    block.resize(3 * slots, 3 * slots);
+    Eigen::VectorXd coefficient(n);
+    for (int c = 0; c < 3; ++c) {
+        for (int d = c; d < 3; ++d) {
+            ws.weighted.setZero(used, slots);
+            for (Eigen::Index r = first; r < 6; ++r) {
+                for (Eigen::Index s = first; s < 6; ++s) {
+                    for (Eigen::Index i = 0; i < n; ++i) {
+                        coefficient[i] = ws.sample_hessians[static_cast<std::size_t>(i * inputs * inputs +
+                                                                                     (3 * r + c) * inputs + 3 * s + d)];
+                    }
+                    ws.weighted.middleRows((r - first) * n, n).array() +=
+                        B.middleRows((s - first) * n, n).array().colwise() * coefficient.array();
+                }
+            }
+            ws.pullback.noalias() = B.transpose() * ws.weighted;  // H^cd, slots × slots
+            // H^dc = (H^cd)ᵀ; H^cc is symmetric but its product rounds its two triangles apart.
+            for (Eigen::Index k = 0; k < slots; ++k) {
+                for (Eigen::Index l = 0; l < slots; ++l) {
+                    const double value = c == d ? 0.5 * (ws.pullback(k, l) + ws.pullback(l, k)) : ws.pullback(k, l);
+                    block(3 * k + c, 3 * l + d) = value;
+                    block(3 * l + d, 3 * k + c) = value;
+                }
+            }
+        }
+    }
+    return true;
+}
+
+void ShapeFunctionals::Impl::add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H) const {
+    const std::size_t first_slot = element_slots[e];
+    const std::size_t slots = element_slots[e + 1] - first_slot;
+    const auto* inner = H.innerIndexPtr();
+    double* entry = H.valuePtr();
+    for (std::size_t k = 0; k < slots; ++k) {
+        const Index v = slot_vertex[first_slot + k];
+        for (Index c = 0; c < 3; ++c) {
+            const Index row = 3 * v + c;
+            const auto* begin = inner + H.outerIndexPtr()[row];
+            const auto* end = inner + H.outerIndexPtr()[row + 1];
+            for (std::size_t l = 0; l < slots; ++l) {
+                // The pattern holds the three columns of every vertex of the support, side by side.
+                const auto at = std::lower_bound(begin, end, 3 * slot_vertex[first_slot + l]) - inner;
+                for (Index d = 0; d < 3; ++d) {
+                    entry[at + d] += block(static_cast<Eigen::Index>(3 * k) + c, static_cast<Eigen::Index>(3 * l) + d);
+                }
+            }
+        }
+    }
+}
+
+SparseMatrix ShapeFunctionals::Impl::hessian(const Points& X, const ShapeCoefficients& coefficients) const {
+    check_points(X);
+    for (const double c : coefficients) {
+        LIMSURF_CHECK(std::isfinite(c), InputError, "the Hessian's coefficients must be finite, not ", c);
+    }
+    SparseMatrix H = hessian_pattern();
+    const Vec3 centroid = X.colwise().mean().transpose();
+    // In chunks of elements: their blocks in parallel, then added in element order.
+    const auto num_elements = static_cast<Index>(element_face.size());
+    constexpr Index chunk = 512;
+    std::vector<Eigen::MatrixXd> blocks(static_cast<std::size_t>(chunk));
+    std::vector<char> good(static_cast<std::size_t>(chunk));
+    for (Index first = 0; first < num_elements; first += chunk) {
+        const Index count = std::min(chunk, num_elements - first);
+        parallel_ranges(count, options.num_threads, [&](Index begin, Index end) {
+            HessianWorkspace ws;
+            for (Index k = begin; k < end; ++k) {
+                const auto uk = static_cast<std::size_t>(k);
+                good[uk] =
+                    element_hessian(static_cast<std::size_t>(first + k), X, centroid, coefficients, ws, blocks[uk]) ? 1
+                                                                                                                    : 0;
+            }
+        });
+        for (Index k = 0; k < count; ++k) {
+            const auto e = static_cast<std::size_t>(first + k);
+            LIMSURF_CHECK_AT(good[static_cast<std::size_t>(k)] != 0, NumericalError, face_element(element_face[e]),
+                             "the limit surface is degenerate (parallel tangents or non-finite curvature) on ptex "
+                             "face ",
+                             element_face[e]);
+            add_element_block(e, blocks[static_cast<std::size_t>(k)], H);
+        }
+    }
+    return H;
+}
+
 ShapeFunctionals::ShapeFunctionals(const LimitBasis& basis, const ShapeOptions& options) {
     const SchemeKind scheme = basis.scheme();
     LIMSURF_CHECK(scheme == SchemeKind::Loop || scheme == SchemeKind::CatmullClark || scheme == SchemeKind::C2g0,
@@ -433,6 +602,10 @@ ShapeFunctionals& ShapeFunctionals::operator=(ShapeFunctionals&&) noexcept = def
 
 ShapeValues ShapeFunctionals::evaluate(const Points& X, std::span<const ShapeFunctional> gradients) const {
     return impl_->evaluate(X, gradients);
+}
+
+SparseMatrix ShapeFunctionals::hessian(const Points& X, const ShapeCoefficients& coefficients) const {
+    return impl_->hessian(X, coefficients);
 }
 
 ShapeValues ShapeFunctionals::evaluate_all(const Points& X) const {

@@ -255,7 +255,17 @@ class MembraneNlp final : public Ipopt::TNLP {
         n = num_variables();
         m = static_cast<Ipopt::Index>(constraints_.size());
         nnz_jac_g = n * m;  // dense rows: every functional depends on every control point
-        nnz_h_lag = 0;      // limited-memory quasi-Newton Hessian
+        nnz_h_lag = 0;      // limited-memory quasi-Newton Hessian, or the exact one's lower triangle
+        if (options_.hessian == MembraneHessian::Exact) {
+            // The pattern is the topology's (ShapeFunctionals::hessian): any X and coefficients give it.
+            try {
+                hessian_pattern_ = functionals_.hessian(initial_, ShapeCoefficients{});
+            } catch (...) {
+                fatal_ = std::current_exception();
+                return false;
+            }
+            nnz_h_lag = lower_triangle_size();
+        }
         index_style = C_STYLE;
         return true;
     }
@@ -333,6 +343,35 @@ class MembraneNlp final : public Ipopt::TNLP {
         return true;
     }
 
+    bool eval_h(Ipopt::Index, const Ipopt::Number* x, bool new_x, Ipopt::Number obj_factor, Ipopt::Index m,
+                const Ipopt::Number* lambda, bool, Ipopt::Index, Ipopt::Index* i_row, Ipopt::Index* j_col,
+                Ipopt::Number* values) override {
+        if (values == nullptr) {  // the structure: the pattern's lower triangle, row by row
+            Ipopt::Index k = 0;
+            for_lower_triangle(hessian_pattern_, [&](Ipopt::Index row, Ipopt::Index col, double) {
+                i_row[k] = row;
+                j_col[k] = col;
+                ++k;
+            });
+            return true;
+        }
+        if (!update(x, new_x)) {
+            return false;
+        }
+        try {
+            const SparseMatrix H = functionals_.hessian(current_, lagrangian_coefficients(obj_factor, lambda, m));
+            Ipopt::Index k = 0;
+            for_lower_triangle(H, [&](Ipopt::Index, Ipopt::Index, double value) { values[k++] = value; });
+        } catch (const NumericalError&) {
+            trial_failure_ = std::current_exception();
+            return false;
+        } catch (...) {
+            fatal_ = std::current_exception();
+            return false;
+        }
+        return true;
+    }
+
     bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter, Ipopt::Number obj_value,
                                Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number, Ipopt::Number, Ipopt::Number,
                                Ipopt::Number, Ipopt::Number alpha_pr, Ipopt::Index, const Ipopt::IpoptData*,
@@ -403,6 +442,48 @@ class MembraneNlp final : public Ipopt::TNLP {
   private:
     [[nodiscard]] Ipopt::Index num_variables() const {
         return static_cast<Ipopt::Index>(3 * functionals_.num_vertices());
+    }
+
+    /// The weights of the functionals in the Lagrangian σ f + Σ λ_k g_k (g_k = (F_k − target) / scale).
+    [[nodiscard]] ShapeCoefficients lagrangian_coefficients(double sigma, const Ipopt::Number* lambda,
+                                                            Ipopt::Index m) const {
+        ShapeCoefficients c{};
+        const auto add = [&c](ShapeFunctional f, double weight) { c[static_cast<std::size_t>(f)] += weight; };
+        const double h0 = problem_.spontaneous_curvature;
+        switch (problem_.objective) {
+        case MembraneObjective::Willmore:
+            add(ShapeFunctional::Willmore, sigma);
+            break;
+        case MembraneObjective::Helfrich:  // W − 2 H0 M + H0² A
+            add(ShapeFunctional::Willmore, sigma);
+            add(ShapeFunctional::MeanCurvature, -2.0 * h0 * sigma);
+            add(ShapeFunctional::Area, h0 * h0 * sigma);
+            break;
+        case MembraneObjective::Harmonic:
+            add(ShapeFunctional::Harmonic, sigma);
+            break;
+        }
+        for (Ipopt::Index k = 0; k < m; ++k) {
+            const Constraint& constraint = constraints_[static_cast<std::size_t>(k)];
+            add(constraint.functional, lambda[k] / constraint.scale);
+        }
+        return c;
+    }
+
+    /// Calls @p visit(row, column, value) for the entries of @p H on and below its diagonal, row by row.
+    template <class Visit>
+    static void for_lower_triangle(const SparseMatrix& H, Visit&& visit) {
+        for (Eigen::Index row = 0; row < H.outerSize(); ++row) {
+            for (SparseMatrix::InnerIterator it(H, row); it && it.col() <= row; ++it) {
+                visit(static_cast<Ipopt::Index>(row), static_cast<Ipopt::Index>(it.col()), it.value());
+            }
+        }
+    }
+
+    [[nodiscard]] Ipopt::Index lower_triangle_size() const {
+        Ipopt::Index count = 0;
+        for_lower_triangle(hessian_pattern_, [&count](Ipopt::Index, Ipopt::Index, double) { ++count; });
+        return count;
     }
 
     static void to_x(const Points& X, Ipopt::Number* x) {
@@ -483,6 +564,7 @@ class MembraneNlp final : public Ipopt::TNLP {
     ShapeValues good_values_;
     Points final_;                                   // Ipopt's final point (empty until finalize_solution)
     std::deque<std::pair<double, Points>> records_;  // (objective, point): nearly_feasible_points()
+    SparseMatrix hessian_pattern_;                   // MembraneHessian::Exact: the Hessians' pattern
     std::exception_ptr trial_failure_;
     std::exception_ptr fatal_;
     bool stopped_by_caller_ = false;
@@ -493,7 +575,7 @@ void set_options(Ipopt::IpoptApplication& app, const MembraneProblem& problem, c
     const Ipopt::SmartPtr<Ipopt::OptionsList> o = app.Options();
     o->SetIntegerValue("print_level", 0);
     o->SetStringValue("sb", "yes");
-    o->SetStringValue("hessian_approximation", "limited-memory");
+    o->SetStringValue("hessian_approximation", options.hessian == MembraneHessian::Exact ? "exact" : "limited-memory");
     o->SetNumericValue("tol", options.tolerance);
     // The constraints are scaled to their targets (MembraneNlp), so this is relative.
     o->SetNumericValue("constr_viol_tol", options.constraint_tolerance);
@@ -711,6 +793,10 @@ double volume_from_reduced(double reduced_volume, double area) noexcept {
 
 double mean_curvature_from_reduced(double reduced, double area) noexcept {
     return reduced * 4.0 * std::numbers::pi * std::sqrt(area / (4.0 * std::numbers::pi));
+}
+
+const char* to_string(MembraneHessian hessian) noexcept {
+    return hessian == MembraneHessian::Exact ? "exact" : "limited-memory";
 }
 
 const char* to_string(MembraneObjective objective) noexcept {
