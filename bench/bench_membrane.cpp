@@ -6,6 +6,9 @@
 //
 //   ShapeEval/scheme/threads   evaluate(X, {W, A, V, M}) (counters: vertices, samples)
 //   ShapeSetup/scheme          ShapeFunctionals construction (sampler with second derivatives)
+//   ShapeHessian/mesh/threads  hessian(X, W + A + V + M), the work of a Newton iterate
+//                              (MembraneHessian::Exact); ShapeEval of the same mesh beside it
+//   mesh 4: C2g0 tetra_3 as it is (130 vertices: F_tetra,3 of Figs. 11–13)
 //   scheme: 0 C2g0 (tetra_4 refined twice: 8194 vertices), 1 Loop (icosahedron refined 5 times:
 //           10242 vertices), 2 Catmull–Clark (sphere_quads refined 3 times: 6146 vertices),
 //           3 Catmull–Clark at more than 10k vertices (genus2 refined 4 times: 12798 vertices; its
@@ -48,11 +51,16 @@ const Mesh& mesh(int which) {
     static const Mesh loop = refined("icosahedron.obj", SchemeKind::Loop, 5);
     static const Mesh cc = refined("sphere_quads.obj", SchemeKind::CatmullClark, 3);
     static const Mesh cc_genus2 = refined("genus2.obj", SchemeKind::CatmullClark, 4, false);
-    return which == 0 ? c2g0 : which == 1 ? loop : which == 2 ? cc : cc_genus2;
+    static const Mesh tetra_3 = refined("tetra_3.obj", SchemeKind::C2g0, 0);
+    return which == 0 ? c2g0 : which == 1 ? loop : which == 2 ? cc : which == 3 ? cc_genus2 : tetra_3;
 }
 
 const char* scheme_label(int which) {
-    return which == 0 ? "c2g0" : which == 1 ? "loop" : which == 2 ? "catmull-clark" : "catmull-clark genus2";
+    return which == 0   ? "c2g0"
+           : which == 1 ? "loop"
+           : which == 2 ? "catmull-clark"
+           : which == 3 ? "catmull-clark genus2"
+                        : "c2g0 tetra_3";
 }
 
 void ShapeEval(benchmark::State& state) {
@@ -71,7 +79,26 @@ void ShapeEval(benchmark::State& state) {
     state.counters["samples"] = static_cast<double>(functionals.num_samples());
     state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
 }
-BENCHMARK(ShapeEval)->ArgsProduct({{0, 1, 2, 3}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(ShapeEval)->ArgsProduct({{0, 1, 2, 3, 4}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void ShapeHessian(benchmark::State& state) {
+    const Mesh& m = mesh(static_cast<int>(state.range(0)));
+    const limsurf::LimitBasis basis(m.topology, m.scheme);
+    limsurf::ShapeOptions options;
+    options.num_threads = static_cast<int>(state.range(1));
+    const limsurf::ShapeFunctionals functionals(basis, options);
+    const limsurf::ShapeCoefficients weights{1.0, 1.0, 1.0, 1.0, 0.0, 0.0};  // A, V, M, W
+    limsurf::Index entries = 0;
+    for (auto _ : state) {
+        const limsurf::SparseMatrix H = functionals.hessian(m.X, weights);
+        entries = static_cast<limsurf::Index>(H.nonZeros());
+        benchmark::DoNotOptimize(H.valuePtr());
+    }
+    state.counters["vertices"] = static_cast<double>(m.X.rows());
+    state.counters["entries"] = static_cast<double>(entries);
+    state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
+}
+BENCHMARK(ShapeHessian)->ArgsProduct({{4, 0}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void ShapeSetup(benchmark::State& state) {
     const Mesh& m = mesh(static_cast<int>(state.range(0)));

@@ -109,13 +109,18 @@ class ShapeFunctionals {
     ///   exact gradients, relative error ~1e-10: membrane/sample_hessians.h), pulled back through the
     ///   sample's limit weights, summed per element and then in element order (the same bits for any
     ///   thread count). The pattern holds every pair of control points that share an element's
-    ///   support, explicit zeros included, and depends on the topology only. The volume's term is
+    ///   support, explicit zeros included, and depends on the topology only (the pairs are found
+    ///   at the first call and kept). The volume's term is
     ///   that of its quadrature with the centroid held fixed, also where the values and gradients
     ///   use exact trilinear forms (volume_is_exact()): it differs from their Hessian by the
     ///   quadrature's error. Used by minimize_membrane for Newton steps (MembraneHessian::Exact).
     /// @throws InputError as evaluate(), or for a non-finite coefficient
     /// @throws NumericalError when the surface is degenerate at a sample, naming the ptex face
     [[nodiscard]] SparseMatrix hessian(const Points& X, const ShapeCoefficients& coefficients) const;
+    /// hessian() into @p H, whose storage is reused when it holds a Hessian of this object already
+    /// (its values are overwritten; otherwise it is reshaped): what a solver calls once per iteration.
+    /// @throws as hessian(); H is then left with the pattern and unspecified values
+    void hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const;
 
     [[nodiscard]] Index num_vertices() const noexcept;
     [[nodiscard]] Index num_samples() const noexcept;

@@ -147,12 +147,21 @@ struct ShapeFunctionals::Impl {
         std::vector<double> derivatives, sample_hessians, scratch;
         Eigen::MatrixXd weighted, pullback;  // W^cd and Bᵀ W^cd (element_hessian)
     };
-    [[nodiscard]] SparseMatrix hessian_pattern() const;
+    // The control points that share a support with each vertex (sorted; CSR over the vertices),
+    // built once, at the first Hessian.
+    struct Neighbours {
+        std::vector<std::size_t> first;  // #V + 1
+        std::vector<Index> vertices;
+    };
+    mutable std::once_flag neighbours_once;
+    mutable Neighbours neighbours;
+    [[nodiscard]] const Neighbours& support_neighbours() const;
+    void shape_like_pattern(SparseMatrix& H) const;
     [[nodiscard]] bool element_hessian(std::size_t e, const Points& X, const Vec3& centroid,
                                        const ShapeCoefficients& coefficients, HessianWorkspace& ws,
                                        Eigen::MatrixXd& block) const;
     void add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H) const;
-    [[nodiscard]] SparseMatrix hessian(const Points& X, const ShapeCoefficients& coefficients) const;
+    void hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const;
 };
 
 void ShapeFunctionals::Impl::add_elements(const LimitSampler& piece, KernelIndex& index) {
@@ -424,31 +433,74 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
     return out;
 }
 
-SparseMatrix ShapeFunctionals::Impl::hessian_pattern() const {
-    std::vector<std::vector<Index>> near(static_cast<std::size_t>(num_vertices));
-    for (std::size_t e = 0; e + 1 < element_slots.size(); ++e) {
-        for (std::size_t k = element_slots[e]; k < element_slots[e + 1]; ++k) {
-            auto& list = near[static_cast<std::size_t>(slot_vertex[k])];
-            list.insert(list.end(), slot_vertex.begin() + static_cast<std::ptrdiff_t>(element_slots[e]),
-                        slot_vertex.begin() + static_cast<std::ptrdiff_t>(element_slots[e + 1]));
+const ShapeFunctionals::Impl::Neighbours& ShapeFunctionals::Impl::support_neighbours() const {
+    std::call_once(neighbours_once, [this] {
+        const auto nv = static_cast<std::size_t>(num_vertices);
+        const std::size_t num_elements = element_slots.size() - 1;
+        // The elements of each vertex (CSR), then per vertex the union of their supports.
+        std::vector<std::size_t> element_first(nv + 1, 0);
+        for (std::size_t k = 0; k < slot_vertex.size(); ++k) {
+            ++element_first[static_cast<std::size_t>(slot_vertex[k]) + 1];
         }
-    }
-    std::vector<Eigen::Triplet<double>> entries;
-    for (Index v = 0; v < num_vertices; ++v) {
-        auto& list = near[static_cast<std::size_t>(v)];
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-        for (const Index u : list) {
-            for (Index c = 0; c < 3; ++c) {
-                for (Index d = 0; d < 3; ++d) {
-                    entries.emplace_back(3 * v + c, 3 * u + d, 0.0);
-                }
+        for (std::size_t v = 0; v < nv; ++v) {
+            element_first[v + 1] += element_first[v];
+        }
+        std::vector<std::size_t> elements(slot_vertex.size());
+        std::vector<std::size_t> fill(element_first.begin(), element_first.end() - 1);
+        for (std::size_t e = 0; e < num_elements; ++e) {
+            for (std::size_t k = element_slots[e]; k < element_slots[e + 1]; ++k) {
+                elements[fill[static_cast<std::size_t>(slot_vertex[k])]++] = e;
             }
         }
+        std::vector<Index> seen(nv, invalid_index);
+        neighbours.first.assign(1, 0);
+        for (std::size_t v = 0; v < nv; ++v) {
+            const std::size_t begin = neighbours.vertices.size();
+            for (std::size_t i = element_first[v]; i < element_first[v + 1]; ++i) {
+                const std::size_t e = elements[i];
+                for (std::size_t k = element_slots[e]; k < element_slots[e + 1]; ++k) {
+                    const Index u = slot_vertex[k];
+                    if (seen[static_cast<std::size_t>(u)] != static_cast<Index>(v)) {
+                        seen[static_cast<std::size_t>(u)] = static_cast<Index>(v);
+                        neighbours.vertices.push_back(u);
+                    }
+                }
+            }
+            std::sort(neighbours.vertices.begin() + static_cast<std::ptrdiff_t>(begin), neighbours.vertices.end());
+            neighbours.first.push_back(neighbours.vertices.size());
+        }
+    });
+    return neighbours;
+}
+
+/// Gives @p H the Hessians' pattern with zero values, keeping its storage when it has the pattern's
+/// size already (a matrix this class filled before).
+void ShapeFunctionals::Impl::shape_like_pattern(SparseMatrix& H) const {
+    const Neighbours& near = support_neighbours();
+    const Index n = 3 * num_vertices;
+    const auto entries = static_cast<Eigen::Index>(9 * near.vertices.size());
+    if (H.rows() == n && H.cols() == n && H.isCompressed() && H.nonZeros() == entries) {
+        std::fill_n(H.valuePtr(), entries, 0.0);
+        return;
     }
-    SparseMatrix H(3 * num_vertices, 3 * num_vertices);
-    H.setFromTriplets(entries.begin(), entries.end());  // explicit zeros stay: the pattern is the topology's
-    return H;
+    H = SparseMatrix(n, n);
+    H.resizeNonZeros(entries);
+    auto* outer = H.outerIndexPtr();
+    auto* inner = H.innerIndexPtr();
+    std::fill_n(H.valuePtr(), entries, 0.0);
+    Eigen::Index at = 0;
+    outer[0] = 0;
+    for (Index v = 0; v < num_vertices; ++v) {
+        const auto uv = static_cast<std::size_t>(v);
+        for (Index c = 0; c < 3; ++c) {
+            for (std::size_t i = near.first[uv]; i < near.first[uv + 1]; ++i) {
+                for (Index d = 0; d < 3; ++d) {
+                    inner[at++] = 3 * near.vertices[i] + d;
+                }
+            }
+            outer[3 * v + c + 1] = static_cast<SparseMatrix::StorageIndex>(at);
+        }
+    }
 }
 
 /// Element @p e's block of the Hessian (3 slots × 3 slots, index 3 k + c): Σ_i B_iᵀ D_i B_i with B_i
@@ -538,12 +590,12 @@ void ShapeFunctionals::Impl::add_element_block(std::size_t e, const Eigen::Matri
     }
 }
 
-SparseMatrix ShapeFunctionals::Impl::hessian(const Points& X, const ShapeCoefficients& coefficients) const {
+void ShapeFunctionals::Impl::hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const {
     check_points(X);
     for (const double c : coefficients) {
         LIMSURF_CHECK(std::isfinite(c), InputError, "the Hessian's coefficients must be finite, not ", c);
     }
-    SparseMatrix H = hessian_pattern();
+    shape_like_pattern(H);
     const Vec3 centroid = X.colwise().mean().transpose();
     // In chunks of elements: their blocks in parallel, then added in element order.
     const auto num_elements = static_cast<Index>(element_face.size());
@@ -570,7 +622,6 @@ SparseMatrix ShapeFunctionals::Impl::hessian(const Points& X, const ShapeCoeffic
             add_element_block(e, blocks[static_cast<std::size_t>(k)], H);
         }
     }
-    return H;
 }
 
 ShapeFunctionals::ShapeFunctionals(const LimitBasis& basis, const ShapeOptions& options) {
@@ -605,7 +656,13 @@ ShapeValues ShapeFunctionals::evaluate(const Points& X, std::span<const ShapeFun
 }
 
 SparseMatrix ShapeFunctionals::hessian(const Points& X, const ShapeCoefficients& coefficients) const {
-    return impl_->hessian(X, coefficients);
+    SparseMatrix H;
+    impl_->hessian(X, coefficients, H);
+    return H;
+}
+
+void ShapeFunctionals::hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const {
+    impl_->hessian(X, coefficients, H);
 }
 
 ShapeValues ShapeFunctionals::evaluate_all(const Points& X) const {

@@ -259,7 +259,7 @@ class MembraneNlp final : public Ipopt::TNLP {
         if (options_.hessian == MembraneHessian::Exact) {
             // The pattern is the topology's (ShapeFunctionals::hessian): any X and coefficients give it.
             try {
-                hessian_pattern_ = functionals_.hessian(initial_, ShapeCoefficients{});
+                functionals_.hessian(initial_, ShapeCoefficients{}, hessian_);
             } catch (...) {
                 fatal_ = std::current_exception();
                 return false;
@@ -348,7 +348,7 @@ class MembraneNlp final : public Ipopt::TNLP {
                 Ipopt::Number* values) override {
         if (values == nullptr) {  // the structure: the pattern's lower triangle, row by row
             Ipopt::Index k = 0;
-            for_lower_triangle(hessian_pattern_, [&](Ipopt::Index row, Ipopt::Index col, double) {
+            for_lower_triangle(hessian_, [&](Ipopt::Index row, Ipopt::Index col, double) {
                 i_row[k] = row;
                 j_col[k] = col;
                 ++k;
@@ -359,9 +359,9 @@ class MembraneNlp final : public Ipopt::TNLP {
             return false;
         }
         try {
-            const SparseMatrix H = functionals_.hessian(current_, lagrangian_coefficients(obj_factor, lambda, m));
+            functionals_.hessian(current_, lagrangian_coefficients(obj_factor, lambda, m), hessian_);
             Ipopt::Index k = 0;
-            for_lower_triangle(H, [&](Ipopt::Index, Ipopt::Index, double value) { values[k++] = value; });
+            for_lower_triangle(hessian_, [&](Ipopt::Index, Ipopt::Index, double value) { values[k++] = value; });
         } catch (const NumericalError&) {
             trial_failure_ = std::current_exception();
             return false;
@@ -482,7 +482,7 @@ class MembraneNlp final : public Ipopt::TNLP {
 
     [[nodiscard]] Ipopt::Index lower_triangle_size() const {
         Ipopt::Index count = 0;
-        for_lower_triangle(hessian_pattern_, [&count](Ipopt::Index, Ipopt::Index, double) { ++count; });
+        for_lower_triangle(hessian_, [&count](Ipopt::Index, Ipopt::Index, double) { ++count; });
         return count;
     }
 
@@ -564,7 +564,7 @@ class MembraneNlp final : public Ipopt::TNLP {
     ShapeValues good_values_;
     Points final_;                                   // Ipopt's final point (empty until finalize_solution)
     std::deque<std::pair<double, Points>> records_;  // (objective, point): nearly_feasible_points()
-    SparseMatrix hessian_pattern_;                   // MembraneHessian::Exact: the Hessians' pattern
+    SparseMatrix hessian_;  // MembraneHessian::Exact: the last Hessian (its pattern, fixed, is Ipopt's structure)
     std::exception_ptr trial_failure_;
     std::exception_ptr fatal_;
     bool stopped_by_caller_ = false;
