@@ -200,6 +200,30 @@ TEST_P(EveryScheme, HessianMatchesFiniteDifferencesOfTheGradients) {
     EXPECT_LE((Eigen::MatrixXd(together - combined)).norm(), 1e-10 * Eigen::MatrixXd(together).norm());
 }
 
+// The filling overload (a solver's, once per iteration) gives the same bits as a new matrix, into
+// a matrix of the right pattern (reused) or of any other shape (reshaped).
+TEST(ShapeFunctionals, AFilledHessianEqualsANewOne) {
+    const ControlMesh mesh = bundled("tetra_2");
+    const LimitBasis basis(mesh.topology(), SchemeKind::C2g0);
+    const ShapeFunctionals functionals(basis, ShapeOptions{.degree = 6, .subdivide_near_extraordinary = 2});
+    const Points X = perturbed(mesh.positions(), 5, 0.05);
+    const ShapeCoefficients first{1.0, 0.5, -0.25, 2.0, 0.0, 0.75};
+    const ShapeCoefficients second{0.0, 0.0, 1.0, 1.0, 0.0, 3.0};
+    const SparseMatrix fresh = functionals.hessian(X, second);
+    SparseMatrix wrong = SparseMatrix(5, 7);
+    wrong.insert(1, 2) = 3.0;
+    SparseMatrix reused = functionals.hessian(X, first);
+    const double* storage = reused.valuePtr();
+    for (SparseMatrix* H : {&reused, &wrong}) {
+        functionals.hessian(X, second, *H);
+        ASSERT_EQ(H->nonZeros(), fresh.nonZeros());
+        EXPECT_EQ(std::memcmp(H->innerIndexPtr(), fresh.innerIndexPtr(), sizeof(int) * fresh.nonZeros()), 0);
+        EXPECT_EQ(std::memcmp(H->outerIndexPtr(), fresh.outerIndexPtr(), sizeof(int) * (fresh.rows() + 1)), 0);
+        EXPECT_EQ(std::memcmp(H->valuePtr(), fresh.valuePtr(), sizeof(double) * fresh.nonZeros()), 0);
+    }
+    EXPECT_EQ(reused.valuePtr(), storage) << "the storage of a Hessian is reused";
+}
+
 // Euler's identity once more: ∇F homogeneous of degree k − 1 gives H X = (k − 1) ∇F (A, E: ∇F;
 // M: 0; W, ∫K: −∇F). Rigid motions: H T = 0 for a translation T, and H (ω × X) = ω × ∇F per
 // control point for a rotation (differentiate ∇F(R X) = R ∇F(X)). The volume is left out: its
