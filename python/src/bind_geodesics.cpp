@@ -19,10 +19,11 @@ namespace {
 using namespace pybind11::literals;
 
 /// One vertex index or a sequence of them, as an index array: pybind11's vector cast of a 3-d array
-/// raised numpy's "circular base" ValueError. The library checks the range, naming the vertex and
-/// the mesh's size; only a negative index is refused here.
-std::vector<Index> sources_from(const py::handle& sources, const std::string& name = "sources") {
-    return indices_from(sources, name, std::numeric_limits<Index>::max());
+/// raised numpy's "circular base" ValueError. Each must lie in [0, @p num_vertices): the message
+/// names the argument, the element and the range (a negative index was once reported against
+/// [0, 2147483647), the bound of the conversion, not of the mesh).
+std::vector<Index> sources_from(const py::handle& sources, Index num_vertices, const std::string& name = "sources") {
+    return indices_from(sources, name, num_vertices);
 }
 
 /// The keyword arguments method, level, degree and tiles (iga; None: the default).
@@ -106,7 +107,7 @@ void bind_geodesics(py::module_& m) {
                                             RuleNames{boundary, creasing, triangles});
                 options.reference_level = reference_level;
                 options.max_memory = max_memory;
-                const std::vector<Index> list = sources_from(sources);
+                const std::vector<Index> list = sources_from(sources, mesh.mesh.num_vertices());
                 const SchemeKind kind = scheme_from(scheme);
                 GeodesicResult r;
                 {
@@ -161,7 +162,7 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
         .def(
             "distance",
             [](const HeatGeodesics& self, const py::handle& sources) {
-                const std::vector<Index> list = sources_from(sources);
+                const std::vector<Index> list = sources_from(sources, self.num_vertices());
                 Eigen::VectorXd d;
                 {
                     const py::gil_scoped_release release;
@@ -180,7 +181,8 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
                 // temporaries, and the items of a numpy array are new objects (a use after free).
                 for (std::size_t k = 0; k < source_sets.size(); ++k) {
                     const py::object sources = source_sets[k];
-                    sets.push_back(sources_from(sources, "source_sets[" + std::to_string(k) + "]"));
+                    sets.push_back(
+                        sources_from(sources, self.num_vertices(), "source_sets[" + std::to_string(k) + "]"));
                 }
                 Eigen::MatrixXd d;
                 {
@@ -195,7 +197,7 @@ costs two back-substitutions (three on open meshes) and one divergence per call.
         .def(
             "source_values",
             [](const HeatGeodesics& self, const py::handle& phi, const py::handle& sources) {
-                const std::vector<Index> list = sources_from(sources);
+                const std::vector<Index> list = sources_from(sources, self.num_vertices());
                 const Eigen::VectorXd values = vector_from(phi, "phi", self.num_vertices());
                 return to_numpy(self.source_values(values, list));
             },

@@ -62,14 +62,22 @@ def test_distances_batches_source_sets(mesh_path):
         single = heat.distance(sources)
         assert np.allclose(batch[:, k], single, rtol=0, atol=1e-12 * np.abs(single).max())
     assert heat.distances([]).shape == (len(mesh.V), 0)
-    with pytest.raises(limsurf.InputError, match="source vertex 99 is out of range"):
+    n = len(mesh.V)
+    with pytest.raises(limsurf.InputError, match=rf"^source_sets\[1\]\[1\] = 99: out of range \[0, {n}\)"):
         heat.distances([3, [4, 99]])
+    # A negative index names the mesh's range too (it was [0, 2147483647), the conversion's bound).
+    with pytest.raises(limsurf.InputError, match=rf"^source_sets\[0\]\[0\] = -1: out of range \[0, {n}\)"):
+        heat.distances([-1])
+    with pytest.raises(limsurf.InputError, match=rf"^sources\[0\] = -2: out of range \[0, {n}\)"):
+        heat.distance(-2)
 
 
 def test_errors(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("genus2"))
-    with pytest.raises(limsurf.InputError, match="source vertex 48 is out of range"):
+    with pytest.raises(limsurf.InputError, match=r"^sources\[1\] = 48: out of range \[0, 48\)"):
         limsurf.geodesic_distance(mesh, "catmull-clark", [1, 48])
+    with pytest.raises(limsurf.InputError, match=r"^sources\[0\] = -3: out of range \[0, 48\)"):
+        limsurf.geodesic_distance(mesh, "catmull-clark", -3)
     with pytest.raises(limsurf.InputError, match="no source vertex"):
         limsurf.HeatGeodesics(mesh, "catmull-clark", method="dec").distance([])
     with pytest.raises(limsurf.InputError, match="connected components"):
