@@ -85,6 +85,21 @@ struct Case {
 
 class EveryScheme : public ::testing::TestWithParam<Case> {};
 
+/// The degree k of homogeneity of each functional (F(sX) = s^k F(X)), in ShapeFunctional's order.
+constexpr std::array<double, num_shape_functionals> homogeneity{2, 3, 1, 0, 0, 2};
+
+/// A case's functionals (degree 6, 2 tile levels) and its mesh perturbed (seed 3) off every symmetry.
+struct Perturbed {
+    explicit Perturbed(const Case& c)
+        : mesh(bundled(c.mesh)), basis(mesh.topology(), c.scheme),
+          functionals(basis, ShapeOptions{.degree = 6, .subdivide_near_extraordinary = 2}),
+          X(perturbed(mesh.positions(), 3, 0.05)) {}
+    ControlMesh mesh;
+    LimitBasis basis;
+    ShapeFunctionals functionals;
+    Points X;
+};
+
 // Central differences of the discrete functional agree with the gradient to 1e-6 relative, and the
 // one-sided remainder |E(X + hD) − E(X) − h ∇E·D| falls like h² (the gradient is exact, not an
 // approximation of the same order as the difference).
@@ -122,15 +137,13 @@ TEST_P(EveryScheme, GradientsMatchFiniteDifferences) {
 // gradient sums to zero (translations) and Σ X_v × ∇F_v = 0 (rotations).
 TEST_P(EveryScheme, HomogeneityAndRigidMotions) {
     const Case c = GetParam();
-    const ControlMesh mesh = bundled(c.mesh);
-    const LimitBasis basis(mesh.topology(), c.scheme);
-    const ShapeFunctionals functionals(basis, ShapeOptions{.degree = 6, .subdivide_near_extraordinary = 2});
-    const Points X = perturbed(mesh.positions(), 3, 0.05);
+    const Perturbed p(c);
+    const ShapeFunctionals& functionals = p.functionals;
+    const Points& X = p.X;
     const ShapeValues at = functionals.evaluate_all(X);
-    const std::array<double, num_shape_functionals> degree{2, 3, 1, 0, 0, 2};
     for (const ShapeFunctional f : all_functionals) {
         const Points& g = at.gradient_of(f);
-        const double k = degree[static_cast<std::size_t>(f)];
+        const double k = homogeneity[static_cast<std::size_t>(f)];
         const double size = g.norm() * X.norm();
         EXPECT_NEAR(directional(g, X), k * at.value(f), 1e-10 * size) << name_of(f) << " on " << c.mesh;
         EXPECT_LT(g.colwise().sum().norm(), 1e-10 * g.norm() * std::sqrt(static_cast<double>(X.rows())))
@@ -230,12 +243,10 @@ TEST(ShapeFunctionals, AFilledHessianEqualsANewOne) {
 // Hessian holds the centroid fixed.
 TEST_P(EveryScheme, HessianIdentitiesOfHomogeneityAndRigidMotions) {
     const Case c = GetParam();
-    const ControlMesh mesh = bundled(c.mesh);
-    const LimitBasis basis(mesh.topology(), c.scheme);
-    const ShapeFunctionals functionals(basis, ShapeOptions{.degree = 6, .subdivide_near_extraordinary = 2});
-    const Points X = perturbed(mesh.positions(), 3, 0.05);
+    const Perturbed p(c);
+    const ShapeFunctionals& functionals = p.functionals;
+    const Points& X = p.X;
     const ShapeValues at = functionals.evaluate_all(X);
-    const std::array<double, num_shape_functionals> degree{2, 3, 1, 0, 0, 2};
     const Eigen::RowVector3d omega(0.3, -0.7, 0.4);
     Points turn(X.rows(), 3);
     for (Index v = 0; v < X.rows(); ++v) {
@@ -255,7 +266,7 @@ TEST_P(EveryScheme, HessianIdentitiesOfHomogeneityAndRigidMotions) {
         for (Index v = 0; v < X.rows(); ++v) {
             expected_turn.row(v) = omega.cross(g.row(v));
         }
-        const double k = degree[static_cast<std::size_t>(f)];
+        const double k = homogeneity[static_cast<std::size_t>(f)];
         EXPECT_LE((apply(H, X) - (k - 1.0) * g).norm(), 1e-9 * size) << name_of(f) << " on " << c.mesh;
         EXPECT_LE((apply(H, turn) - expected_turn).norm(), 1e-9 * size) << name_of(f) << " on " << c.mesh;
         EXPECT_LE(apply(H, translation).norm(), 1e-9 * size) << name_of(f) << " on " << c.mesh;

@@ -358,18 +358,11 @@ class MembraneNlp final : public Ipopt::TNLP {
         if (!update(x, new_x)) {
             return false;
         }
-        try {
+        return guarded([&] {
             functionals_.hessian(current_, lagrangian_coefficients(obj_factor, lambda, m), hessian_);
             Ipopt::Index k = 0;
             for_lower_triangle(hessian_, [&](Ipopt::Index, Ipopt::Index, double value) { values[k++] = value; });
-        } catch (const NumericalError&) {
-            trial_failure_ = std::current_exception();
-            return false;
-        } catch (...) {
-            fatal_ = std::current_exception();
-            return false;
-        }
-        return true;
+        });
     }
 
     bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter, Ipopt::Number obj_value,
@@ -519,6 +512,22 @@ class MembraneNlp final : public Ipopt::TNLP {
         }
     }
 
+    /// Runs @p work; false when it threw: a NumericalError (a degenerate trial point, which makes
+    /// Ipopt cut the step) is kept in trial_failure_, anything else in fatal_ (rethrown after Solve).
+    template <class Work>
+    bool guarded(Work&& work) {
+        try {
+            work();
+        } catch (const NumericalError&) {
+            trial_failure_ = std::current_exception();
+            return false;
+        } catch (...) {
+            fatal_ = std::current_exception();
+            return false;
+        }
+        return true;
+    }
+
     /// Evaluates at @p x unless the cache holds it. False when the surface is degenerate there or
     /// a value is not finite (Ipopt then cuts the step), or on a fatal exception.
     bool update(const Ipopt::Number* x, bool new_x) {
@@ -530,16 +539,7 @@ class MembraneNlp final : public Ipopt::TNLP {
             return true;
         }
         valid_ = false;
-        try {
-            values_ = functionals_.evaluate(current_, gradients_);
-        } catch (const NumericalError&) {
-            trial_failure_ = std::current_exception();
-            return false;
-        } catch (...) {
-            fatal_ = std::current_exception();
-            return false;
-        }
-        if (!all_finite(values_)) {
+        if (!guarded([&] { values_ = functionals_.evaluate(current_, gradients_); }) || !all_finite(values_)) {
             return false;
         }
         valid_ = true;
