@@ -11,7 +11,7 @@
 // the six rigid motions, so their Hessians are singular along them; the limited-memory Hessian
 // keeps the KKT system regular (with the exact one, Ipopt's inertia correction does), and the
 // rigid motions are left free (the result is defined up to them). Every functional comes from one
-// ShapeFunctionals::evaluate() per iterate.
+// ShapeFunctionals::evaluate() per iterate (and, with the exact Hessian, one hessian()).
 #pragma once
 
 #include <functional>

@@ -38,7 +38,9 @@ std::ptrdiff_t sample_hessians(const SampleBatch& batch, const double* coefficie
     // scratch: the perturbed rows (6 m × 3), values (6 m), w N (3 m), local gradients (18 × 6 m),
     // flags (m), steps (n), weights (m).
     const auto size = [](std::ptrdiff_t k) { return static_cast<std::size_t>(k); };
-    scratch.assign(size(3 * ld_m + 6 * m + 3 * m + 18 * ld_m + m + n + m), 0.0);
+    // Not cleared: every entry read below is written first (the local gradients only in the rows
+    // each functional depends on, which are the only ones read).
+    scratch.resize(size(3 * ld_m + 6 * m + 3 * m + 18 * ld_m + m + n + m));
     double* rows = scratch.data();
     double* values = rows + 3 * ld_m;
     double* normal_area = values + 6 * m;
