@@ -1,7 +1,7 @@
 // limsurf membrane MESH --scheme c2g0|loop|catmull-clark --area A0 (--volume V0 | --reduced-volume v0)
 //   [--mean-curvature M0 | --reduced-mean-curvature m0] [--spontaneous-curvature H0]
-//   [--regularize-harmonic EPS] [--max-iterations K] [--tolerance T] [--hessian limited-memory|exact]
-//   [--degree D] [--threads N]
+//   [--regularize-harmonic EPS [--regularization-hessian H]] [--max-iterations K] [--tolerance T]
+//   [--hessian limited-memory|exact] [--degree D] [--threads N]
 //   -o OUT.obj [--field-output OUT.vtk] [--resolution N] [--intersection-resolution N] [--json]
 // limsurf membrane MESH --scheme S --evaluate-only [--spontaneous-curvature H0] [--field-output OUT.vtk] [--json]:
 // biomembrane shapes (c2g0-sphere-scheme-biomembranes §3; apps/membrane.h, docs/guide/membrane.md):
@@ -58,6 +58,7 @@ struct MembraneCommandOptions {
     double tolerance = 1e-8;
     double objective_tolerance = 1e-7;
     std::string hessian = "limited-memory";
+    std::string regularization_hessian;  // empty: --hessian's
     int degree = 8;
     int threads = 0;
     bool evaluate_only = false;
@@ -164,6 +165,10 @@ MembraneRequest request_of(const MembraneCommandOptions& options) {
     request.tolerance = options.tolerance;
     request.objective_tolerance = options.objective_tolerance;
     request.hessian = options.hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+    if (!options.regularization_hessian.empty()) {
+        request.regularization_hessian =
+            options.regularization_hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+    }
     return request;
 }
 
@@ -305,6 +310,7 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
         out["regularization"] =
             stage_json(*run.regularization_problem, *run.regularization, request.spontaneous_curvature);
         out["regularization"]["epsilon"] = *request.regularize_harmonic;
+        out["regularization"]["hessian"] = to_string(request.regularization_hessian.value_or(request.hessian));
     }
     out["output"] = options.output;
     const MembraneResult& answer = run.final_result();
@@ -426,6 +432,11 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
                         "Second derivatives of the solver: limited-memory (BFGS from the gradients) or exact "
                         "(Newton steps; docs/membrane.md)")
             ->check(CLI::IsMember({"limited-memory", "exact"}));
+    CLI::Option* regularization_hessian =
+        cmd->add_option("--regularization-hessian", options->regularization_hessian,
+                        "The same for the regularisation (3.12) only (default: --hessian's)")
+            ->check(CLI::IsMember({"limited-memory", "exact"}));
+    regularization_hessian->needs(regularize);
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (default 8)");
     add_threads_option(cmd, options->threads);
     CLI::Option* evaluate = cmd->add_flag(
@@ -444,7 +455,7 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
                     "(1..256; default: about 40000 points)")
         ->check(CLI::Range(1, 256));
     for (CLI::Option* solve_only : {area, volume, reduced_volume, mean, reduced_mean, regularize, iterations, tolerance,
-                                    objective_tolerance, hessian, output}) {
+                                    objective_tolerance, hessian, regularization_hessian, output}) {
         evaluate->excludes(solve_only);
     }
     cmd->add_flag("--json", options->json, "Print JSON on stdout (progress still goes to stderr)");

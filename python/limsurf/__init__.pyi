@@ -325,6 +325,7 @@ def minimize_membrane(mesh: Mesh, scheme: MembraneScheme, *, area: float, volume
                       reduced_mean_curvature: float | None = None, spontaneous_curvature: float | None = None,
                       regularize_harmonic: float | None = None, max_iterations: int = 1000, tolerance: float = 1e-8,
                       objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
+                      regularization_hessian: MembraneHessian | None = None,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
 @overload
@@ -334,6 +335,7 @@ def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Memb
                       spontaneous_curvature: float | None = None, regularize_harmonic: float | None = None,
                       max_iterations: int = 1000, tolerance: float = 1e-8,
                       objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
+                      regularization_hessian: MembraneHessian | None = None,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
 

@@ -208,6 +208,7 @@ py::dict run_dict(const std::string& scheme, const Mesh& mesh, const ShapeFuncti
     if (run.regularization) {
         py::dict stage = stage_dict(*run.regularization_problem, *run.regularization, request.spontaneous_curvature);
         stage["epsilon"] = *request.regularize_harmonic;
+        stage["hessian"] = to_string(request.regularization_hessian.value_or(request.hessian));
         out["regularization"] = stage;
     }
     out["positions"] = to_numpy(run.final_result().positions);
@@ -261,10 +262,13 @@ py::dict minimize_membrane(const Mesh& mesh, const std::string& scheme, const Me
 MembraneRequest request_of(double area, std::optional<double> volume, std::optional<double> reduced_volume,
                            std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
                            std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
-                           int max_iterations, double tolerance, double objective_tolerance,
-                           const std::string& hessian) {
-    LIMSURF_CHECK(hessian == "limited-memory" || hessian == "exact", InputError,
-                  "hessian: 'limited-memory' or 'exact', not '", hessian, "'");
+                           int max_iterations, double tolerance, double objective_tolerance, const std::string& hessian,
+                           const std::optional<std::string>& regularization_hessian) {
+    const auto parse = [](const std::string& name, const char* argument) {
+        LIMSURF_CHECK(name == "limited-memory" || name == "exact", InputError, argument,
+                      ": 'limited-memory' or 'exact', not '", name, "'");
+        return name == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+    };
     MembraneRequest request;
     request.area = area;
     request.volume = volume;
@@ -276,7 +280,12 @@ MembraneRequest request_of(double area, std::optional<double> volume, std::optio
     request.max_iterations = max_iterations;
     request.tolerance = tolerance;
     request.objective_tolerance = objective_tolerance;
-    request.hessian = hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+    request.hessian = parse(hessian, "hessian");
+    if (regularization_hessian) {
+        LIMSURF_CHECK(regularize_harmonic.has_value(), InputError,
+                      "regularization_hessian needs regularize_harmonic (there is no regularisation to solve)");
+        request.regularization_hessian = parse(*regularization_hessian, "regularization_hessian");
+    }
     return request;
 }
 
@@ -297,7 +306,8 @@ regularize_harmonic=ε then (3.12): min harmonic energy s.t. the same constraint
 minimize_membrane(mesh, scheme, area=..., ...) or minimize_membrane(V, F, scheme, area=..., ...).
 Returns the dict of `limsurf membrane --json` plus 'positions' (#V × 3, the last stage's control points).
 hessian: 'limited-memory' (BFGS from the gradients, the default) or 'exact' (Newton steps with
-shape_hessian's matrices; fewer iterations, each dearer: docs/guide/membrane.md).
+shape_hessian's matrices; fewer iterations, each dearer: docs/guide/membrane.md);
+regularization_hessian: the same for (3.12) only (None: hessian's).
 callback(dict) is called after every iteration with 'stage', 'iteration', 'objective',
 'constraint_violation', 'dual_infeasibility', 'step'; returning False stops the solve (converged False);
 an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
@@ -372,19 +382,20 @@ void bind_membrane(py::module_& m) {
                              std::optional<double> reduced_mean_curvature, std::optional<double> spontaneous_curvature,
                              std::optional<double> regularize_harmonic, int max_iterations, double tolerance,
                              double objective_tolerance, const std::string& hessian,
+                             const std::optional<std::string>& regularization_hessian,
                              std::optional<py::function> callback, int degree, int subdivide_near_extraordinary,
                              int threads) {
-        const MembraneRequest request =
-            request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature, spontaneous_curvature,
-                       regularize_harmonic, max_iterations, tolerance, objective_tolerance, hessian);
+        const MembraneRequest request = request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature,
+                                                   spontaneous_curvature, regularize_harmonic, max_iterations,
+                                                   tolerance, objective_tolerance, hessian, regularization_hessian);
         return minimize_membrane(mesh, scheme, request, callback, {degree, subdivide_near_extraordinary, threads});
     };
     m.def("minimize_membrane", minimize, "mesh"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(),
           "reduced_volume"_a = py::none(), "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
           "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
           "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
-          "callback"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0,
-          minimize_doc);
+          "regularization_hessian"_a = py::none(), "callback"_a = py::none(), "degree"_a = 8,
+          "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, minimize_doc);
     m.def(
         "minimize_membrane",
         [minimize](const py::object& V, const py::object& F, const std::string& scheme, double area,
@@ -392,17 +403,19 @@ void bind_membrane(py::module_& m) {
                    std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
                    std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
                    int max_iterations, double tolerance, double objective_tolerance, const std::string& hessian,
-                   std::optional<py::function> callback, int degree, int subdivide_near_extraordinary, int threads) {
+                   const std::optional<std::string>& regularization_hessian, std::optional<py::function> callback,
+                   int degree, int subdivide_near_extraordinary, int threads) {
             return minimize(mesh_from(V, F), scheme, area, volume, reduced_volume, mean_curvature,
                             reduced_mean_curvature, spontaneous_curvature, regularize_harmonic, max_iterations,
-                            tolerance, objective_tolerance, hessian, std::move(callback), degree,
-                            subdivide_near_extraordinary, threads);
+                            tolerance, objective_tolerance, hessian, regularization_hessian, std::move(callback),
+                            degree, subdivide_near_extraordinary, threads);
         },
         "V"_a, "F"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(), "reduced_volume"_a = py::none(),
         "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
         "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
-        "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory", "callback"_a = py::none(),
-        "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
+        "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
+        "regularization_hessian"_a = py::none(), "callback"_a = py::none(), "degree"_a = 8,
+        "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
 
     const auto hessian = [](const Mesh& mesh, const std::string& scheme, const py::dict& coefficients,
                             std::optional<py::object> X, int degree, int subdivide_near_extraordinary, int threads) {

@@ -245,6 +245,7 @@ TEST(CliMembrane, ExactHessiansSolveTheSameProblemToTheKktTolerance) {
                                "--json"});
     EXPECT_EQ(quasi_newton.at("hessian"), "limited-memory");
     EXPECT_EQ(out.at("hessian"), "exact");
+    EXPECT_EQ(out.at("regularization").at("hessian"), "exact");
     ASSERT_TRUE(out.at("converged").get<bool>()) << out.at("status");
     EXPECT_EQ(out.at("status").get<std::string>().rfind("solved", 0), 0U) << out.at("status");
     EXPECT_EQ(out.at("status").get<std::string>().find("objective tolerance"), std::string::npos) << out.at("status");
@@ -256,6 +257,40 @@ TEST(CliMembrane, ExactHessiansSolveTheSameProblemToTheKktTolerance) {
     EXPECT_LE(number(r, "willmore"), (number(out, "willmore") + 0.05) * (1 + 1e-8));
     EXPECT_LT(number(r, "harmonic"), number(out, "harmonic"));
     EXPECT_LE(number(r, "max_relative_residual"), 1e-8);
+}
+
+TEST(CliMembrane, QuasiNewtonShapeThenNewtonRegularisation) {
+    // --regularization-hessian exact: the first stage keeps BFGS (its JSON says so), (3.12) takes
+    // Newton steps to Ipopt's own tolerance.
+    const auto out = run_json({"membrane",
+                               mesh("octahedron"),
+                               "--scheme",
+                               "loop",
+                               "--area",
+                               "12.566370614359172",
+                               "--reduced-volume",
+                               "0.9",
+                               "--reduced-mean-curvature",
+                               "1.06",
+                               "--spontaneous-curvature",
+                               "0.5",
+                               "--regularize-harmonic",
+                               "0.05",
+                               "--regularization-hessian",
+                               "exact",
+                               "--objective-tolerance",
+                               "0",
+                               "-o",
+                               (temp_dir() / "helfrich_mixed.obj").string(),
+                               "--json"});
+    EXPECT_EQ(out.at("hessian"), "limited-memory");
+    ASSERT_TRUE(out.at("converged").get<bool>()) << out.at("status");
+    const auto& r = out.at("regularization");
+    EXPECT_EQ(r.at("hessian"), "exact");
+    ASSERT_TRUE(r.at("converged").get<bool>()) << r.at("status");
+    EXPECT_EQ(r.at("status").get<std::string>().find("objective tolerance"), std::string::npos) << r.at("status");
+    EXPECT_LE(number(r, "willmore"), (number(out, "willmore") + 0.05) * (1 + 1e-8));
+    EXPECT_LT(number(r, "harmonic"), number(out, "harmonic"));
 }
 
 TEST(CliMembrane, AnUnfinishedSolveExitsZeroWithConvergedFalseAndAWarning) {
@@ -419,6 +454,10 @@ TEST(CliMembrane, BadInputExitsWithOneClearLineAndNoFile) {
         {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--reduced-volume", "0.9", "--hessian", "newton"},
          2,
          "--hessian"},
+        {{mesh("tetra_2"), "--scheme", "c2g0", "--area", area, "--reduced-volume", "0.9", "--regularization-hessian",
+          "exact"},
+         2,
+         "--regularize-harmonic"},
     };
     for (const Case& c : cases) {
         std::vector<std::string> args{"membrane"};

@@ -92,6 +92,17 @@ def test_exact_hessians_equal_the_cli(mesh_path, cli, tmp_path):
     assert ours["converged"] and ours["status"].startswith("solved") and ours["hessian"] == "exact"
     for key in set(theirs) - {"seconds", "output"}:
         assert ours[key] == theirs[key], key
+    # BFGS for the shape, Newton steps for (3.12): each stage's JSON says which.
+    theirs = cli("membrane", mesh_path("octahedron"), "--scheme", "loop", "--area", repr(A0), "--reduced-volume", 0.9,
+                 "--regularize-harmonic", 0.05, "--regularization-hessian", "exact", "-o", tmp_path / "mixed.obj",
+                 "--json")
+    ours = limsurf.minimize_membrane(limsurf.read_mesh(mesh_path("octahedron")), "loop", area=A0, reduced_volume=0.9,
+                                     regularize_harmonic=0.05, regularization_hessian="exact")
+    assert ours["hessian"] == "limited-memory" and ours["regularization"]["hessian"] == "exact"
+    for key in set(theirs) - {"seconds", "output", "regularization"}:
+        assert ours[key] == theirs[key], key
+    for key in set(theirs["regularization"]) - {"seconds"}:
+        assert ours["regularization"][key] == theirs["regularization"][key], key
 
 
 def test_minimize_membrane_equals_the_cli(mesh_path, cli, tmp_path):
@@ -199,6 +210,11 @@ def test_errors(mesh_path):
         limsurf.shape_functionals(sphere, "c2g0", X=np.zeros((3, 3)))
     with pytest.raises(limsurf.InputError, match="hessian: 'limited-memory' or 'exact'"):
         limsurf.minimize_membrane(sphere, "c2g0", area=A0, reduced_volume=0.9, hessian="newton")
+    with pytest.raises(limsurf.InputError, match="regularization_hessian needs regularize_harmonic"):
+        limsurf.minimize_membrane(sphere, "c2g0", area=A0, reduced_volume=0.9, regularization_hessian="exact")
+    with pytest.raises(limsurf.InputError, match="regularization_hessian: 'limited-memory' or 'exact'"):
+        limsurf.minimize_membrane(sphere, "c2g0", area=A0, reduced_volume=0.9, regularize_harmonic=0.1,
+                                  regularization_hessian="newton")
     with pytest.raises(limsurf.InputError, match="'wilmore' is not a shape functional"):
         limsurf.shape_hessian(sphere, "c2g0", {"wilmore": 1.0})
     with pytest.raises(limsurf.InputError, match="must be finite"):

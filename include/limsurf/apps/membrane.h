@@ -40,7 +40,11 @@ struct MembraneRequest {
     /// W is flat along tangential slides of the control points, so the KKT tolerance is often
     /// out of reach on fine meshes long after W has settled.
     double objective_tolerance = 1e-7;
-    MembraneHessian hessian = MembraneHessian::LimitedMemory;  ///< for both stages (MembraneOptions::hessian)
+    MembraneHessian hessian = MembraneHessian::LimitedMemory;  ///< of the first stage (MembraneOptions::hessian)
+    /// Of the regularisation (3.12); none: the first stage's. Newton steps finish (3.12) on coarse
+    /// meshes where quasi-Newton ones do not, but crawl on a first stage that starts far from its
+    /// shape (docs/membrane.md, "Exact Hessians"): BFGS then Newton is the pair for that.
+    std::optional<MembraneHessian> regularization_hessian;
 };
 
 /// Which stage of solve_membrane_problem() an iteration belongs to.

@@ -20,7 +20,8 @@ MembraneOptions stage_options(const MembraneRequest& request, MembraneStage stag
     options.max_iterations = request.max_iterations;
     options.tolerance = request.tolerance;
     options.objective_tolerance = request.objective_tolerance;
-    options.hessian = request.hessian;
+    options.hessian = stage == MembraneStage::Regularization ? request.regularization_hessian.value_or(request.hessian)
+                                                             : request.hessian;
     if (progress) {
         options.on_iteration = [&progress, stage](const MembraneIteration& it) { return progress(stage, it); };
     }
