@@ -164,10 +164,9 @@ MembraneRequest request_of(const MembraneCommandOptions& options) {
     request.max_iterations = options.max_iterations;
     request.tolerance = options.tolerance;
     request.objective_tolerance = options.objective_tolerance;
-    request.hessian = options.hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+    request.hessian = parse_membrane_hessian(options.hessian);
     if (!options.regularization_hessian.empty()) {
-        request.regularization_hessian =
-            options.regularization_hessian == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+        request.regularization_hessian = parse_membrane_hessian(options.regularization_hessian);
     }
     return request;
 }

@@ -267,7 +267,7 @@ MembraneRequest request_of(double area, std::optional<double> volume, std::optio
     const auto parse = [](const std::string& name, const char* argument) {
         LIMSURF_CHECK(name == "limited-memory" || name == "exact", InputError, argument,
                       ": 'limited-memory' or 'exact', not '", name, "'");
-        return name == "exact" ? MembraneHessian::Exact : MembraneHessian::LimitedMemory;
+        return parse_membrane_hessian(name);
     };
     MembraneRequest request;
     request.area = area;

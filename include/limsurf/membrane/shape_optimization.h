@@ -77,6 +77,9 @@ enum class MembraneHessian {
 
 /// "limited-memory" or "exact" (the CLI's and Python's name).
 [[nodiscard]] const char* to_string(MembraneHessian hessian) noexcept;
+/// The MembraneHessian named @p name, as to_string() names it.
+/// @throws InputError for another name (naming the two)
+[[nodiscard]] MembraneHessian parse_membrane_hessian(const std::string& name);
 
 /// Options of minimize_membrane().
 struct MembraneOptions {

@@ -799,6 +799,15 @@ const char* to_string(MembraneHessian hessian) noexcept {
     return hessian == MembraneHessian::Exact ? "exact" : "limited-memory";
 }
 
+MembraneHessian parse_membrane_hessian(const std::string& name) {
+    for (const MembraneHessian h : {MembraneHessian::LimitedMemory, MembraneHessian::Exact}) {
+        if (name == to_string(h)) {
+            return h;
+        }
+    }
+    throw InputError("unknown Hessian '" + name + "' (limited-memory, exact)");
+}
+
 const char* to_string(MembraneObjective objective) noexcept {
     switch (objective) {
     case MembraneObjective::Willmore:
