@@ -235,6 +235,38 @@ TEST(ShapeFunctionals, AFilledHessianEqualsANewOne) {
         EXPECT_EQ(std::memcmp(H->valuePtr(), fresh.valuePtr(), sizeof(double) * fresh.nonZeros()), 0);
     }
     EXPECT_EQ(reused.valuePtr(), storage) << "the storage of a Hessian is reused";
+
+    // The declared pattern (a solver's, before its first iteration) is the Hessian's, with zeros.
+    const SparseMatrix pattern = functionals.hessian_pattern();
+    ASSERT_EQ(pattern.nonZeros(), fresh.nonZeros());
+    EXPECT_EQ(std::memcmp(pattern.innerIndexPtr(), fresh.innerIndexPtr(), sizeof(int) * fresh.nonZeros()), 0);
+    EXPECT_EQ(std::memcmp(pattern.outerIndexPtr(), fresh.outerIndexPtr(), sizeof(int) * (fresh.rows() + 1)), 0);
+    EXPECT_TRUE(
+        std::all_of(pattern.valuePtr(), pattern.valuePtr() + pattern.nonZeros(), [](double x) { return x == 0.0; }));
+}
+
+// A matrix of the same size and entry count whose pattern differs (F_tetra,3's with its vertices in
+// reverse order; F_tetra,2's pattern is full, so it has no other) is reshaped, not trusted: filled
+// through the wrong pattern its values would land in other entries.
+TEST(ShapeFunctionals, AHessianOfAnotherPatternIsReshaped) {
+    const ControlMesh mesh = bundled("tetra_3");
+    const LimitBasis basis(mesh.topology(), SchemeKind::C2g0);
+    const ShapeFunctionals functionals(basis, ShapeOptions{.degree = 4, .subdivide_near_extraordinary = 0});
+    const ShapeCoefficients coefficients{1.0, 0.5, -0.25, 2.0, 0.0, 0.75};
+    const SparseMatrix fresh = functionals.hessian(mesh.positions(), coefficients);
+    ASSERT_LT(fresh.nonZeros(), fresh.rows() * fresh.cols());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> reverse(fresh.rows());
+    for (Eigen::Index i = 0; i < fresh.rows(); ++i) {
+        reverse.indices()(i) = static_cast<int>(fresh.rows() - 3 * (i / 3) - 3 + i % 3);
+    }
+    SparseMatrix renumbered = reverse * fresh * reverse.inverse();
+    renumbered.makeCompressed();
+    ASSERT_EQ(renumbered.nonZeros(), fresh.nonZeros());
+    ASSERT_NE(std::memcmp(renumbered.innerIndexPtr(), fresh.innerIndexPtr(), sizeof(int) * fresh.nonZeros()), 0);
+    functionals.hessian(mesh.positions(), coefficients, renumbered);
+    EXPECT_EQ(std::memcmp(renumbered.innerIndexPtr(), fresh.innerIndexPtr(), sizeof(int) * fresh.nonZeros()), 0);
+    EXPECT_EQ(std::memcmp(renumbered.outerIndexPtr(), fresh.outerIndexPtr(), sizeof(int) * (fresh.rows() + 1)), 0);
+    EXPECT_EQ(std::memcmp(renumbered.valuePtr(), fresh.valuePtr(), sizeof(double) * fresh.nonZeros()), 0);
 }
 
 // Euler's identity once more: ∇F homogeneous of degree k − 1 gives H X = (k − 1) ∇F (A, E: ∇F;

@@ -389,6 +389,22 @@ TEST(MembraneValidation, RefusesInfeasibleProblemsAndBadPoints) {
     EXPECT_THROW((void)minimize_membrane(s.functionals, Points::Zero(X.rows(), 3), problem), NumericalError);
 }
 
+// The Hessian's names: to_string and parse_membrane_hessian are inverses, and an unknown name (a
+// library caller's; the CLI and Python refuse one first) is refused with the names it takes.
+TEST(MembraneValidation, HessianNamesRoundTripAndAnUnknownOneIsRefused) {
+    for (const MembraneHessian h : {MembraneHessian::LimitedMemory, MembraneHessian::Exact}) {
+        EXPECT_EQ(parse_membrane_hessian(to_string(h)), h);
+    }
+    for (const char* bad : {"newton", "Exact", "", "limited_memory"}) {
+        try {
+            (void)parse_membrane_hessian(bad);
+            ADD_FAILURE() << "'" << bad << "' was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("limited-memory, exact"), std::string::npos) << e.what();
+        }
+    }
+}
+
 // A solve stopped by max_iterations returns, when it can, a point that holds the constraints: the
 // lowest-objective point it met within 1e-3 of them, or its last iterate, projected onto them.
 // Being feasible, its W is at least the converged minimum's.

@@ -117,10 +117,14 @@ class ShapeFunctionals {
     /// @throws InputError as evaluate(), or for a non-finite coefficient
     /// @throws NumericalError when the surface is degenerate at a sample, naming the ptex face
     [[nodiscard]] SparseMatrix hessian(const Points& X, const ShapeCoefficients& coefficients) const;
-    /// hessian() into @p H, whose storage is reused when it holds a Hessian of this object already
-    /// (its values are overwritten; otherwise it is reshaped): what a solver calls once per iteration.
+    /// hessian() into @p H, whose storage is reused when it holds this object's pattern already
+    /// (checked entry by entry; its values are overwritten; otherwise it is reshaped): what a solver
+    /// calls once per iteration.
     /// @throws as hessian(); H is then left with the pattern and unspecified values
     void hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const;
+    /// hessian()'s pattern with every value 0: the same for any X and coefficients (what a solver
+    /// declares before its first iteration, without computing a Hessian).
+    [[nodiscard]] SparseMatrix hessian_pattern() const;
 
     [[nodiscard]] Index num_vertices() const noexcept;
     [[nodiscard]] Index num_samples() const noexcept;

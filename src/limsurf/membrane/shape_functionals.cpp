@@ -37,6 +37,13 @@ static_assert(index_of(ShapeFunctional::Area) == 0 && index_of(ShapeFunctional::
                   index_of(ShapeFunctional::Gaussian) == 4 && index_of(ShapeFunctional::Harmonic) == 5,
               "sample_integrands.h numbers the functionals in this order");
 
+/// The refusal of a sample where the limit surface has no tangent plane or curvature.
+void require_regular(bool regular, Index ptex_face) {
+    LIMSURF_CHECK_AT(regular, NumericalError, face_element(ptex_face),
+                     "the limit surface is degenerate (parallel tangents or non-finite curvature) on ptex face ",
+                     ptex_face);
+}
+
 }  // namespace
 
 double ShapeValues::value(ShapeFunctional f) const noexcept {
@@ -157,6 +164,8 @@ struct ShapeFunctionals::Impl {
     mutable Neighbours neighbours;
     [[nodiscard]] const Neighbours& support_neighbours() const;
     void shape_like_pattern(SparseMatrix& H) const;
+    /// True when @p H holds exactly the pattern shape_like_pattern() makes.
+    [[nodiscard]] bool holds_pattern(const SparseMatrix& H) const;
     [[nodiscard]] bool element_hessian(std::size_t e, const Points& X, const Vec3& centroid,
                                        const ShapeCoefficients& coefficients, HessianWorkspace& ws,
                                        Eigen::MatrixXd& block) const;
@@ -395,9 +404,7 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
         }
     }
     for (std::size_t e = 0; e < num_elements; ++e) {
-        LIMSURF_CHECK_AT(degenerate[e] == invalid_index, NumericalError, face_element(degenerate[e]),
-                         "the limit surface is degenerate (parallel tangents or non-finite curvature) on ptex face ",
-                         degenerate[e]);
+        require_regular(degenerate[e] == invalid_index, degenerate[e]);
     }
 
     std::array<double, num_shape_functionals> total{};
@@ -475,11 +482,44 @@ const ShapeFunctionals::Impl::Neighbours& ShapeFunctionals::Impl::support_neighb
 
 /// Gives @p H the Hessians' pattern with zero values, keeping its storage when it has the pattern's
 /// size already (a matrix this class filled before).
+bool ShapeFunctionals::Impl::holds_pattern(const SparseMatrix& H) const {
+    const Neighbours& near = support_neighbours();
+    const Index n = 3 * num_vertices;
+    if (H.rows() != n || H.cols() != n || !H.isCompressed() ||
+        H.nonZeros() != static_cast<Eigen::Index>(9 * near.vertices.size())) {
+        return false;
+    }
+    // Row by row (a matrix of the same size and count from another topology differs somewhere).
+    const auto* outer = H.outerIndexPtr();
+    const auto* inner = H.innerIndexPtr();
+    if (outer[0] != 0) {
+        return false;
+    }
+    for (Index v = 0; v < num_vertices; ++v) {
+        const auto uv = static_cast<std::size_t>(v);
+        for (Index c = 0; c < 3; ++c) {
+            const Index row = 3 * v + c;
+            if (static_cast<std::size_t>(outer[row + 1] - outer[row]) != 3 * (near.first[uv + 1] - near.first[uv])) {
+                return false;
+            }
+            const auto* column = inner + outer[row];
+            for (std::size_t i = near.first[uv]; i < near.first[uv + 1]; ++i) {
+                for (Index d = 0; d < 3; ++d) {
+                    if (*column++ != 3 * near.vertices[i] + d) {
+                        return false;
+                    }
+                }
+            }
+        }
+    }
+    return true;
+}
+
 void ShapeFunctionals::Impl::shape_like_pattern(SparseMatrix& H) const {
     const Neighbours& near = support_neighbours();
     const Index n = 3 * num_vertices;
     const auto entries = static_cast<Eigen::Index>(9 * near.vertices.size());
-    if (H.rows() == n && H.cols() == n && H.isCompressed() && H.nonZeros() == entries) {
+    if (holds_pattern(H)) {
         std::fill_n(H.valuePtr(), entries, 0.0);
         return;
     }
@@ -615,10 +655,7 @@ void ShapeFunctionals::Impl::hessian(const Points& X, const ShapeCoefficients& c
         });
         for (Index k = 0; k < count; ++k) {
             const auto e = static_cast<std::size_t>(first + k);
-            LIMSURF_CHECK_AT(good[static_cast<std::size_t>(k)] != 0, NumericalError, face_element(element_face[e]),
-                             "the limit surface is degenerate (parallel tangents or non-finite curvature) on ptex "
-                             "face ",
-                             element_face[e]);
+            require_regular(good[static_cast<std::size_t>(k)] != 0, element_face[e]);
             add_element_block(e, blocks[static_cast<std::size_t>(k)], H);
         }
     }
@@ -663,6 +700,12 @@ SparseMatrix ShapeFunctionals::hessian(const Points& X, const ShapeCoefficients&
 
 void ShapeFunctionals::hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const {
     impl_->hessian(X, coefficients, H);
+}
+
+SparseMatrix ShapeFunctionals::hessian_pattern() const {
+    SparseMatrix H;
+    impl_->shape_like_pattern(H);
+    return H;
 }
 
 ShapeValues ShapeFunctionals::evaluate_all(const Points& X) const {

@@ -257,9 +257,8 @@ class MembraneNlp final : public Ipopt::TNLP {
         nnz_jac_g = n * m;  // dense rows: every functional depends on every control point
         nnz_h_lag = 0;      // limited-memory quasi-Newton Hessian, or the exact one's lower triangle
         if (options_.hessian == MembraneHessian::Exact) {
-            // The pattern is the topology's (ShapeFunctionals::hessian): any X and coefficients give it.
             try {
-                functionals_.hessian(initial_, ShapeCoefficients{}, hessian_);
+                hessian_ = functionals_.hessian_pattern();
             } catch (...) {
                 fatal_ = std::current_exception();
                 return false;
@@ -575,7 +574,7 @@ void set_options(Ipopt::IpoptApplication& app, const MembraneProblem& problem, c
     const Ipopt::SmartPtr<Ipopt::OptionsList> o = app.Options();
     o->SetIntegerValue("print_level", 0);
     o->SetStringValue("sb", "yes");
-    o->SetStringValue("hessian_approximation", options.hessian == MembraneHessian::Exact ? "exact" : "limited-memory");
+    o->SetStringValue("hessian_approximation", to_string(options.hessian));  // Ipopt's names
     o->SetNumericValue("tol", options.tolerance);
     // The constraints are scaled to their targets (MembraneNlp), so this is relative.
     o->SetNumericValue("constr_viol_tol", options.constraint_tolerance);
