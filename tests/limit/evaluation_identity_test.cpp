@@ -470,6 +470,58 @@ TEST(LimitTunedWeights, OwnEdgeAndFaceWeightsAreRefinementInvariant) {
     EXPECT_LT(largest, 1e-11 * m.scale);
 }
 
+// With own β, γ ≠ 1 the corner's children are not regular patches one level more: the stationary
+// class evaluates them through subtrees whose regular patches carry their own tables G·W·R^n. Those
+// against plain local subdivision with the same weights (no tables, no powers of R) at points 2^-k
+// from the tuned vertex inside each of the three children that are subtrees, value to 1e-12 of the
+// mesh size at every k, and first and second derivatives where the reference holds (k <= 12).
+TEST(LimitTunedWeights, SubtreeTablesAgreeWithLocalSubdivisionNearTheVertex) {
+    const Loaded m = load("quad_valence_5");
+    TunedWeights w;
+    Index tuned = invalid_index;
+    for (Index v = 0; v < m.topology.num_vertices() && tuned == invalid_index; ++v) {
+        if (!m.topology.is_boundary_vertex(v) && m.topology.valence(v) == 5) {
+            w.set_vertex(v, {13.9851, 0.6, 0.8});
+            tuned = v;
+        }
+    }
+    ASSERT_NE(tuned, invalid_index);
+    const LimitBasis fast(m.topology, SchemeKind::CatmullClark, m.options, w);
+    const LimitBasis slow(m.topology, SchemeKind::CatmullClark, m.options, w, LimitEvaluation::Subdivision);
+    int compared = 0;
+    for (const Index f : m.topology.vertex_faces(tuned)) {
+        const auto verts = m.topology.face_vertices(f);
+        const Eigen::Vector2d c = corner_uv(true, std::find(verts.begin(), verts.end(), tuned) - verts.begin());
+        const Eigen::Vector2d inward = Eigen::Vector2d(0.5, 0.5) - c;  // (±0.5, ±0.5)
+        const Eigen::Vector2d along_u(2.0 * inward.x(), 0.0), along_v(0.0, 2.0 * inward.y());
+        // Inside the children across the corner's two edges and the one opposite it.
+        for (const Eigen::Vector2d& offset :
+             {Eigen::Vector2d(0.7 * along_u + 0.1 * along_v), Eigen::Vector2d(0.15 * along_u + 0.8 * along_v),
+              Eigen::Vector2d(0.6 * along_u + 0.7 * along_v)}) {
+            for (int k : {0, 1, 3, 6, 12, 20, 30}) {
+                const Eigen::Vector2d uv = c + std::ldexp(1.0, -k) * offset;
+                const SurfacePoint point{fast.first_ptex_face(f), uv.x(), uv.y()};
+                const auto a = fast.evaluate(m.X, point, DerivativeOrder::Second);
+                const auto b = slow.evaluate(m.X, point, DerivativeOrder::Second);
+                const auto weights = fast.evaluate(point, DerivativeOrder::Second).apply(m.X);
+                ++compared;
+                EXPECT_LT((a.row(0) - b.row(0)).norm(), 1e-12 * m.scale) << "face " << f << " at 2^-" << k;
+                EXPECT_LT((a - weights).norm(), 1e-12 * (a.norm() + m.scale)) << "face " << f << " at 2^-" << k;
+                if (k > 12) {
+                    continue;  // plain subdivision's derivatives lose ~2^k·eps (see above)
+                }
+                const double first = a.row(1).norm() + a.row(2).norm();
+                EXPECT_LT((a - b).middleRows(1, 2).norm(), 1e-9 * first + std::ldexp(1e-15, k) * m.scale)
+                    << "first derivatives, face " << f << " at 2^-" << k;
+                const double second = a.bottomRows(3).norm();
+                EXPECT_LT((a - b).bottomRows(3).norm(), 1e-8 * second + std::ldexp(1e-14, 2 * k) * m.scale)
+                    << "second derivatives, face " << f << " at 2^-" << k;
+            }
+        }
+    }
+    EXPECT_EQ(compared, 5 * 3 * 7);
+}
+
 // The positions path where it leaves work to the weights or takes other branches: per-vertex tuned
 // weights (templates keyed by the weights of their vertices), plain local subdivision (no tables:
 // the template chain goes as deep as the point needs), a valence-40 vertex (more local points

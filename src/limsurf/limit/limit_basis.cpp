@@ -7,7 +7,10 @@
 //                 observation, iga-with-catmull-clark §4.2); a point n levels deep
 //                 towards that corner lands in a regular child q, and its weights
 //                 are B(q) · G_q · M_q · A^n · W — the matrices G_q M_q A^n are
-//                 tabulated once per configuration and shared by all faces;
+//                 tabulated once per configuration and shared by all faces; a child
+//                 q that is not regular yet (own tuned weights reach one level further)
+//                 is a subtree whose regular patches get the same tables, G·W·R^n,
+//                 built on first use;
 //   Refine      — anything else (several extraordinary corners, semi-sharp
 //                 creases, n-gons in the ring): subdivide locally and descend.
 // W maps a node's local vertices to the root's support (control vertices).
@@ -60,11 +63,23 @@ std::size_t at(Index i) {
 
 /// out = the first @p k rows of a · b (value; + ∂u, ∂v; + second derivatives), the
 /// other rows 0: derivatives nobody asked for cost nothing.
+/// The row counts are fixed per case: Eigen unrolls a product whose row count it knows (a dynamic
+/// one, `a.topRows(k)`, runs a generic coefficient loop, half a tuning run's time).
 template <class A, class B>
 void multiply_rows(const A& a, const B& b, int k, Rows& out) {
     out.resize(6, b.cols());
-    out.topRows(k).noalias() = a.topRows(k).lazyProduct(b);
-    out.bottomRows(6 - k).setZero();
+    switch (k) {
+    case 6:
+        out.noalias() = a.lazyProduct(b);
+        return;
+    case 3:
+        out.template topRows<3>().noalias() = a.template topRows<3>().lazyProduct(b);
+        out.template bottomRows<3>().setZero();
+        return;
+    default:
+        out.topRows(k).noalias() = a.topRows(k).lazyProduct(b);
+        out.bottomRows(6 - k).setZero();
+    }
 }
 
 /// The basis of a regular patch at (s, t), as ptex derivative rows, times @p M (first
@@ -202,6 +217,13 @@ struct Template {
     std::array<std::atomic<TemplateChild*>, 4> children{};
 };
 
+/// A regular node inside a stationary class's subtree, with its rows carried n levels towards the
+/// class's corner: level[n] = GW · R^n (built on first use, up to the deepest n asked for).
+struct SubtreeTables {
+    std::array<std::atomic<const Dense*>, max_stationary_levels + 1> level{};
+    std::vector<std::unique_ptr<Dense>> owned;  ///< level[1..]; guarded by LimitBasis::Impl::mutex
+};
+
 /// A template placed on the control mesh: W maps its local vertices to the root's support.
 struct Node {
     const Template* shape = nullptr;
@@ -210,6 +232,9 @@ struct Node {
     int depth = 0;
     std::vector<Index> control;  ///< per-vertex tuned weights only
     std::array<std::atomic<Node*>, 4> children{};
+    /// A regular node of a class's subtree (W over the class's K local vertices): its tables.
+    std::atomic<SubtreeTables*> subtree_tables{nullptr};
+    std::unique_ptr<SubtreeTables> subtree_tables_storage;  ///< guarded by LimitBasis::Impl::mutex
 };
 
 struct Root {
@@ -301,6 +326,10 @@ struct LimitBasis::Impl {
     void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
     void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
                          bool& at_vertex, Rows& rows) const;
+    /// The node of subtree @p root that holds @p p (moved into its coordinates, with @p frame).
+    Node* subtree_leaf(Node* root, Eigen::Vector2d& p, Affine& frame) const;
+    /// GW · R^n of a regular subtree node @p leaf of @p cls (n >= 1), built on first use.
+    const Dense& subtree_table(const StationaryClass& cls, Node& leaf, int n) const;
     /// The positions path (LimitBasis::evaluate(X, point, LimitPoint&)); X is Points or InterleavedPoints.
     template <class Matrix>
     void evaluate(const Matrix& X, const SurfacePoint& point, int rows_needed, LimitPoint& out) const;
@@ -658,7 +687,23 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
         }
     } else {
         const Affine map = child_map(quad, q);
-        descend(cls.subtrees[at(q)], map.to_child(p), scaled.then(map), rows_needed, at_vertex, rows);
+        Eigen::Vector2d at_leaf = map.to_child(p);
+        Affine leaf_frame = scaled.then(map);
+        Node* leaf = subtree_leaf(cls.subtrees[at(q)], at_leaf, leaf_frame);
+        if (n > 0 && leaf->shape->kind == Template::Kind::Regular) {
+            // A regular patch of the subtree (tuned weights keep the corner's children irregular
+            // one level more): its rows carried n levels, tabulated, instead of 6 × K · K × K
+            // products per point.
+            const Affine& patch_frame = leaf->shape->patch_frame;
+            patch_rows_times(quad, patch_frame.to_child(at_leaf), leaf_frame.then(patch_frame).axes,
+                             subtree_table(cls, *leaf, n), rows_needed, rows);
+            rows.row(0) += cls.limit_row;  // A^n = 1ℓᵀ + R^n
+            if (step.here) {
+                rows.row(0) = cls.limit_row;
+            }
+            return;
+        }
+        descend(leaf, at_leaf, leaf_frame, rows_needed, at_vertex, rows);
         if (n > 0) {
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
@@ -676,17 +721,66 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
     }
 }
 
+Node* LimitBasis::Impl::subtree_leaf(Node* root, Eigen::Vector2d& p, Affine& frame) const {
+    Node* node = root;
+    while (node->shape->kind == Template::Kind::Refine) {
+        const int q = child_containing(quad, p);
+        const Affine map = child_map(quad, q);
+        p = map.to_child(p);
+        frame = frame.then(map);
+        node = child(*node, q);
+    }
+    return node;
+}
+
+const Dense& LimitBasis::Impl::subtree_table(const StationaryClass& cls, Node& leaf, int n) const {
+    if (const SubtreeTables* known = leaf.subtree_tables.load(std::memory_order_acquire)) {
+        if (const Dense* table = known->level[at(n)].load(std::memory_order_acquire)) {
+            return *table;
+        }
+    }
+    const std::lock_guard lock(mutex);
+    if (!leaf.subtree_tables_storage) {
+        leaf.subtree_tables_storage = std::make_unique<SubtreeTables>();
+        leaf.subtree_tables.store(leaf.subtree_tables_storage.get(), std::memory_order_release);
+    }
+    SubtreeTables& tables = *leaf.subtree_tables_storage;
+    while (static_cast<int>(tables.owned.size()) < n) {  // level k = level k−1 · R, as the class's tables
+        const Dense& previous = tables.owned.empty() ? leaf.GW : *tables.owned.back();
+        tables.owned.push_back(std::make_unique<Dense>(previous * cls.powers.front()));
+        tables.level[tables.owned.size()].store(tables.owned.back().get(), std::memory_order_release);
+    }
+    return *tables.level[at(n)].load(std::memory_order_relaxed);
+}
+
 bool LimitBasis::Impl::stationary_values(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
                                          int rows_needed, bool& at_vertex, const LocalPoints& X, Values& out) const {
     const StationaryStep step = stationary_step(quad, p, frame);
-    if (cls.subtrees[at(step.q)] != nullptr) {
-        return false;  // rare (a Loop middle triangle at a boundary corner): the weights path
+    const Dense* table = nullptr;
+    Affine patch_frame;
+    Eigen::Vector2d at_patch = step.p;
+    Affine to_ptex = step.scaled;
+    if (cls.subtrees[at(step.q)] == nullptr) {
+        table = &cls.tables[at(step.q)][at(step.n)];
+        patch_frame = cls.patch_frames[at(step.q)];
+    } else {
+        // A subtree: its regular patch's tabulated rows where it has them, else the weights path
+        // (a Loop middle triangle at a boundary corner, whose subtree meets another stationary class).
+        const Affine map = child_map(quad, step.q);
+        at_patch = map.to_child(step.p);
+        to_ptex = step.scaled.then(map);
+        Node* leaf = subtree_leaf(cls.subtrees[at(step.q)], at_patch, to_ptex);
+        if (leaf->shape->kind != Template::Kind::Regular) {
+            return false;
+        }
+        patch_frame = leaf->shape->patch_frame;
+        table = step.n == 0 ? &leaf->GW : &subtree_table(cls, *leaf, step.n);
     }
     at_vertex = at_vertex || step.here;
-    const Affine patch = step.scaled.then(cls.patch_frames[at(step.q)]);
+    const Affine patch = to_ptex.then(patch_frame);
     PatchPoints P;
-    times_points(cls.tables[at(step.q)][at(step.n)], X, P);
-    patch_values(quad, cls.patch_frames[at(step.q)].to_child(step.p), patch.axes, P, rows_needed, out);
+    times_points(*table, X, P);
+    patch_values(quad, patch_frame.to_child(at_patch), patch.axes, P, rows_needed, out);
     if (step.here) {
         out.row(0).noalias() = cls.limit_row.lazyProduct(X);
     } else if (step.n > 0) {
