@@ -115,6 +115,7 @@ int run_plate(const PlateOptions& options) {
         study.scheme = options.scheme == "loop" ? SchemeKind::Loop : SchemeKind::CatmullClark;
         study.levels = options.levels;
         study.quadrature = SamplerOptions{options.degree, 6, options.threads};
+        study.tuning_options.num_threads = options.threads;  // the tuned weights' search (--tuned)
         study.tuning = parse_plate_tuning(options.tuned);
         study.decide_level = options.decide_level;
         PlateLoad load;

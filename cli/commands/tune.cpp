@@ -1,6 +1,6 @@
 // limsurf tune --valence V [--shape cup|saddle] [--lambda L] [--quadrature N] [--tile-levels K]
 //   [--poisson-ratio MU] [--lambda-range LO,HI] [--samples M] [--no-protect] [--curve FILE.csv]
-//   [--json]: IGA-tuned Catmull–Clark weights of an extraordinary vertex (the search over the
+//   [--threads N] [--json]: IGA-tuned Catmull–Clark weights of an extraordinary vertex (the search over the
 // subdominant eigenvalue λ of tune_weights), or, with --lambda, the weights at one λ with both
 // quadratic shapes' errors (a row of the paper's Table 1). docs/guide/tune.md.
 #include <chrono>
@@ -19,6 +19,7 @@
 
 #include "commands/commands.h"
 #include "commands/limit_options.h"
+#include "commands/threads_option.h"
 #include "limsurf/analysis/weight_tuning.h"
 #include "limsurf/io/atomic_file.h"
 #include "output.h"
@@ -38,6 +39,7 @@ struct TuneOptions {
     int samples = TuningRequest{}.curve_samples;
     bool no_protect = false;
     std::string curve;
+    int threads = 0;
     bool json = false;
 };
 
@@ -176,6 +178,7 @@ TuningOptions tuning_options(const TuneOptions& options) {
     o.quadrature_points = options.quadrature;
     o.tile_levels = options.tile_levels;
     o.poisson_ratio = options.poisson_ratio;
+    o.num_threads = options.threads;
     return o;
 }
 
@@ -272,6 +275,7 @@ void add_tune_command(CLI::App& app, CommandStatus& status) {
                                      "Minimise the shape's error alone (default: the other shape's error may not "
                                      "exceed Catmull-Clark's)");
     auto* curve = cmd->add_option("--curve", options->curve, "Write the error curve as CSV to FILE, atomically");
+    add_threads_option(cmd, options->threads);
     cmd->add_flag("--json", options->json, "Print JSON");
     for (CLI::Option* search_only : {shape, range, samples, no_protect, curve}) {
         lambda->excludes(search_only);

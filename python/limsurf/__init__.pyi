@@ -431,14 +431,15 @@ def one_ring_spectrum(valence: int, alpha: float | None = None, beta: float = 1.
 def weights_for_subdominant(valence: int, lambda_: float) -> list[TuningWeights]:
     """The weights (one or two candidates, exact ones first) whose subdominant eigenvalue is lambda_."""
 def quadratic_shape_errors(valence: int, alpha: float | None = None, beta: float = 1.0, gamma: float = 1.0, *,
-                           quadrature: int = 4, tile_levels: int = 10, poisson_ratio: float = 0.3) -> ShapeErrors:
+                           quadrature: int = 4, tile_levels: int = 10, poisson_ratio: float = 0.3,
+                           threads: int = 0) -> ShapeErrors:
     """The relative energy-norm errors (32) of the cup and the saddle with these weights."""
 def tune_weights(valence: int, shape: TuningShape = "cup", *, quadrature: int = 4, tile_levels: int = 10,
                  poisson_ratio: float = 0.3, lambda_range: tuple[float, float] | None = None, samples: int = 61,
-                 protect: bool = True) -> TuningResult:
+                 protect: bool = True, threads: int = 0) -> TuningResult:
     """The search in λ of `limsurf tune --json` (the curve as numpy columns)."""
 def tuned_vertex_weights(valence: int, shape: TuningShape = "cup", *, quadrature: int = 4, tile_levels: int = 10,
-                         poisson_ratio: float = 0.3) -> TuningWeights:
+                         poisson_ratio: float = 0.3, threads: int = 0) -> TuningWeights:
     """The tuned weights for the shape, λ rounded to three decimals as Table 1 prints it, with both errors."""
 @overload
 def decompose_shapes(mesh: Mesh, P: ArrayLike | None = None, *, weights: TunedWeightsSpec = None,

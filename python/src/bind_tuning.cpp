@@ -22,11 +22,12 @@ namespace {
 
 using namespace pybind11::literals;
 
-TuningOptions options_of(int quadrature, int tile_levels, double poisson_ratio) {
+TuningOptions options_of(int quadrature, int tile_levels, double poisson_ratio, int threads) {
     TuningOptions options;
     options.quadrature_points = quadrature;
     options.tile_levels = tile_levels;
     options.poisson_ratio = poisson_ratio;
+    options.num_threads = threads;
     return options;
 }
 
@@ -236,8 +237,8 @@ Raises limsurf.InputError for a valence as feasible_subdominant_range or λ outs
 constexpr const char* errors_doc = R"(The relative thin-plate energy-norm errors (32) of the cup ξ₁² + ξ₂² and the
 saddle ξ₁² − ξ₂² at an interior vertex of this valence with the weights (alpha, beta, gamma) (alpha None:
 Catmull–Clark's), over the 2-neighbourhood of the characteristic map: a dict {'cup', 'saddle'}. quadrature:
-Gauss points per direction (1..10), tile_levels: tiles towards the vertex (0..20), poisson_ratio μ of (28).
-Catmull–Clark's weights at valence 4 (8, 1, 1) give zero errors. Raises limsurf.InputError for bad input.)";
+Gauss points per direction (1..10), tile_levels: tiles towards the vertex (0..20), poisson_ratio μ of (28),
+threads: over the faces (0: all cores; the errors do not depend on it). Catmull–Clark's weights at valence 4 (8, 1, 1) give zero errors. Raises limsurf.InputError for bad input.)";
 
 constexpr const char* tune_doc = R"(Searches the subdominant eigenvalue λ minimising the error of `shape`
 ('cup' or 'saddle') — `limsurf tune --json`'s dict: 'valence', 'shape', 'quadrature_points',
@@ -246,13 +247,14 @@ constexpr const char* tune_doc = R"(Searches the subdominant eigenvalue λ minim
 and 'curve': the error curve over λ as columns — float64 arrays 'lambda', 'alpha', 'beta', 'gamma',
 'lambda3', 'lambda4', 'cup_error', 'saddle_error' and a list 'constraint' (increasing λ).
 With protect=True (§3.3) the other shape's error may not exceed Catmull–Clark's. lambda_range=(lo, hi)
-limits the search (default: the feasible range); samples: points of the curve (≥ 3). A call takes
-about a second. Raises limsurf.InputError for bad input.)";
+limits the search (default: the feasible range); samples: points of the curve (≥ 3); threads: over the
+faces of the 2-neighbourhood (0: all cores; the result does not depend on it). A call takes about a second at valence 5,
+more at high valences (docs/guide/tune.md). Raises limsurf.InputError for bad input.)";
 
 constexpr const char* tuned_doc = R"(The weights a user gets for `shape` at this valence: the tuned λ (with the
 protection) rounded to three decimals as Table 1 prints it, and its weights — a dict W with 'cup_error'
 and 'saddle_error'. At valence 5: cup λ 0.550, α 13.4575, β = γ 0.999938; saddle λ 0.585, α 13.9851,
-β = γ 0.824886. Pass it to decompose_shapes as weights={'valence': {5: W}}.)";
+β = γ 0.824886. threads as in tune_weights. Pass it to decompose_shapes as weights={'valence': {5: W}}.)";
 
 constexpr const char* decompose_doc = R"(The local cup–saddle decomposition (§3.4, (33)–(38)) of the control points P
 (#V × 3; for a plate (x, y, w)) at every interior vertex of valence ≥ min_valence whose faces are all
@@ -315,9 +317,9 @@ void bind_tuning(py::module_& m) {
     m.def(
         "quadratic_shape_errors",
         [](int valence, std::optional<double> alpha, double beta, double gamma, int quadrature, int tile_levels,
-           double poisson_ratio) {
+           double poisson_ratio, int threads) {
             const VertexRuleWeights w = rule_weights(valence, alpha, beta, gamma);
-            const TuningOptions options = options_of(quadrature, tile_levels, poisson_ratio);
+            const TuningOptions options = options_of(quadrature, tile_levels, poisson_ratio, threads);
             ShapeErrors e;
             {
                 const py::gil_scoped_release release;
@@ -326,21 +328,22 @@ void bind_tuning(py::module_& m) {
             return py::dict("cup"_a = e.cup, "saddle"_a = e.saddle);
         },
         "valence"_a, "alpha"_a = py::none(), "beta"_a = 1.0, "gamma"_a = 1.0, py::kw_only(), "quadrature"_a = 4,
-        "tile_levels"_a = 10, "poisson_ratio"_a = 0.3, errors_doc);
+        "tile_levels"_a = 10, "poisson_ratio"_a = 0.3, "threads"_a = 0, errors_doc);
     m.def(
         "tune_weights",
         [](int valence, const std::string& shape, int quadrature, int tile_levels, double poisson_ratio,
-           std::optional<std::pair<double, double>> lambda_range, int samples, bool protect) {
-            return tune(valence, shape, options_of(quadrature, tile_levels, poisson_ratio), lambda_range, samples,
-                        protect);
+           std::optional<std::pair<double, double>> lambda_range, int samples, bool protect, int threads) {
+            return tune(valence, shape, options_of(quadrature, tile_levels, poisson_ratio, threads), lambda_range,
+                        samples, protect);
         },
         "valence"_a, "shape"_a = "cup", py::kw_only(), "quadrature"_a = 4, "tile_levels"_a = 10,
-        "poisson_ratio"_a = 0.3, "lambda_range"_a = py::none(), "samples"_a = 61, "protect"_a = true, tune_doc);
+        "poisson_ratio"_a = 0.3, "lambda_range"_a = py::none(), "samples"_a = 61, "protect"_a = true, "threads"_a = 0,
+        tune_doc);
     m.def(
         "tuned_vertex_weights",
-        [](int valence, const std::string& shape, int quadrature, int tile_levels, double poisson_ratio) {
+        [](int valence, const std::string& shape, int quadrature, int tile_levels, double poisson_ratio, int threads) {
             const QuadraticShape which = parse_quadratic_shape(shape);
-            const TuningOptions options = options_of(quadrature, tile_levels, poisson_ratio);
+            const TuningOptions options = options_of(quadrature, tile_levels, poisson_ratio, threads);
             TunedVertex v;
             ShapeErrors e;
             {
@@ -351,7 +354,7 @@ void bind_tuning(py::module_& m) {
             return weights_dict(v, e);
         },
         "valence"_a, "shape"_a = "cup", py::kw_only(), "quadrature"_a = 4, "tile_levels"_a = 10,
-        "poisson_ratio"_a = 0.3, tuned_doc);
+        "poisson_ratio"_a = 0.3, "threads"_a = 0, tuned_doc);
     m.def("decompose_shapes", &decompose, "mesh"_a, "P"_a = py::none(), py::kw_only(), "weights"_a = py::none(),
           "min_valence"_a = 5, "poisson_ratio"_a = 0.3, decompose_doc);
     m.def(

@@ -188,6 +188,29 @@ TEST(WeightTuning, BadInput) {
     request.lambda_high = 0.5;
     EXPECT_THROW((void)tune_weights(request), InputError);
     EXPECT_THROW((void)parse_quadratic_shape("bowl"), InputError);
+    TuningOptions threads;
+    threads.num_threads = -1;
+    EXPECT_THROW((void)quadratic_shape_errors(5, catmull_clark_weights(5), threads), InputError);
+}
+
+// The faces of the 2-neighbourhood are shared among threads and summed in face order after: the
+// errors have the same bits for any thread count (classical and tuned weights, a low and a high
+// valence).
+TEST(WeightTuning, ErrorsDoNotDependOnTheThreadCount) {
+    for (const int n : {5, 11}) {
+        for (const VertexRuleWeights& w :
+             {catmull_clark_weights(n), weights_for_subdominant(n, 0.55).front().weights}) {
+            TuningOptions options;
+            options.num_threads = 1;
+            const ShapeErrors one = quadratic_shape_errors(n, w, options);
+            for (const int threads : {2, 3, 0}) {
+                options.num_threads = threads;
+                const ShapeErrors many = quadratic_shape_errors(n, w, options);
+                EXPECT_EQ(many.cup, one.cup) << "valence " << n << ", " << threads << " threads";
+                EXPECT_EQ(many.saddle, one.saddle) << "valence " << n << ", " << threads << " threads";
+            }
+        }
+    }
 }
 
 // ---- the decomposition (§3.4) ----------------------------------------------------------------

@@ -219,6 +219,23 @@ TEST(CliTune, UnprotectedSearchInARange) {
     EXPECT_NEAR(number(out.at("curve").back(), "lambda"), 0.6, 1e-12);
 }
 
+// --threads shares the faces of each evaluation among threads: the same numbers as one thread
+// (the search's time apart), and with --lambda too.
+TEST(CliTune, ThreadsDoNotChangeTheResult) {
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"tune", "--valence", "7", "--samples", "5", "--json"},
+          std::vector<std::string>{"tune", "--valence", "7", "--lambda", "0.6", "--json"}}) {
+        std::vector<nlohmann::json> outs;
+        for (const char* threads : {"1", "2"}) {
+            std::vector<std::string> with = args;
+            with.insert(with.end(), {"--threads", threads});
+            outs.push_back(run_json(with));
+            outs.back().erase("time_seconds");
+        }
+        EXPECT_EQ(outs[0], outs[1]) << args[3];
+    }
+}
+
 TEST(CliTune, SearchInText) {
     const CliRun run = limsurf({"tune", "--valence", "5", "--shape", "saddle", "--samples", "11"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -255,6 +272,7 @@ TEST(CliTune, RefusalsNameTheProblem) {
     expect_refused({"tune", "--valence", "5", "--lambda", "0.55", "--quadrature", "11"}, 1, "quadrature points");
     expect_refused({"tune", "--valence", "5", "--tile-levels", "21"}, 1, "tile levels");
     expect_refused({"tune", "--valence", "5", "--poisson-ratio", "0.7"}, 1, "Poisson's ratio");
+    expect_refused({"tune", "--valence", "5", "--threads", "-1"}, 2, "thread count");
     // Usage errors: an unknown shape, options of the search with --lambda, no valence.
     expect_refused({"tune", "--valence", "5", "--shape", "bowl"}, 2, "--shape");
     expect_refused({"tune", "--valence", "5", "--lambda", "0.55", "--shape", "cup"}, 2, "excludes");

@@ -137,6 +137,20 @@ def test_tune_options_equal_the_cli(cli):
     assert_equal_to_cli(ours, theirs)
     assert not ours["protection_binds"] and ours["tuned"] == ours["unconstrained"]
     assert tuple(ours["search_range"]) == (0.55, 0.65)
+    # threads share each evaluation's faces: the same numbers on one thread
+    one = limsurf.tune_weights(6, "saddle", quadrature=3, tile_levels=8, poisson_ratio=0.25,
+                               lambda_range=(0.55, 0.65), samples=11, protect=False, threads=1)
+    assert_equal_to_cli(one, theirs)
+
+
+def test_errors_do_not_depend_on_the_thread_count():
+    for valence in (5, 9):
+        one = limsurf.quadratic_shape_errors(valence, threads=1)
+        assert limsurf.quadratic_shape_errors(valence, threads=2) == one
+        assert limsurf.quadratic_shape_errors(valence) == one
+    assert limsurf.tuned_vertex_weights(5, threads=1) == limsurf.tuned_vertex_weights(5, threads=2)
+    with pytest.raises(limsurf.InputError, match="thread count"):
+        limsurf.quadratic_shape_errors(5, threads=-2)
 
 
 def test_weights_at_a_lambda_equal_the_cli(cli):
@@ -308,6 +322,8 @@ def test_bad_input_raises_input_error(mesh_path):
         limsurf.tune_weights(5, "bowl")
     with pytest.raises(limsurf.InputError, match="samples"):
         limsurf.tune_weights(5, samples=2)
+    with pytest.raises(limsurf.InputError, match="thread count"):
+        limsurf.tune_weights(5, samples=3, threads=-1)
     with pytest.raises(limsurf.InputError, match="quadrature"):
         limsurf.quadratic_shape_errors(5, quadrature=11)
     with pytest.raises(limsurf.InputError):

@@ -11,8 +11,9 @@
 namespace limsurf {
 
 /// @brief The number of threads to use for @p n items: @p requested (0: hardware concurrency),
-///   but at most one per 64 items and at least 1.
-[[nodiscard]] int thread_count(int requested, Index n);
+///   but at most one per @p items_per_thread items (64: cheap items, where a thread costs more than
+///   a few; 1: items that take long each) and at least 1.
+[[nodiscard]] int thread_count(int requested, Index n, Index items_per_thread = 64);
 
 /// @brief Runs body(begin, end) on exactly @p threads contiguous ranges of [0, n), one std::thread
 ///   each (in the calling thread when threads <= 1). The first exception thrown by a range is

@@ -9,10 +9,10 @@
 
 namespace limsurf {
 
-int thread_count(int requested, Index n) {
+int thread_count(int requested, Index n, Index items_per_thread) {
     const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     const int wanted = requested > 0 ? requested : hardware;
-    return static_cast<int>(std::clamp<Index>(n / 64, 1, wanted));
+    return static_cast<int>(std::clamp<Index>(n / std::max<Index>(items_per_thread, 1), 1, wanted));
 }
 
 void run_ranges(Index n, int threads, const std::function<void(Index, Index)>& body) {
