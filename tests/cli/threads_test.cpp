@@ -107,6 +107,7 @@ const std::vector<std::vector<std::string>>& threaded_commands() {
         {"membrane", mesh("cube"), "--scheme", "catmull-clark", "--evaluate-only"},
         {"eval", mesh("cube"), "--scheme", "catmull-clark", "--grid", "2"},
         {"subdivide", mesh("cube"), "--scheme", "catmull-clark", "-o", (temp_dir() / "refused.obj").string()},
+        {"tune", "--valence", "5", "--lambda", "0.55"},
     };
     return commands;
 }

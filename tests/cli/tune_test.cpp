@@ -272,7 +272,6 @@ TEST(CliTune, RefusalsNameTheProblem) {
     expect_refused({"tune", "--valence", "5", "--lambda", "0.55", "--quadrature", "11"}, 1, "quadrature points");
     expect_refused({"tune", "--valence", "5", "--tile-levels", "21"}, 1, "tile levels");
     expect_refused({"tune", "--valence", "5", "--poisson-ratio", "0.7"}, 1, "Poisson's ratio");
-    expect_refused({"tune", "--valence", "5", "--threads", "-1"}, 2, "thread count");
     // Usage errors: an unknown shape, options of the search with --lambda, no valence.
     expect_refused({"tune", "--valence", "5", "--shape", "bowl"}, 2, "--shape");
     expect_refused({"tune", "--valence", "5", "--lambda", "0.55", "--shape", "cup"}, 2, "excludes");
