@@ -1,8 +1,8 @@
 // limsurf tune --valence V [--shape cup|saddle] [--lambda L] [--quadrature N] [--tile-levels K]
 //   [--poisson-ratio MU] [--lambda-range LO,HI] [--samples M] [--no-protect] [--curve FILE.csv]
-//   [--threads N] [--json]: IGA-tuned Catmull–Clark weights of an extraordinary vertex (the search over the
-// subdominant eigenvalue λ of tune_weights), or, with --lambda, the weights at one λ with both
-// quadratic shapes' errors (a row of the paper's Table 1). docs/guide/tune.md.
+//   [--threads N] [--json]: IGA-tuned Catmull–Clark weights of an extraordinary vertex (the search
+// over the subdominant eigenvalue λ of tune_weights), or, with --lambda, the weights at one λ with
+// both quadratic shapes' errors (a row of the paper's Table 1). docs/guide/tune.md.
 #include <chrono>
 #include <cmath>
 #include <iomanip>
