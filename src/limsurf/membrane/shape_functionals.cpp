@@ -169,7 +169,9 @@ struct ShapeFunctionals::Impl {
     [[nodiscard]] bool element_hessian(std::size_t e, const Points& X, const Vec3& centroid,
                                        const ShapeCoefficients& coefficients, HessianWorkspace& ws,
                                        Eigen::MatrixXd& block) const;
-    void add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H) const;
+    /// Adds the rows of element @p e's block that belong to vertices [first_vertex, end_vertex).
+    void add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H, Index first_vertex,
+                           Index end_vertex) const;
     void hessian(const Points& X, const ShapeCoefficients& coefficients, SparseMatrix& H) const;
 };
 
@@ -608,13 +610,17 @@ bool ShapeFunctionals::Impl::element_hessian(std::size_t e, const Points& X, con
     return true;
 }
 
-void ShapeFunctionals::Impl::add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H) const {
+void ShapeFunctionals::Impl::add_element_block(std::size_t e, const Eigen::MatrixXd& block, SparseMatrix& H,
+                                               Index first_vertex, Index end_vertex) const {
     const std::size_t first_slot = element_slots[e];
     const std::size_t slots = element_slots[e + 1] - first_slot;
     const auto* inner = H.innerIndexPtr();
     double* entry = H.valuePtr();
     for (std::size_t k = 0; k < slots; ++k) {
         const Index v = slot_vertex[first_slot + k];
+        if (v < first_vertex || v >= end_vertex) {
+            continue;
+        }
         for (Index c = 0; c < 3; ++c) {
             const Index row = 3 * v + c;
             const auto* begin = inner + H.outerIndexPtr()[row];
@@ -654,10 +660,16 @@ void ShapeFunctionals::Impl::hessian(const Points& X, const ShapeCoefficients& c
             }
         });
         for (Index k = 0; k < count; ++k) {
-            const auto e = static_cast<std::size_t>(first + k);
-            require_regular(good[static_cast<std::size_t>(k)] != 0, element_face[e]);
-            add_element_block(e, blocks[static_cast<std::size_t>(k)], H);
+            require_regular(good[static_cast<std::size_t>(k)] != 0, element_face[static_cast<std::size_t>(first + k)]);
         }
+        // Added by rows: each thread owns a range of vertices' rows and adds every block's part of
+        // them in element order, so every entry sums in the same order for any thread count.
+        run_ranges(num_vertices, thread_count(options.num_threads, num_vertices), [&](Index begin, Index end) {
+            for (Index k = 0; k < count; ++k) {
+                add_element_block(static_cast<std::size_t>(first + k), blocks[static_cast<std::size_t>(k)], H, begin,
+                                  end);
+            }
+        });
     }
 }
 
