@@ -238,7 +238,8 @@ constexpr const char* errors_doc = R"(The relative thin-plate energy-norm errors
 saddle ξ₁² − ξ₂² at an interior vertex of this valence with the weights (alpha, beta, gamma) (alpha None:
 Catmull–Clark's), over the 2-neighbourhood of the characteristic map: a dict {'cup', 'saddle'}. quadrature:
 Gauss points per direction (1..10), tile_levels: tiles towards the vertex (0..20), poisson_ratio μ of (28),
-threads: over the faces (0: all cores; the errors do not depend on it). Catmull–Clark's weights at valence 4 (8, 1, 1) give zero errors. Raises limsurf.InputError for bad input.)";
+threads: over the faces (0: all cores; the errors do not depend on it). Catmull–Clark's weights at
+valence 4 (8, 1, 1) give zero errors. Raises limsurf.InputError for bad input.)";
 
 constexpr const char* tune_doc = R"(Searches the subdominant eigenvalue λ minimising the error of `shape`
 ('cup' or 'saddle') — `limsurf tune --json`'s dict: 'valence', 'shape', 'quadrature_points',
@@ -248,8 +249,9 @@ and 'curve': the error curve over λ as columns — float64 arrays 'lambda', 'al
 'lambda3', 'lambda4', 'cup_error', 'saddle_error' and a list 'constraint' (increasing λ).
 With protect=True (§3.3) the other shape's error may not exceed Catmull–Clark's. lambda_range=(lo, hi)
 limits the search (default: the feasible range); samples: points of the curve (≥ 3); threads: over the
-faces of the 2-neighbourhood (0: all cores; the result does not depend on it). A call takes about a second at valence 5,
-more at high valences (docs/guide/tune.md). Raises limsurf.InputError for bad input.)";
+faces of the 2-neighbourhood (0: all cores; the result does not depend on it). A call takes about a
+second at valence 5, more at high valences (docs/guide/tune.md). Raises limsurf.InputError for bad
+input.)";
 
 constexpr const char* tuned_doc = R"(The weights a user gets for `shape` at this valence: the tuned λ (with the
 protection) rounded to three decimals as Table 1 prints it, and its weights — a dict W with 'cup_error'

@@ -244,6 +244,16 @@ struct Root {
     Node* node = nullptr;
 };
 
+/// Where a point of a stationary node lies: n levels towards its extraordinary corner, in the
+/// regular-or-subtree child q of that level.
+struct StationaryStep {
+    int n = 0;
+    int q = 0;
+    bool here = false;  ///< at the extraordinary vertex itself (within 2^-60)
+    Eigen::Vector2d p;  ///< in the coordinates of the level-n node
+    Affine scaled;      ///< ptex = scaled(level-n node coordinates)
+};
+
 }  // namespace
 
 struct LimitBasis::Impl {
@@ -326,6 +336,18 @@ struct LimitBasis::Impl {
     void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
     void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
                          bool& at_vertex, Rows& rows) const;
+    /// The regular patch that holds a point of a stationary class, n levels deep (StationaryStep):
+    /// its rows over the class's local vertices (`table`: the class's own, or a subtree patch's
+    /// G·W·R^n), its patch frame, and the point and ptex map in the patch's node coordinates.
+    /// `table` is null where a subtree meets another stationary class: `leaf` is that node.
+    struct StationaryPatch {
+        const Dense* table = nullptr;
+        Affine patch_frame;
+        Eigen::Vector2d p;
+        Affine frame;
+        Node* leaf = nullptr;
+    };
+    [[nodiscard]] StationaryPatch stationary_patch(const StationaryClass& cls, const StationaryStep& step) const;
     /// The node of subtree @p root that holds @p p (moved into its coordinates, with @p frame).
     Node* subtree_leaf(Node* root, Eigen::Vector2d& p, Affine& frame) const;
     /// GW · R^n of a regular subtree node @p leaf of @p cls (n >= 1), built on first use.
@@ -636,16 +658,6 @@ const Root& LimitBasis::Impl::root(Index p) const {
 
 namespace {
 
-/// Where a point of a stationary node lies: n levels towards its extraordinary corner, in the
-/// regular-or-subtree child q of that level.
-struct StationaryStep {
-    int n = 0;
-    int q = 0;
-    bool here = false;  ///< at the extraordinary vertex itself (within 2^-60)
-    Eigen::Vector2d p;  ///< in the coordinates of the level-n node
-    Affine scaled;      ///< ptex = scaled(level-n node coordinates)
-};
-
 StationaryStep stationary_step(bool quad, Eigen::Vector2d p, const Affine& frame) {
     StationaryStep step;
     while (step.n < max_stationary_levels && in_corner_child(quad, p)) {
@@ -670,45 +682,48 @@ StationaryStep stationary_step(bool quad, Eigen::Vector2d p, const Affine& frame
 
 }  // namespace
 
+LimitBasis::Impl::StationaryPatch LimitBasis::Impl::stationary_patch(const StationaryClass& cls,
+                                                                     const StationaryStep& step) const {
+    StationaryPatch out;
+    if (cls.subtrees[at(step.q)] == nullptr) {
+        out.table = &cls.tables[at(step.q)][at(step.n)];
+        out.patch_frame = cls.patch_frames[at(step.q)];
+        out.p = step.p;
+        out.frame = step.scaled;
+        return out;
+    }
+    // A subtree (own tuned weights keep the corner's children irregular one level more): the
+    // regular patch holding the point, with its rows carried n levels by its own tables.
+    const Affine map = child_map(quad, step.q);
+    out.p = map.to_child(step.p);
+    out.frame = step.scaled.then(map);
+    out.leaf = subtree_leaf(cls.subtrees[at(step.q)], out.p, out.frame);
+    if (out.leaf->shape->kind == Template::Kind::Regular) {
+        out.patch_frame = out.leaf->shape->patch_frame;
+        out.table = step.n == 0 ? &out.leaf->GW : &subtree_table(cls, *out.leaf, step.n);
+    }
+    return out;
+}
+
 void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
                                        int rows_needed, bool& at_vertex, Rows& rows) const {
     const StationaryStep step = stationary_step(quad, p, frame);
     at_vertex = at_vertex || step.here;
-    int n = step.n;
-    p = step.p;
-    const int q = step.q;
-    const Affine& scaled = step.scaled;
-    if (cls.subtrees[at(q)] == nullptr) {
-        const Affine patch = scaled.then(cls.patch_frames[at(q)]);
-        patch_rows_times(quad, cls.patch_frames[at(q)].to_child(p), patch.axes, cls.tables[at(q)][at(n)], rows_needed,
-                         rows);
-        if (n > 0) {
+    const StationaryPatch patch = stationary_patch(cls, step);
+    if (patch.table != nullptr) {
+        patch_rows_times(quad, patch.patch_frame.to_child(patch.p), patch.frame.then(patch.patch_frame).axes,
+                         *patch.table, rows_needed, rows);
+        if (step.n > 0) {
             rows.row(0) += cls.limit_row;  // the value basis sums to 1: A^n = 1ℓᵀ + R^n
         }
     } else {
-        const Affine map = child_map(quad, q);
-        Eigen::Vector2d at_leaf = map.to_child(p);
-        Affine leaf_frame = scaled.then(map);
-        Node* leaf = subtree_leaf(cls.subtrees[at(q)], at_leaf, leaf_frame);
-        if (n > 0 && leaf->shape->kind == Template::Kind::Regular) {
-            // A regular patch of the subtree (tuned weights keep the corner's children irregular
-            // one level more): its rows carried n levels, tabulated, instead of 6 × K · K × K
-            // products per point.
-            const Affine& patch_frame = leaf->shape->patch_frame;
-            patch_rows_times(quad, patch_frame.to_child(at_leaf), leaf_frame.then(patch_frame).axes,
-                             subtree_table(cls, *leaf, n), rows_needed, rows);
-            rows.row(0) += cls.limit_row;  // A^n = 1ℓᵀ + R^n
-            if (step.here) {
-                rows.row(0) = cls.limit_row;
-            }
-            return;
-        }
-        descend(leaf, at_leaf, leaf_frame, rows_needed, at_vertex, rows);
-        if (n > 0) {
+        // A subtree that meets another stationary class: its rows, then the powers of R.
+        descend(patch.leaf, patch.p, patch.frame, rows_needed, at_vertex, rows);
+        if (step.n > 0) {
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
             const double value_sum = rows.row(0).sum();
-            for (int j = 0; n != 0; ++j, n >>= 1) {
+            for (int j = 0, n = step.n; n != 0; ++j, n >>= 1) {
                 if ((n & 1) != 0) {
                     rows = rows * cls.powers[at(j)];
                 }
@@ -756,31 +771,15 @@ const Dense& LimitBasis::Impl::subtree_table(const StationaryClass& cls, Node& l
 bool LimitBasis::Impl::stationary_values(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
                                          int rows_needed, bool& at_vertex, const LocalPoints& X, Values& out) const {
     const StationaryStep step = stationary_step(quad, p, frame);
-    const Dense* table = nullptr;
-    Affine patch_frame;
-    Eigen::Vector2d at_patch = step.p;
-    Affine to_ptex = step.scaled;
-    if (cls.subtrees[at(step.q)] == nullptr) {
-        table = &cls.tables[at(step.q)][at(step.n)];
-        patch_frame = cls.patch_frames[at(step.q)];
-    } else {
-        // A subtree: its regular patch's tabulated rows where it has them, else the weights path
-        // (a Loop middle triangle at a boundary corner, whose subtree meets another stationary class).
-        const Affine map = child_map(quad, step.q);
-        at_patch = map.to_child(step.p);
-        to_ptex = step.scaled.then(map);
-        Node* leaf = subtree_leaf(cls.subtrees[at(step.q)], at_patch, to_ptex);
-        if (leaf->shape->kind != Template::Kind::Regular) {
-            return false;
-        }
-        patch_frame = leaf->shape->patch_frame;
-        table = step.n == 0 ? &leaf->GW : &subtree_table(cls, *leaf, step.n);
+    const StationaryPatch patch = stationary_patch(cls, step);
+    if (patch.table == nullptr) {
+        return false;  // a subtree that meets another stationary class: the weights path
     }
     at_vertex = at_vertex || step.here;
-    const Affine patch = to_ptex.then(patch_frame);
     PatchPoints P;
-    times_points(*table, X, P);
-    patch_values(quad, patch_frame.to_child(at_patch), patch.axes, P, rows_needed, out);
+    times_points(*patch.table, X, P);
+    patch_values(quad, patch.patch_frame.to_child(patch.p), patch.frame.then(patch.patch_frame).axes, P, rows_needed,
+                 out);
     if (step.here) {
         out.row(0).noalias() = cls.limit_row.lazyProduct(X);
     } else if (step.n > 0) {

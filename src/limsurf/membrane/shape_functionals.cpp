@@ -166,6 +166,30 @@ struct ShapeFunctionals::Impl {
     void shape_like_pattern(SparseMatrix& H) const;
     /// True when @p H holds exactly the pattern shape_like_pattern() makes.
     [[nodiscard]] bool holds_pattern(const SparseMatrix& H) const;
+    /// Walks the pattern in compressed row order: entry(at, column) for each entry, then
+    /// row_end(row, end) after each row (rows 3 v + c hold the three columns of every vertex that
+    /// shares an element with v). Stops, returning false, when a callback returns false.
+    template <class Entry, class RowEnd>
+    bool visit_pattern(Entry entry, RowEnd row_end) const {
+        const Neighbours& near = support_neighbours();
+        Eigen::Index at = 0;
+        for (Index v = 0; v < num_vertices; ++v) {
+            const auto uv = static_cast<std::size_t>(v);
+            for (Index c = 0; c < 3; ++c) {
+                for (std::size_t i = near.first[uv]; i < near.first[uv + 1]; ++i) {
+                    for (Index d = 0; d < 3; ++d) {
+                        if (!entry(at++, 3 * near.vertices[i] + d)) {
+                            return false;
+                        }
+                    }
+                }
+                if (!row_end(3 * v + c, at)) {
+                    return false;
+                }
+            }
+        }
+        return true;
+    }
     [[nodiscard]] bool element_hessian(std::size_t e, const Points& X, const Vec3& centroid,
                                        const ShapeCoefficients& coefficients, HessianWorkspace& ws,
                                        Eigen::MatrixXd& block) const;
@@ -482,67 +506,42 @@ const ShapeFunctionals::Impl::Neighbours& ShapeFunctionals::Impl::support_neighb
     return neighbours;
 }
 
-/// Gives @p H the Hessians' pattern with zero values, keeping its storage when it has the pattern's
-/// size already (a matrix this class filled before).
 bool ShapeFunctionals::Impl::holds_pattern(const SparseMatrix& H) const {
-    const Neighbours& near = support_neighbours();
     const Index n = 3 * num_vertices;
     if (H.rows() != n || H.cols() != n || !H.isCompressed() ||
-        H.nonZeros() != static_cast<Eigen::Index>(9 * near.vertices.size())) {
+        H.nonZeros() != static_cast<Eigen::Index>(9 * support_neighbours().vertices.size()) ||
+        H.outerIndexPtr()[0] != 0) {
         return false;
     }
-    // Row by row (a matrix of the same size and count from another topology differs somewhere).
+    // Entry by entry (a matrix of the same size and count from another topology differs somewhere).
     const auto* outer = H.outerIndexPtr();
     const auto* inner = H.innerIndexPtr();
-    if (outer[0] != 0) {
-        return false;
-    }
-    for (Index v = 0; v < num_vertices; ++v) {
-        const auto uv = static_cast<std::size_t>(v);
-        for (Index c = 0; c < 3; ++c) {
-            const Index row = 3 * v + c;
-            if (static_cast<std::size_t>(outer[row + 1] - outer[row]) != 3 * (near.first[uv + 1] - near.first[uv])) {
-                return false;
-            }
-            const auto* column = inner + outer[row];
-            for (std::size_t i = near.first[uv]; i < near.first[uv + 1]; ++i) {
-                for (Index d = 0; d < 3; ++d) {
-                    if (*column++ != 3 * near.vertices[i] + d) {
-                        return false;
-                    }
-                }
-            }
-        }
-    }
-    return true;
+    return visit_pattern([&](Eigen::Index at, Index column) { return inner[at] == column; },
+                         [&](Index row, Eigen::Index end) { return outer[row + 1] == end; });
 }
 
+/// Gives @p H the Hessians' pattern with zero values, keeping its storage when it holds the pattern
+/// already (a matrix this class filled before).
 void ShapeFunctionals::Impl::shape_like_pattern(SparseMatrix& H) const {
-    const Neighbours& near = support_neighbours();
     const Index n = 3 * num_vertices;
-    const auto entries = static_cast<Eigen::Index>(9 * near.vertices.size());
-    if (holds_pattern(H)) {
-        std::fill_n(H.valuePtr(), entries, 0.0);
-        return;
+    const auto entries = static_cast<Eigen::Index>(9 * support_neighbours().vertices.size());
+    if (!holds_pattern(H)) {
+        H = SparseMatrix(n, n);
+        H.resizeNonZeros(entries);
+        auto* outer = H.outerIndexPtr();
+        auto* inner = H.innerIndexPtr();
+        outer[0] = 0;
+        (void)visit_pattern(
+            [&](Eigen::Index at, Index column) {
+                inner[at] = static_cast<SparseMatrix::StorageIndex>(column);
+                return true;
+            },
+            [&](Index row, Eigen::Index end) {
+                outer[row + 1] = static_cast<SparseMatrix::StorageIndex>(end);
+                return true;
+            });
     }
-    H = SparseMatrix(n, n);
-    H.resizeNonZeros(entries);
-    auto* outer = H.outerIndexPtr();
-    auto* inner = H.innerIndexPtr();
     std::fill_n(H.valuePtr(), entries, 0.0);
-    Eigen::Index at = 0;
-    outer[0] = 0;
-    for (Index v = 0; v < num_vertices; ++v) {
-        const auto uv = static_cast<std::size_t>(v);
-        for (Index c = 0; c < 3; ++c) {
-            for (std::size_t i = near.first[uv]; i < near.first[uv + 1]; ++i) {
-                for (Index d = 0; d < 3; ++d) {
-                    inner[at++] = 3 * near.vertices[i] + d;
-                }
-            }
-            outer[3 * v + c + 1] = static_cast<SparseMatrix::StorageIndex>(at);
-        }
-    }
 }
 
 /// Element @p e's block of the Hessian (3 slots × 3 slots, index 3 k + c): Σ_i B_iᵀ D_i B_i with B_i
