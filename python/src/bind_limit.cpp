@@ -412,6 +412,36 @@ The GIL is released while C++ works. Raises InputError naming the first bad poin
              "'du', 'dv' for order 1, also 'duu', 'duv', 'dvv' for order 2): evaluate(...)['du'] equals W['du'] @ V\n"
              "to rounding (evaluate applies V before the basis, the faster path; docs/limit_evaluation.md).")
         .def(
+            "patch",
+            [](const Basis& b, Index face, double u, double v, const py::handle& X) -> py::object {
+                const Points P = control_points(b, X);
+                LimitPatch patch;
+                if (!b.basis.patch(SurfacePoint{face, u, v}, patch)) {
+                    return py::none();
+                }
+                py::array_t<Index> vertices(static_cast<py::ssize_t>(patch.vertices.size()));
+                std::copy(patch.vertices.begin(), patch.vertices.end(), vertices.mutable_data());
+                // The control net itself: each point its weights (with the offset) applied to X.
+                const Eigen::MatrixXd data = patch.control_data(P);
+                const Eigen::MatrixXd net = data.topRows(patch.size()).rowwise() + data.bottomRows<1>();
+                return py::dict("domain"_a = patch.domain == ParameterDomain::Quad ? "quad" : "triangle",
+                                "vertices"_a = vertices, "points"_a = to_numpy(patch.points),
+                                "offset"_a = to_numpy(Eigen::VectorXd(patch.offset.transpose())),
+                                "origin"_a = to_numpy(Eigen::VectorXd(patch.origin)),
+                                "axes"_a = to_numpy(Eigen::MatrixXd(patch.axes)), "control_points"_a = to_numpy(net));
+            },
+            "face"_a, "u"_a, "v"_a, py::kw_only(), "X"_a = py::none(),
+            R"(The regular patch of the limit surface that holds the point (face, u, v), or None where there is
+none (Doo–Sabin, C2g0, and within 2^-60 of an extraordinary vertex; docs/limit_evaluation.md "Patches").
+
+A dict: 'domain' ('quad': a bicubic B-spline patch of 16 points; 'triangle': a quartic box spline of
+12), 'vertices' (the support, int64), 'points' (16 or 12 × #support: each control point's weights
+over the support, less 'offset') and 'offset' (#support: part of every control point; the limit
+mask of an extraordinary vertex the patch is n levels towards, else zeros), 'origin' and 'axes'
+(ptex (u, v) = origin + axes @ (s, t) for the patch parameter (s, t)), and 'control_points'
+(16 or 12 × 3: the control net of X, default the mesh's V). Every point of the patch's tile shares
+them. Raises InputError for a bad point, as evaluate().)")
+        .def(
             "vertex_limit_matrix",
             [](const Basis& b) {
                 SparseMatrix P;

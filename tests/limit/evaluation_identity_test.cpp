@@ -278,14 +278,48 @@ TEST_P(LimitIdentity, LowerOrdersAreTheLeadingRows) {
 /// corners themselves, where a deep descent (an extraordinary or creased vertex: derivatives taken
 /// 2^-61 away, limit_basis.h) leaves rounding noise in both. A wrong patch, table or template step
 /// is off by O(extent).
+/// @p got (rows value, ∂u, ∂v, ∂uu, ∂uv, ∂vv over x, y, z; the first @p rows asked for) against
+/// the weights @p w at @p point applied to @p X: to rounding in the size of the weights, a derivative
+/// of order d amplified by 1 / δ^d at a point δ from a domain corner (the conditioning every path
+/// shares there), and not compared at the corner itself.
+void expect_rows_equal_weights(const LimitBasis& basis, const Points& X, const SurfacePoint& point,
+                               const LimitWeights& w, const Eigen::Matrix<double, 6, 3>& got, int rows,
+                               const std::string& where) {
+    const Eigen::Matrix<double, 6, 3> expected = w.apply(X);
+    const double extent = X.cwiseAbs().maxCoeff();
+    const Eigen::Matrix<double, 6, 1> sizes = w.w.cwiseAbs().rowwise().sum();
+    const double block[3] = {sizes(0), sizes.segment<2>(1).maxCoeff(), sizes.tail<3>().maxCoeff()};
+    double corner_distance = std::numeric_limits<double>::infinity();
+    for (Index k = 0; k < (basis.domain() == ParameterDomain::Quad ? 4 : 3); ++k) {
+        const Eigen::Vector2d c = corner_uv(basis.domain() == ParameterDomain::Quad, k);
+        corner_distance = std::min(corner_distance, (Eigen::Vector2d(point.u, point.v) - c).norm());
+    }
+    for (int r = 0; r < 6; ++r) {
+        for (int c = 0; c < 3; ++c) {
+            if (r >= rows) {
+                ASSERT_EQ(got(r, c), 0.0) << where << " row " << r << " past the order";
+                continue;
+            }
+            const int d = r == 0 ? 0 : r < 3 ? 1 : 2;  // derivative order of the row
+            if (d > 0 && (w.at_extraordinary_vertex || corner_distance == 0.0)) {
+                continue;
+            }
+            const double amplification = std::pow(std::max(1.0, 1.0 / corner_distance), d);
+            const double tolerance = 1e-13 * extent * (sizes(r) + block[d] + 1.0) * amplification;
+            ASSERT_LE(std::abs(got(r, c) - expected(r, c)), tolerance)
+                << where << " row " << r << " col " << c << ": " << got(r, c) << " vs " << expected(r, c);
+        }
+    }
+}
+
+constexpr std::array<std::pair<DerivativeOrder, int>, 3> orders{
+    std::pair{DerivativeOrder::Value, 1}, std::pair{DerivativeOrder::First, 3}, std::pair{DerivativeOrder::Second, 6}};
+
 void expect_positions_equal_weights(const LimitBasis& basis, const Points& X, const SurfacePoint& point,
                                     const std::string& where) {
     const InterleavedPoints interleaved = X;
-    const double extent = X.cwiseAbs().maxCoeff();
-    for (const auto& [order, rows] : {std::pair{DerivativeOrder::Value, 1}, std::pair{DerivativeOrder::First, 3},
-                                      std::pair{DerivativeOrder::Second, 6}}) {
+    for (const auto& [order, rows] : orders) {
         const LimitWeights w = basis.evaluate(point, order);
-        const Eigen::Matrix<double, 6, 3> expected = w.apply(X);
         LimitPoint a;
         LimitPoint b;
         basis.evaluate(X, point, a, order);
@@ -293,28 +327,48 @@ void expect_positions_equal_weights(const LimitBasis& basis, const Points& X, co
         ASSERT_EQ(a.d, b.d) << where << ": the layout of X changed the result";
         ASSERT_EQ(a.at_extraordinary_vertex, w.at_extraordinary_vertex) << where;
         ASSERT_EQ(b.at_extraordinary_vertex, w.at_extraordinary_vertex) << where;
-        const Eigen::Matrix<double, 6, 1> sizes = w.w.cwiseAbs().rowwise().sum();
-        const double block[3] = {sizes(0), sizes.segment<2>(1).maxCoeff(), sizes.tail<3>().maxCoeff()};
-        double corner_distance = std::numeric_limits<double>::infinity();
-        for (Index k = 0; k < (basis.domain() == ParameterDomain::Quad ? 4 : 3); ++k) {
-            const Eigen::Vector2d c = corner_uv(basis.domain() == ParameterDomain::Quad, k);
-            corner_distance = std::min(corner_distance, (Eigen::Vector2d(point.u, point.v) - c).norm());
-        }
-        for (int r = 0; r < 6; ++r) {
-            for (int c = 0; c < 3; ++c) {
-                if (r >= rows) {
-                    ASSERT_EQ(a.d(r, c), 0.0) << where << " row " << r << " past the order";
-                    continue;
-                }
-                const int d = r == 0 ? 0 : r < 3 ? 1 : 2;  // derivative order of the row
-                if (d > 0 && (w.at_extraordinary_vertex || corner_distance == 0.0)) {
-                    continue;
-                }
-                const double amplification = std::pow(std::max(1.0, 1.0 / corner_distance), d);
-                const double tolerance = 1e-13 * extent * (sizes(r) + block[d] + 1.0) * amplification;
-                ASSERT_LE(std::abs(a.d(r, c) - expected(r, c)), tolerance)
-                    << where << " row " << r << " col " << c << ": " << a.d(r, c) << " vs " << expected(r, c);
-            }
+        expect_rows_equal_weights(basis, X, point, w, a.d, rows, where);
+    }
+}
+
+/// The patch LimitBasis::patch gives at @p point holds the point, and on its whole tile (the point
+/// and three more) its data X contracted once give the weights' rows. Its control points' weights
+/// (with the offset) sum to 1. Doo–Sabin and C2g0 have no such patches; elsewhere only a point at an
+/// extraordinary vertex itself may have none.
+void expect_patch_equals_weights(const LimitBasis& basis, const Points& X, const SurfacePoint& point,
+                                 const std::string& where) {
+    LimitPatch patch;
+    const bool found = basis.patch(point, patch);
+    if (basis.scheme() == SchemeKind::DooSabin || basis.scheme() == SchemeKind::C2g0) {
+        ASSERT_FALSE(found) << where;
+        return;
+    }
+    if (!found) {
+        ASSERT_TRUE(basis.evaluate(point, DerivativeOrder::Value).at_extraordinary_vertex)
+            << where << ": no patch away from an extraordinary vertex";
+        return;
+    }
+    ASSERT_EQ(patch.size(), basis.domain() == ParameterDomain::Quad ? 16 : 12) << where;
+    ASSERT_EQ(patch.points.rows(), patch.size()) << where;
+    ASSERT_EQ(patch.points.cols(), static_cast<Index>(patch.vertices.size())) << where;
+    ASSERT_EQ(patch.offset.size(), static_cast<Index>(patch.vertices.size())) << where;
+    ASSERT_TRUE(patch.contains(point.u, point.v, 1e-9)) << where << ": the patch misses its point";
+    const Eigen::VectorXd sums = patch.points.rowwise().sum().array() + patch.offset.sum();
+    ASSERT_LT((sums.array() - 1.0).abs().maxCoeff(), 1e-12) << where << ": control points not affine";
+    const Eigen::MatrixXd data = patch.control_data(X);
+    const Eigen::Vector2d own = patch.parameter(point.u, point.v);
+    for (const Eigen::Vector2d& st :
+         {own, Eigen::Vector2d(0.2, 0.3), Eigen::Vector2d(0.8, 0.1), Eigen::Vector2d(0.1, 0.7)}) {
+        const Eigen::Vector2d uv = patch.origin + patch.axes * st;
+        const SurfacePoint there{point.face, uv.x(), uv.y()};
+        ASSERT_TRUE(patch.contains(uv.x(), uv.y())) << where;
+        for (const auto& [order, rows] : orders) {
+            Eigen::Matrix<double, 6, Eigen::Dynamic> got;
+            patch.evaluate(data, uv.x(), uv.y(), got, order);
+            ASSERT_EQ(got.cols(), 3) << where;
+            expect_rows_equal_weights(basis, X, there, basis.evaluate(there, order), got, rows,
+                                      where + ", patch at (" + std::to_string(st.x()) + ", " + std::to_string(st.y()) +
+                                          ")");
         }
     }
 }
@@ -336,6 +390,41 @@ TEST_P(LimitIdentity, PositionsPathEqualsTheWeightsApplied) {
             expect_positions_equal_weights(basis, m.X, {p, uv.x(), uv.y()},
                                            "ptex " + std::to_string(p) + " at (" + std::to_string(uv.x()) + ", " +
                                                std::to_string(uv.y()) + ")");
+        }
+    }
+}
+
+// LimitBasis::patch at the positions path's points: the patch holds the point and gives the weights'
+// rows on its whole tile (docs/limit_evaluation.md "Patches").
+TEST_P(LimitIdentity, PatchesEqualTheWeightsOnTheirTiles) {
+    const Loaded m = load(GetParam().mesh);
+    const LimitBasis basis(m.topology, GetParam().scheme, m.options);
+    const bool quad = basis.domain() == ParameterDomain::Quad;
+    std::mt19937 rng(37);
+    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+        if (!basis.has_limit_surface(p)) {
+            continue;
+        }
+        std::vector<Eigen::Vector2d> uvs = sample_domain(quad, rng, 8);
+        for (const int k : {3, 17, 45}) {
+            uvs.emplace_back(std::ldexp(1.0, -k), std::ldexp(0.7, -k));
+            // Triangles: in the middle child k levels deep, 2^-6 from its corners. A Loop middle
+            // triangle at a boundary corner is a subtree meeting another class there: the patch is
+            // carried by powers of R. (Nearer, the vertex's own conditioning costs the second
+            // derivatives of both paths digits this tolerance does not count: 1e-9 at 2^-20.)
+            if (!quad) {
+                const double d = std::ldexp(1.0, -6);
+                for (const Eigen::Vector2d& near :
+                     {Eigen::Vector2d(0.5 - d, 1.5 * d), Eigen::Vector2d(0.5 - d, 0.5 - d),
+                      Eigen::Vector2d(1.5 * d, 0.5 - d)}) {
+                    uvs.push_back(std::ldexp(1.0, -k) * near);
+                }
+            }
+        }
+        for (const auto& uv : uvs) {
+            expect_patch_equals_weights(basis, m.X, {p, uv.x(), uv.y()},
+                                        "ptex " + std::to_string(p) + " at (" + std::to_string(uv.x()) + ", " +
+                                            std::to_string(uv.y()) + ")");
         }
     }
 }
@@ -522,64 +611,84 @@ TEST(LimitTunedWeights, SubtreeTablesAgreeWithLocalSubdivisionNearTheVertex) {
     EXPECT_EQ(compared, 5 * 3 * 7);
 }
 
-// The positions path where it leaves work to the weights or takes other branches: per-vertex tuned
-// weights (templates keyed by the weights of their vertices), plain local subdivision (no tables:
-// the template chain goes as deep as the point needs), a valence-40 vertex (more local points
-// than the path keeps on its stack: the weights take over) and n-gons (a root node with W).
+/// Bases off the common path: per-vertex tuned weights (templates keyed by the weights of their
+/// vertices; subtrees of a stationary class), plain local subdivision (no tables: the template chain
+/// goes as deep as the point needs), a valence-40 vertex (more local points than the positions path
+/// keeps on its stack: the weights take over) and n-gons (a root node with W).
+struct OffCommonPath {
+    Loaded quad5 = load("quad_valence_5");
+    Loaded ngons = load("cube_ngons");
+    Points fan_X;
+    std::vector<std::tuple<std::string, LimitBasis, const Points*>> subjects;
+
+    OffCommonPath() {
+        TunedWeights tuned;
+        for (Index v = 0; v < quad5.topology.num_vertices(); ++v) {
+            if (!quad5.topology.is_boundary_vertex(v) && quad5.topology.valence(v) == 5) {
+                tuned.set_vertex(v, {13.9851, 0.6, 0.8});
+                break;  // one tuned vertex: the others keep Catmull–Clark's weights
+            }
+        }
+        // A closed fan: a valence-40 apex, a ring of 40 vertices and a valence-40 bottom vertex (quads).
+        constexpr Index n = 40;
+        fan_X.resize(2 * n + 2, 3);
+        std::vector<Index> offsets{0};
+        std::vector<Index> corners;
+        for (Index i = 0; i < n; ++i) {
+            const double a = 2 * M_PI * i / n;
+            fan_X.row(i) << std::cos(a), std::sin(a), 0.3;
+            fan_X.row(n + i) << 1.2 * std::cos(a + M_PI / n), 1.2 * std::sin(a + M_PI / n), -0.3;
+            for (const std::array<Index, 4>& q :
+                 {std::array<Index, 4>{2 * n, i, n + i, (i + 1) % n},
+                  std::array<Index, 4>{2 * n + 1, (i + 1) % n + n, (i + 1) % n, n + i}}) {
+                corners.insert(corners.end(), q.begin(), q.end());
+                offsets.push_back(static_cast<Index>(corners.size()));
+            }
+        }
+        fan_X.row(2 * n) << 0, 0, 1;
+        fan_X.row(2 * n + 1) << 0, 0, -1;
+        const Topology fan_topology(2 * n + 2, offsets, corners);
+        subjects.emplace_back("per-vertex weights",
+                              LimitBasis(quad5.topology, SchemeKind::CatmullClark, quad5.options, tuned), &quad5.X);
+        subjects.emplace_back(
+            "local subdivision",
+            LimitBasis(quad5.topology, SchemeKind::CatmullClark, quad5.options, {}, LimitEvaluation::Subdivision),
+            &quad5.X);
+        subjects.emplace_back("valence 40", LimitBasis(fan_topology, SchemeKind::CatmullClark), &fan_X);
+        subjects.emplace_back("n-gons", LimitBasis(ngons.topology, SchemeKind::CatmullClark, ngons.options), &ngons.X);
+    }
+
+    /// @p check(basis, X, point, where) at seven points of every ptex face with a limit surface, not at
+    /// the domain's corners (plain local subdivision refuses points at an extraordinary vertex; the
+    /// bundled cases above take the corners).
+    template <class Check>
+    void for_each_point(std::mt19937& rng, const Check& check) const {
+        std::uniform_real_distribution<double> inside(0.01, 0.99);
+        for (const auto& [name, basis, X] : subjects) {
+            for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
+                if (!basis.has_limit_surface(p)) {
+                    continue;
+                }
+                std::vector<Eigen::Vector2d> uvs = {{std::ldexp(1.0, -9), std::ldexp(1.0, -10)}, {0.5, 0.0}};
+                for (int i = 0; i < 5; ++i) {
+                    uvs.emplace_back(inside(rng), inside(rng));
+                }
+                for (const auto& uv : uvs) {
+                    check(basis, *X, SurfacePoint{p, uv.x(), uv.y()}, name + ", ptex " + std::to_string(p));
+                }
+            }
+        }
+    }
+};
+
 TEST(LimitPositionsPath, EqualsTheWeightsAppliedOffTheCommonPath) {
-    const Loaded m = load("quad_valence_5");
-    TunedWeights tuned;
-    for (Index v = 0; v < m.topology.num_vertices(); ++v) {
-        if (!m.topology.is_boundary_vertex(v) && m.topology.valence(v) == 5) {
-            tuned.set_vertex(v, {13.9851, 0.6, 0.8});
-            break;  // one tuned vertex: the others keep Catmull–Clark's weights
-        }
-    }
-    const LimitBasis per_vertex(m.topology, SchemeKind::CatmullClark, m.options, tuned);
-    const LimitBasis subdivision(m.topology, SchemeKind::CatmullClark, m.options, {}, LimitEvaluation::Subdivision);
-    // A closed fan: a valence-40 apex, a ring of 40 vertices and a valence-40 bottom vertex (quads).
-    constexpr Index n = 40;
-    Points fan_X(2 * n + 2, 3);
-    std::vector<Index> offsets{0};
-    std::vector<Index> corners;
-    for (Index i = 0; i < n; ++i) {
-        const double a = 2 * M_PI * i / n;
-        fan_X.row(i) << std::cos(a), std::sin(a), 0.3;
-        fan_X.row(n + i) << 1.2 * std::cos(a + M_PI / n), 1.2 * std::sin(a + M_PI / n), -0.3;
-        for (const std::array<Index, 4>& q : {std::array<Index, 4>{2 * n, i, n + i, (i + 1) % n},
-                                              std::array<Index, 4>{2 * n + 1, (i + 1) % n + n, (i + 1) % n, n + i}}) {
-            corners.insert(corners.end(), q.begin(), q.end());
-            offsets.push_back(static_cast<Index>(corners.size()));
-        }
-    }
-    fan_X.row(2 * n) << 0, 0, 1;
-    fan_X.row(2 * n + 1) << 0, 0, -1;
-    const Topology fan_topology(2 * n + 2, offsets, corners);
-    const LimitBasis fan(fan_topology, SchemeKind::CatmullClark);
-    const Loaded ngons = load("cube_ngons");
-    const LimitBasis ngon(ngons.topology, SchemeKind::CatmullClark, ngons.options);
     std::mt19937 rng(31);
-    using Subject = std::tuple<const char*, const LimitBasis*, const Points*>;
-    for (const auto& [name, basis, X] :
-         {Subject{"per-vertex weights", &per_vertex, &m.X}, Subject{"local subdivision", &subdivision, &m.X},
-          Subject{"valence 40", &fan, &fan_X}, Subject{"n-gons", &ngon, &ngons.X}}) {
-        for (Index p = 0; p < basis->num_ptex_faces(); ++p) {
-            if (!basis->has_limit_surface(p)) {
-                continue;
-            }
-            // Not at the domain's corners: plain local subdivision refuses points at an
-            // extraordinary vertex (the bundled cases above take the corners).
-            std::uniform_real_distribution<double> inside(0.01, 0.99);
-            std::vector<Eigen::Vector2d> uvs = {{std::ldexp(1.0, -9), std::ldexp(1.0, -10)}, {0.5, 0.0}};
-            for (int i = 0; i < 5; ++i) {
-                uvs.emplace_back(inside(rng), inside(rng));
-            }
-            for (const auto& uv : uvs) {
-                expect_positions_equal_weights(*basis, *X, {p, uv.x(), uv.y()},
-                                               std::string(name) + ", ptex " + std::to_string(p));
-            }
-        }
-    }
+    OffCommonPath().for_each_point(rng, expect_positions_equal_weights);
+}
+
+TEST(LimitPatch, EqualsTheWeightsOnItsTileOffTheCommonPath) {
+    std::mt19937 rng(41);
+    OffCommonPath().for_each_point(rng, expect_patch_equals_weights);
 }
 
 TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {

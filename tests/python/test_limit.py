@@ -73,6 +73,54 @@ def test_other_control_points_and_limit_positions(mesh_path):
     assert np.allclose(scaled["position"], 2 * plain["position"])
 
 
+def bicubic_bspline(s, t):
+    """The uniform cubic B-spline pieces (limsurf's patch_basis.h numbering: point 4 j + i at lattice
+    (i - 1, j - 1)), written out here so that the patch's control net is checked independently."""
+    def pieces(x):
+        return np.array([(1 - x) ** 3, 3 * x ** 3 - 6 * x ** 2 + 4, -3 * x ** 3 + 3 * x ** 2 + 3 * x + 1, x ** 3]) / 6
+    return np.outer(pieces(t), pieces(s)).ravel()
+
+
+@pytest.mark.parametrize("name", ["genus2", "cube_creases"])
+def test_a_patch_control_net_gives_the_surface_on_its_tile(mesh_path, name):
+    mesh = limsurf.read_mesh(mesh_path(name))
+    basis = limsurf.LimitBasis(mesh, "catmull-clark")
+    rng = np.random.default_rng(5)
+    checked = 0
+    for face in range(basis.num_ptex_faces):
+        for u, v in [rng.random(2), (2.0 ** -20, 0.3 * 2.0 ** -20)]:
+            patch = basis.patch(face, u, v)
+            assert patch is not None and patch["domain"] == "quad"
+            assert patch["points"].shape == (16, len(patch["vertices"]))
+            assert np.allclose(patch["points"].sum(axis=1) + patch["offset"].sum(), 1.0, rtol=0, atol=1e-12)
+            net = patch["control_points"]
+            assert np.allclose(net, patch["points"] @ mesh.V[patch["vertices"]] + patch["offset"] @ mesh.V[patch["vertices"]],
+                               rtol=0, atol=1e-12)
+            # Three points of the tile: the net's B-spline against the basis.
+            for s, t in [np.linalg.solve(patch["axes"], np.array([u, v]) - patch["origin"]), (0.2, 0.7), (0.9, 0.4)]:
+                assert -1e-9 <= s <= 1 + 1e-9 and -1e-9 <= t <= 1 + 1e-9
+                uv = patch["origin"] + patch["axes"] @ np.array([s, t])
+                expected = basis.evaluate([face], [uv[0]], [uv[1]], order=0)["position"][0]
+                assert np.allclose(bicubic_bspline(s, t) @ net, expected, rtol=0, atol=1e-12)
+                checked += 1
+    assert checked == 3 * 2 * basis.num_ptex_faces
+    moved = mesh.V * 2.0 + 1.0
+    assert np.allclose(basis.patch(0, 0.5, 0.5, X=moved)["control_points"],
+                       basis.patch(0, 0.5, 0.5)["control_points"] * 2.0 + 1.0, rtol=0, atol=1e-12)
+
+
+def test_patches_are_none_where_there_are_none_and_bad_points_are_named(mesh_path):
+    assert limsurf.LimitBasis(limsurf.read_mesh(mesh_path("cube")), "doo-sabin").patch(0, 0.5, 0.5) is None
+    basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("genus2")), "catmull-clark")
+    extraordinary = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("icosahedron")), "loop")
+    assert extraordinary.patch(0, 0.0, 0.0) is None  # at a valence-5 vertex itself
+    assert extraordinary.patch(0, 0.25, 0.25)["domain"] == "triangle"
+    with pytest.raises(limsurf.InputError, match="ptex face"):
+        basis.patch(basis.num_ptex_faces, 0.5, 0.5)
+    with pytest.raises(limsurf.InputError, match="outside"):
+        basis.patch(0, 1.5, 0.5)
+
+
 def test_evaluation_releases_the_gil_and_two_threads_agree(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("genus2"))
     fine = limsurf.subdivide(mesh, "catmull-clark", 2)

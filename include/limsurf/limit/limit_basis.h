@@ -92,6 +92,50 @@ struct PtexFace {
 /// Shape of the (u, v) domain of a ptex face.
 enum class ParameterDomain { Quad, Triangle };
 
+/// @brief The regular patch of the limit surface that holds a point (LimitBasis::patch).
+///
+/// Away from extraordinary vertices the limit surface over a ptex face is one bicubic B-spline
+/// (Catmull–Clark) or quartic box-spline (Loop) patch, and near them it is one such patch on each
+/// tile of the local subdivision (the children that are regular, at every depth). A patch's
+/// control points are fixed combinations of the control vertices, shared by every point of its
+/// tile: a caller evaluating many points of one tile (a quadrature rule on it) contracts its data
+/// with them once (control_data) and then pays a basis of 16 or 12 points per point, instead of a
+/// basis over the whole support per point (docs/limit_evaluation.md "Patches").
+struct LimitPatch {
+    /// Quad: the bicubic B-spline, 16 points; Triangle: the quartic box spline, 12 points
+    /// (patch_basis.h's numbering of the points and its parameter (s, t)).
+    ParameterDomain domain = ParameterDomain::Quad;
+    std::vector<Index> vertices;  ///< the support: the columns of points and offset
+    /// size() × #vertices: the patch's control points, less `offset`.
+    Eigen::MatrixXd points;
+    /// 1 × #vertices, part of every control point: n levels of local subdivision towards an
+    /// extraordinary vertex are kept as A^n = 1ℓᵀ + R^n, the limit position mask ℓ here and R^n in
+    /// `points`, so the derivatives (from `points` alone: derivative weights sum to 0) never cancel
+    /// ℓ's large constant part. Zero away from extraordinary vertices.
+    Eigen::RowVectorXd offset;
+    /// ptex (u, v) = origin + axes · (s, t).
+    Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d axes = Eigen::Matrix2d::Identity();
+
+    [[nodiscard]] int size() const noexcept { return domain == ParameterDomain::Quad ? 16 : 12; }
+    /// The patch parameter (s, t) of ptex point (u, v).
+    [[nodiscard]] Eigen::Vector2d parameter(double u, double v) const;
+    /// True when ptex point (u, v) lies in the patch's domain (the unit square, or the triangle
+    /// s, t >= 0, s + t <= 1) within @p tolerance in (s, t).
+    [[nodiscard]] bool contains(double u, double v, double tolerance = 1e-12) const;
+    /// @brief The patch's data from per-vertex data @p X (#V × m): size() + 1 rows, the control
+    ///   points' (points · X over the support) and last the offset's (offset · X).
+    /// @throws InputError when X has fewer rows than a vertex of the support needs
+    [[nodiscard]] Eigen::MatrixXd control_data(const Eigen::MatrixXd& X) const;
+    /// @brief Value and ptex derivatives at ptex point (u, v) of data @p P from control_data
+    ///   (6 × m; rows as LimitWeights::w, those past @p order 0).
+    ///   Equal to LimitBasis::evaluate(point).apply(X)'s rows up to rounding inside the domain;
+    ///   outside it, the patch's polynomial continued (contains() says which).
+    /// @pre P has size() + 1 rows
+    void evaluate(const Eigen::MatrixXd& P, double u, double v, Eigen::Matrix<double, 6, Eigen::Dynamic>& out,
+                  DerivativeOrder order = DerivativeOrder::Second) const;
+};
+
 /// How a LimitBasis evaluates near extraordinary features.
 enum class LimitEvaluation {
     /// Tables of the self-similar local subdivision (O(1) per point at any distance).
@@ -171,6 +215,15 @@ class LimitBasis {
     /// The same, returning the rows only.
     [[nodiscard]] Eigen::Matrix<double, 6, 3> evaluate(const Points& X, const SurfacePoint& point,
                                                        DerivativeOrder order = DerivativeOrder::Second) const;
+
+    /// @brief The regular patch that holds @p point, for evaluating many points of its tile
+    ///   (LimitPatch). Catmull–Clark and Loop.
+    /// @return false, with @p out unspecified, for Doo–Sabin and C2g0 (their own evaluators) and
+    ///   at a point within 2^-60 of an extraordinary vertex (the tiles shrink towards it without
+    ///   end; the stationary tables stop there and evaluate() gives its exact position): use
+    ///   evaluate() there. Nearer than that the patch is never needed: a tile of side 2^-60.
+    /// @throws what evaluate(point, out, order) throws
+    bool patch(const SurfacePoint& point, LimitPatch& out) const;
 
     /// @brief Asks the caches for what evaluate(X, point, ...) will read at @p point, without
     ///   waiting for it: a hint for loops over many random points of a mesh larger than the caches,

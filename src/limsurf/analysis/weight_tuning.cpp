@@ -319,22 +319,26 @@ double plate_density(const Eigen::Matrix2d& H, double mu) {
     return trace * trace - 2.0 * (1.0 - mu) * (H(0, 0) * H(1, 1) - H(0, 1) * H(1, 0));
 }
 
-/// Quadrature points (u, v, weight) on the unit square, tiled @p levels deep towards corner @p c.
-std::vector<std::array<double, 3>> corner_tiles(const QuadratureRule& rule, int c, int levels) {
+/// A square of the unit square: its corner nearest the origin and its side.
+struct Tile {
+    Eigen::Vector2d origin;
+    double size = 1.0;
+};
+
+/// The unit square in tiles, @p levels deep towards corner @p c (-1: none). Each tile but the one
+/// at the corner is one regular patch of the limit surface, so a quadrature rule on it is exact
+/// for the patch's polynomials and its points share the patch's control points
+/// (LimitBasis::patch). The squares are quartered: with own β, γ the patches next to the vertex
+/// are bicubic only on the quarters (the vertex stays in the support one level further).
+std::vector<Tile> corner_tiles(int c, int levels) {
     static const std::array<Eigen::Vector2d, 4> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0),
                                                         Eigen::Vector2d(1, 1), Eigen::Vector2d(0, 1)};
-    std::vector<std::array<double, 3>> out;
-    // Each tile in quarters: with own β, γ the patches next to the vertex are bicubic only on the
-    // quarters of their tiles (the vertex stays in the support one level further).
+    std::vector<Tile> out;
     const auto place = [&](const Eigen::Vector2d& origin, double size) {
         const double half = size / 2.0;
         for (int i = 0; i < 2; ++i) {
             for (int j = 0; j < 2; ++j) {
-                const Eigen::Vector2d o = origin + Eigen::Vector2d(i * half, j * half);
-                for (std::size_t q = 0; q < rule.weight.size(); ++q) {
-                    const Eigen::Vector2d p = o + half * Eigen::Vector2d(rule.u[q], rule.v[q]);
-                    out.push_back({p.x(), p.y(), rule.weight[q] * half * half});
-                }
+                out.push_back({origin + Eigen::Vector2d(i * half, j * half), half});
             }
         }
     };
@@ -362,6 +366,14 @@ std::vector<std::array<double, 3>> corner_tiles(const QuadratureRule& rule, int 
     place(corner.cwiseProduct(Eigen::Vector2d(1.0 - size, 1.0 - size)), size);
     return out;
 }
+
+/// What one thread reuses from point to point.
+struct Scratch {
+    LimitPatch patch;
+    Eigen::MatrixXd data;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> rows;
+    LimitWeights weights;
+};
 
 void check_options(const TuningOptions& o) {
     LIMSURF_CHECK(o.quadrature_points >= 1 && o.quadrature_points <= 10, InputError,
@@ -489,8 +501,11 @@ ShapeErrors quadratic_shape_errors(int valence, const VertexRuleWeights& weights
     Eigen::Matrix2d cup_exact, saddle_exact;
     cup_exact << 2, 0, 0, 2;
     saddle_exact << 2, 0, 0, -2;
+    // The four fields side by side, contracted once per tile with its patch's control points.
+    Eigen::MatrixXd fields(t.num_vertices(), 4);
+    fields << x, y, cup, saddle;
     // (area, cup error, saddle error) of face f: (28) over its tiles; 0 outside the 2-neighbourhood.
-    const auto face_integrals = [&](Index f, LimitWeights& lw) -> std::array<double, 3> {
+    const auto face_integrals = [&](Index f, Scratch& scratch) -> std::array<double, 3> {
         std::array<double, 3> sum{0.0, 0.0, 0.0};
         const auto verts = t.face_vertices(f);
         if (std::any_of(verts.begin(), verts.end(),
@@ -500,35 +515,47 @@ ShapeErrors quadratic_shape_errors(int valence, const VertexRuleWeights& weights
         const auto found = std::find(verts.begin(), verts.end(), centre);
         const int corner = found == verts.end() ? -1 : static_cast<int>(found - verts.begin());
         const Index p = basis.first_ptex_face(f);
-        for (const auto& [u, v, weight] : corner_tiles(rule, corner, options.tile_levels)) {
-            basis.evaluate(SurfacePoint{p, u, v}, lw, DerivativeOrder::Second);
-            Eigen::Matrix<double, 6, 1> gx = Eigen::Matrix<double, 6, 1>::Zero(), gy = gx, gc = gx, gs = gx;
-            for (Index i = 0; i < lw.size(); ++i) {
-                const Index vertex = lw.vertices[at(i)];
-                gx += lw.w.col(i) * x(vertex);
-                gy += lw.w.col(i) * y(vertex);
-                gc += lw.w.col(i) * cup(vertex);
-                gs += lw.w.col(i) * saddle(vertex);
+        for (const Tile& tile : corner_tiles(corner, options.tile_levels)) {
+            const Eigen::Vector2d middle = tile.origin + Eigen::Vector2d::Constant(tile.size / 2);
+            const Eigen::Vector2d far = tile.origin + Eigen::Vector2d::Constant(tile.size);
+            const bool one_patch = basis.patch(SurfacePoint{p, middle.x(), middle.y()}, scratch.patch) &&
+                                   scratch.patch.contains(tile.origin.x(), tile.origin.y(), 1e-9) &&
+                                   scratch.patch.contains(far.x(), far.y(), 1e-9);
+            if (one_patch) {
+                scratch.data = scratch.patch.control_data(fields);
             }
-            Eigen::Matrix2d J;
-            J << gx(Du), gx(Dv), gy(Du), gy(Dv);
-            const double det = J.determinant();
-            LIMSURF_CHECK(std::abs(det) > 0.0, NumericalError,
-                          "weight tuning: the characteristic map is singular at a quadrature point");
-            const Eigen::Matrix2d Jinv = J.inverse();
-            const double dA = weight * std::abs(det);
-            sum[0] += dA;
-            sum[1] += dA * plate_density(xi_hessian(gx, gy, gc, Jinv) - cup_exact, mu);
-            sum[2] += dA * plate_density(xi_hessian(gx, gy, gs, Jinv) - saddle_exact, mu);
+            for (std::size_t q = 0; q < rule.weight.size(); ++q) {
+                const Eigen::Vector2d uv = tile.origin + tile.size * Eigen::Vector2d(rule.u[q], rule.v[q]);
+                if (one_patch) {
+                    scratch.patch.evaluate(scratch.data, uv.x(), uv.y(), scratch.rows);
+                } else {  // the quarter at the vertex: the patches shrink towards it without end
+                    basis.evaluate(SurfacePoint{p, uv.x(), uv.y()}, scratch.weights, DerivativeOrder::Second);
+                    scratch.rows.setZero(6, 4);
+                    for (Index i = 0; i < scratch.weights.size(); ++i) {
+                        scratch.rows += scratch.weights.w.col(i) * fields.row(scratch.weights.vertices[at(i)]);
+                    }
+                }
+                const Eigen::Matrix<double, 6, 1> gx = scratch.rows.col(0), gy = scratch.rows.col(1);
+                Eigen::Matrix2d J;
+                J << gx(Du), gx(Dv), gy(Du), gy(Dv);
+                const double det = J.determinant();
+                LIMSURF_CHECK(std::abs(det) > 0.0, NumericalError,
+                              "weight tuning: the characteristic map is singular at a quadrature point");
+                const Eigen::Matrix2d Jinv = J.inverse();
+                const double dA = rule.weight[q] * tile.size * tile.size * std::abs(det);
+                sum[0] += dA;
+                sum[1] += dA * plate_density(xi_hessian(gx, gy, scratch.rows.col(2), Jinv) - cup_exact, mu);
+                sum[2] += dA * plate_density(xi_hessian(gx, gy, scratch.rows.col(3), Jinv) - saddle_exact, mu);
+            }
         }
         return sum;
     };
     // The faces on several threads, their integrals summed in face order: the same for any count.
     std::vector<std::array<double, 3>> sums(static_cast<std::size_t>(t.num_faces()));
     run_ranges(t.num_faces(), thread_count(options.num_threads, t.num_faces(), 1), [&](Index begin, Index end) {
-        LimitWeights lw;
+        Scratch scratch;
         for (Index f = begin; f < end; ++f) {
-            sums[at(f)] = face_integrals(f, lw);
+            sums[at(f)] = face_integrals(f, scratch);
         }
     });
     double area = 0.0, cup_error = 0.0, saddle_error = 0.0;

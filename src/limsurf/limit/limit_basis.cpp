@@ -332,6 +332,13 @@ struct LimitBasis::Impl {
     Node* child(Node& node, int q) const;
     /// @param rows_needed 1, 3 or 6 (value; first; second derivatives)
     void evaluate(const SurfacePoint& point, int rows_needed, LimitWeights& out) const;
+    /// The root of ptex face @p face, which must have a limit surface. @throws InputError
+    const Root& root_with_limit(Index face) const;
+    /// LimitBasis::patch.
+    bool patch(const SurfacePoint& point, LimitPatch& out) const;
+    /// The patch of the node that holds @p p (node coordinates; ptex = frame(p)): out's points and
+    /// offset over the columns of node->W, its origin and axes. False at an extraordinary vertex.
+    bool node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
     void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
     void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
@@ -705,6 +712,20 @@ LimitBasis::Impl::StationaryPatch LimitBasis::Impl::stationary_patch(const Stati
     return out;
 }
 
+namespace {
+
+/// M = M · R^n of a stationary class, through the powers R^(2^j) of the set bits of n.
+template <class Matrix>
+void times_power(const StationaryClass& cls, int n, Matrix& M) {
+    for (std::size_t j = 0; n != 0; ++j, n >>= 1) {
+        if ((n & 1) != 0) {
+            M = M * cls.powers[j];
+        }
+    }
+}
+
+}  // namespace
+
 void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
                                        int rows_needed, bool& at_vertex, Rows& rows) const {
     const StationaryStep step = stationary_step(quad, p, frame);
@@ -723,11 +744,7 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
             const double value_sum = rows.row(0).sum();
-            for (int j = 0, n = step.n; n != 0; ++j, n >>= 1) {
-                if ((n & 1) != 0) {
-                    rows = rows * cls.powers[at(j)];
-                }
-            }
+            times_power(cls, step.n, rows);
             rows.row(0) += value_sum * cls.limit_row;
         }
     }
@@ -911,13 +928,82 @@ void LimitBasis::Impl::evaluate(const SurfacePoint& point, int rows_needed, Limi
         c2g0->evaluate(point.face, point.u, point.v, rows_needed, out.vertices, out.w, out.at_extraordinary_vertex);
         return;
     }
-    const Root& r = root(point.face);
-    LIMSURF_CHECK(r.has_limit, InputError, "ptex face ", point.face, " (control face ",
-                  ptex[at(point.face)].control_face, ") has no limit surface (a hole, or a boundary face under ",
-                  "boundary interpolation 'none')");
+    const Root& r = root_with_limit(point.face);
     out.vertices = r.support;
     out.at_extraordinary_vertex = false;
     descend(r.node, r.frame.to_child({point.u, point.v}), r.frame, rows_needed, out.at_extraordinary_vertex, out.w);
+}
+
+const Root& LimitBasis::Impl::root_with_limit(Index face) const {
+    const Root& r = root(face);
+    LIMSURF_CHECK(r.has_limit, InputError, "ptex face ", face, " (control face ", ptex[at(face)].control_face,
+                  ") has no limit surface (a hole, or a boundary face under boundary interpolation 'none')");
+    return r;
+}
+
+bool LimitBasis::Impl::patch(const SurfacePoint& point, LimitPatch& out) const {
+    out.domain = quad ? ParameterDomain::Quad : ParameterDomain::Triangle;
+    if (!fast_index.empty() && fast_index[at(point.face)] >= 0) {
+        const FastPatch& entry = fast[at(fast_index[at(point.face)])];
+        const int size = out.size();
+        out.vertices.assign(entry.points.begin(), entry.points.begin() + size);
+        out.points.setIdentity(size, size);
+        out.offset.setZero(size);
+        const Affine frame = rotation(quad, entry.rotation);
+        out.origin = frame.offset;
+        out.axes = frame.axes;
+        return true;
+    }
+    if (doo_sabin || c2g0) {
+        return false;
+    }
+    const Root& r = root_with_limit(point.face);
+    out.vertices = r.support;
+    return node_patch(r.node, r.frame.to_child({point.u, point.v}), r.frame, out);
+}
+
+bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out) const {
+    if (node->shape != nullptr) {
+        node = subtree_leaf(node, p, frame);
+    }
+    const auto set_frame = [&out](const Affine& patch_to_ptex) {
+        out.origin = patch_to_ptex.offset;
+        out.axes = patch_to_ptex.axes;
+    };
+    if (node->shape == nullptr || node->shape->kind == Template::Kind::Regular) {
+        out.points = node->GW;
+        out.offset.setZero(node->GW.cols());
+        set_frame(frame.then(node->shape == nullptr ? Affine{} : node->shape->patch_frame));
+        return true;
+    }
+    const StationaryClass& cls = *node->shape->stationary;
+    const StationaryStep step = stationary_step(quad, p, frame);
+    if (step.here) {
+        return false;  // the tables end 2^-60 from the vertex: evaluate() takes its limit position
+    }
+    const StationaryPatch found = stationary_patch(cls, step);
+    if (found.table != nullptr) {
+        out.points = *found.table;
+        out.offset = step.n == 0 ? Eigen::RowVectorXd::Zero(found.table->cols()) : cls.limit_row;
+        set_frame(found.frame.then(found.patch_frame));
+    } else {
+        // A subtree that meets another class: its patch over this class's local vertices, carried n
+        // levels by R^n as stationary_rows does. Each point is P_i + o with rows of P summing to a
+        // common s, and (P + 1o)(1ℓᵀ + R^n) = P R^n + 1(o R^n + (s + Σo) ℓ), s + Σo = 1.
+        if (!node_patch(found.leaf, found.p, found.frame, out)) {
+            return false;
+        }
+        if (step.n > 0) {
+            times_power(cls, step.n, out.points);
+            times_power(cls, step.n, out.offset);
+            out.offset += cls.limit_row;
+        }
+    }
+    if (node->W.size() != 0) {  // the node's local vertices mapped to the support
+        out.points = out.points * node->W;
+        out.offset = out.offset * node->W;
+    }
+    return true;
 }
 
 template <class Matrix>
@@ -1152,6 +1238,67 @@ void LimitBasis::evaluate(const InterleavedPoints& X, const SurfacePoint& point,
     LIMSURF_CHECK(X.rows() == impl_->topology.num_vertices(), InputError, "limit evaluation: ", X.rows(),
                   " positions for ", impl_->topology.num_vertices(), " vertices");
     impl_->evaluate(X, checked_point(point, impl_->quad, num_ptex_faces()), rows_of(order), out);
+}
+
+bool LimitBasis::patch(const SurfacePoint& point, LimitPatch& out) const {
+    return impl_->patch(checked_point(point, impl_->quad, num_ptex_faces()), out);
+}
+
+Eigen::Vector2d LimitPatch::parameter(double u, double v) const {
+    return axes.inverse() * (Eigen::Vector2d(u, v) - origin);
+}
+
+bool LimitPatch::contains(double u, double v, double tolerance) const {
+    const Eigen::Vector2d st = parameter(u, v);
+    const bool low = st.x() >= -tolerance && st.y() >= -tolerance;
+    return domain == ParameterDomain::Quad ? low && st.x() <= 1.0 + tolerance && st.y() <= 1.0 + tolerance
+                                           : low && st.x() + st.y() <= 1.0 + tolerance;
+}
+
+Eigen::MatrixXd LimitPatch::control_data(const Eigen::MatrixXd& X) const {
+    Eigen::MatrixXd local(static_cast<Index>(vertices.size()), X.cols());
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        LIMSURF_CHECK(vertices[i] >= 0 && vertices[i] < X.rows(), InputError, "limit patch: vertex ", vertices[i],
+                      " of the support has no row in data of ", X.rows(), " rows");
+        local.row(static_cast<Index>(i)) = X.row(vertices[i]);
+    }
+    Eigen::MatrixXd P(size() + 1, X.cols());
+    P.topRows(size()).noalias() = points * local;
+    P.bottomRows<1>().noalias() = offset * local;
+    return P;
+}
+
+void LimitPatch::evaluate(const Eigen::MatrixXd& P, double u, double v, Eigen::Matrix<double, 6, Eigen::Dynamic>& out,
+                          DerivativeOrder order) const {
+    LIMSURF_CHECK(P.rows() == size() + 1, InputError, "limit patch: data of ", P.rows(), " rows, expected ", size() + 1,
+                  " (control_data)");
+    const int keep = rows_of(order);
+    const Eigen::Vector2d st = parameter(u, v);
+    // Column by column, as sums of the basis's columns (6-vectors) scaled by the data: vectorised
+    // over the rows. Eigen's products here (dynamic column count, or a 6 × 16 matrix times a
+    // vector) walked the basis by rows and took a fifth of a tuning run.
+    const auto combine = [&P, &out](const auto& b) {
+        out.resize(6, P.cols());
+        for (Eigen::Index j = 0; j < P.cols(); ++j) {
+            Eigen::Matrix<double, 6, 1> sum = b.col(0) * P(0, j);
+            for (Eigen::Index k = 1; k < b.cols(); ++k) {
+                sum += b.col(k) * P(k, j);
+            }
+            out.col(j) = sum;
+        }
+    };
+    if (domain == ParameterDomain::Quad) {
+        Eigen::Matrix<double, 6, 16> b;
+        cubic_bspline_patch_weights(st.x(), st.y(), b);
+        combine(b);
+    } else {
+        Eigen::Matrix<double, 6, 12> b;
+        quartic_box_spline_patch_weights(st.x(), st.y(), b, keep);
+        combine(b);
+    }
+    to_ptex(out, axes, out);  // column by column: in place
+    out.row(0) += P.bottomRows<1>();
+    out.bottomRows(6 - keep).setZero();
 }
 
 void LimitBasis::prefetch(const InterleavedPoints& X, const SurfacePoint& point, PrefetchStage stage) const noexcept {

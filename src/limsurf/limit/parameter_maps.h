@@ -74,23 +74,26 @@ inline int child_containing(bool quad, const Eigen::Vector2d& p) {
 }
 
 /// Basis rows in patch coordinates (s, t) turned into ptex derivatives, for
-/// ptex = offset + J · (s, t); @p r may be any 6 × N matrix (it is resized).
+/// ptex = offset + J · (s, t); @p r may be any 6 × N matrix (it is resized), and may be @p b
+/// itself (each column is read before it is written). N may be Eigen::Dynamic.
 template <int N, class Out>
 void to_ptex(const Eigen::Matrix<double, 6, N>& b, const Eigen::Matrix2d& J, Out& r) {
     const Eigen::Matrix2d Ji = J.inverse();
-    r.resize(6, N);
+    r.resize(6, b.cols());
     // H_uv(a, c) = sum_{i,j} Ji(i, a) H_st(i, j) Ji(j, c), with H_st = [[ss, st], [st, tt]].
     const double h[3][3] = {{Ji(0, 0) * Ji(0, 0), 2.0 * Ji(0, 0) * Ji(1, 0), Ji(1, 0) * Ji(1, 0)},
                             {Ji(0, 0) * Ji(0, 1), Ji(0, 0) * Ji(1, 1) + Ji(1, 0) * Ji(0, 1), Ji(1, 0) * Ji(1, 1)},
                             {Ji(0, 1) * Ji(0, 1), 2.0 * Ji(0, 1) * Ji(1, 1), Ji(1, 1) * Ji(1, 1)}};
-    for (int k = 0; k < N; ++k) {
+    for (Eigen::Index k = 0; k < b.cols(); ++k) {
+        const double value = b(0, k);
         const double ds = b(1, k);
         const double dt = b(2, k);
-        r(0, k) = b(0, k);
+        const double second[3] = {b(3, k), b(4, k), b(5, k)};
+        r(0, k) = value;
         r(1, k) = Ji(0, 0) * ds + Ji(1, 0) * dt;
         r(2, k) = Ji(0, 1) * ds + Ji(1, 1) * dt;
         for (int i = 0; i < 3; ++i) {
-            r(3 + i, k) = h[i][0] * b(3, k) + h[i][1] * b(4, k) + h[i][2] * b(5, k);
+            r(3 + i, k) = h[i][0] * second[0] + h[i][1] * second[1] + h[i][2] * second[2];
         }
     }
 }
