@@ -249,9 +249,9 @@ and 'curve': the error curve over λ as columns — float64 arrays 'lambda', 'al
 'lambda3', 'lambda4', 'cup_error', 'saddle_error' and a list 'constraint' (increasing λ).
 With protect=True (§3.3) the other shape's error may not exceed Catmull–Clark's. lambda_range=(lo, hi)
 limits the search (default: the feasible range); samples: points of the curve (≥ 3); threads: over the
-faces of the 2-neighbourhood (0: all cores; the result does not depend on it). A call takes about a
-second at valence 5, more at high valences (docs/guide/tune.md). Raises limsurf.InputError for bad
-input.)";
+curve's λ, then over the faces of the 2-neighbourhood (0: all cores; the result does not depend on it).
+A call takes about half a second at valence 5, more at high valences (docs/guide/tune.md). Raises
+limsurf.InputError for bad input.)";
 
 constexpr const char* tuned_doc = R"(The weights a user gets for `shape` at this valence: the tuned λ (with the
 protection) rounded to three decimals as Table 1 prints it, and its weights — a dict W with 'cup_error'

@@ -83,8 +83,9 @@ struct TuningOptions {
     /// gets its own rule down to 2^-levels; the innermost cell's share is below 1e-9 of the norm.
     int tile_levels = 10;
     double poisson_ratio = 0.3;  ///< μ of (28)
-    /// Threads over the faces of the 2-neighbourhood (0: all cores). Each face's integrals are
-    /// summed alone and then in face order, so the errors do not depend on it.
+    /// Threads over the faces of the 2-neighbourhood (0: all cores); tune_weights runs its curve's λ
+    /// on them first, one evaluation each. Each face's integrals are summed alone and then in face
+    /// order, so the errors do not depend on it.
     int num_threads = 0;
 };
 

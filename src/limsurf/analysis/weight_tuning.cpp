@@ -598,11 +598,11 @@ TuningResult tune_weights(const TuningRequest& request) {
     const auto other_of = [&](const ShapeErrors& e) { return cup ? e.saddle : e.cup; };
     const double other_limit = other_of(out.classical_errors);
     // The better candidate at λ for the requested shape.
-    const auto sample = [&](double lambda) {
+    const auto sample_with = [&](double lambda, const TuningOptions& options) {
         TuningSample best;
         bool first = true;
         for (const TunedVertex& v : weights_for_subdominant(n, lambda)) {
-            const ShapeErrors e = quadratic_shape_errors(n, v.weights, request.options);
+            const ShapeErrors e = quadratic_shape_errors(n, v.weights, options);
             if (first || error_of(e) < error_of(best.errors)) {
                 best = {v, e};
                 first = false;
@@ -610,12 +610,24 @@ TuningResult tune_weights(const TuningRequest& request) {
         }
         return best;
     };
+    const auto sample = [&](double lambda) { return sample_with(lambda, request.options); };
+    // The curve's samples are independent: several λ at once, each evaluated on one thread, so that
+    // the building of each λ's local complex and tables runs in parallel too (an evaluation's
+    // numbers do not depend on its thread count). The searches after it are sequential: their
+    // evaluations share the threads over faces.
     const int m = request.curve_samples;
+    TuningOptions one_thread = request.options;
+    one_thread.num_threads = 1;
+    out.curve.resize(static_cast<std::size_t>(m));
+    run_ranges(m, thread_count(request.options.num_threads, m, 1), [&](Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) {
+            out.curve[at(i)] = sample_with(low + (high - low) * static_cast<double>(i) / (m - 1), one_thread);
+        }
+    });
     std::size_t best = 0;
-    for (int i = 0; i < m; ++i) {
-        out.curve.push_back(sample(low + (high - low) * i / (m - 1)));
-        if (error_of(out.curve.back().errors) < error_of(out.curve[best].errors)) {
-            best = out.curve.size() - 1;
+    for (std::size_t i = 1; i < out.curve.size(); ++i) {
+        if (error_of(out.curve[i].errors) < error_of(out.curve[best].errors)) {
+            best = i;
         }
     }
     // Golden-section search on the grid intervals around the best sample.
