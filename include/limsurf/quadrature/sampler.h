@@ -5,8 +5,9 @@
 // that has a limit surface and stores, for each sample s, its point (face, u, v),
 // its parameter-domain weight weight(s) and the sparse limit weights (value, ∂u,
 // ∂v, ∂uu, ∂uv, ∂vv) over the control vertices the surface depends on there.
-// Storage is CSR-like: offsets into one array of vertex indices and one array of
-// 6 weights per entry (column-major, 6 × k per sample). After construction,
+// Storage is CSR-like: offsets into arrays of vertex indices and of
+// 6 weights per entry (column-major, 6 × k per sample), one pair per construction thread (a
+// sample's entries are contiguous; two samples' need not be). After construction,
 // integrating anything over the limit surface of control points X (#V × 3) is a
 // sequence of sparse products: evaluate(X) gives every sample's 6 × 3 derivatives.
 //
@@ -28,6 +29,7 @@
 // only the innermost cell (area 4^-k of the face) is integrated inexactly.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -88,9 +90,16 @@ class LimitSampler {
     Index num_vertices_ = 0;
     std::vector<SurfacePoint> points_;
     std::vector<double> weights_;
-    std::vector<std::size_t> offsets_;  // num_samples + 1 offsets into vertices_ (and 6× into limit_)
-    std::vector<Index> vertices_;
-    std::vector<double> limit_;  // 6 per entry, column-major per sample
+    /// The samples of one construction thread, in order: their vertices and limit weights (6 per
+    /// entry, column-major per sample), kept apart rather than concatenated (sampler.cpp says why).
+    struct Piece {
+        std::size_t first_offset = 0;  ///< offsets_ of its first sample
+        std::vector<Index> vertices;
+        std::vector<double> limit;
+    };
+    std::vector<Piece> pieces_;
+    std::vector<std::uint32_t> piece_of_;  // per sample: its piece
+    std::vector<std::size_t> offsets_;     // num_samples + 1 entry offsets, counted across the pieces
 };
 
 }  // namespace limsurf

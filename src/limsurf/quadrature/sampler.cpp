@@ -223,48 +223,49 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
         weights_[s] = pending[s].weight;
     }
 
-    // Evaluate in parallel chunks, each into its own CSR piece, then concatenate in order.
+    // Evaluate in parallel chunks, each into its own CSR piece, kept as it is: concatenating them
+    // copied every weight once more on one thread, into fresh pages, while the pieces still held
+    // theirs (half of a plate study's time went to such copies and their page faults, and the
+    // sampler's peak was twice its size).
     const int threads = thread_count(options.num_threads, n);
-    struct Piece {
-        std::vector<std::size_t> sizes;
-        std::vector<Index> vertices;
-        std::vector<double> limit;
-    };
-    std::vector<Piece> pieces(static_cast<std::size_t>(threads));
+    pieces_.resize(static_cast<std::size_t>(threads));
+    piece_of_.resize(pending.size());
+    offsets_.assign(pending.size() + 1, 0);  // each sample's entry count at s + 1 first
     run_ranges(threads, threads, [&](Index first_chunk, Index last_chunk) {
         LimitWeights w;
         for (Index c = first_chunk; c < last_chunk; ++c) {
-            Piece& piece = pieces[static_cast<std::size_t>(c)];
+            Piece& piece = pieces_[static_cast<std::size_t>(c)];
             const Index begin = static_cast<Index>(std::int64_t{n} * c / threads);
             const Index end = static_cast<Index>(std::int64_t{n} * (c + 1) / threads);
             for (Index s = begin; s < end; ++s) {
-                basis.evaluate(points_[static_cast<std::size_t>(s)], w, DerivativeOrder::Second);
-                piece.sizes.push_back(w.vertices.size());
+                const auto i = static_cast<std::size_t>(s);
+                basis.evaluate(points_[i], w, DerivativeOrder::Second);
+                offsets_[i + 1] = w.vertices.size();
+                piece_of_[i] = static_cast<std::uint32_t>(c);
                 piece.vertices.insert(piece.vertices.end(), w.vertices.begin(), w.vertices.end());
                 piece.limit.insert(piece.limit.end(), w.w.data(), w.w.data() + w.w.size());
             }
         }
     });
-    offsets_.reserve(pending.size() + 1);
-    offsets_.push_back(0);
-    for (Piece& piece : pieces) {
-        for (const std::size_t size : piece.sizes) {
-            offsets_.push_back(offsets_.back() + size);
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+        if (i == 0 || piece_of_[i] != piece_of_[i - 1]) {
+            pieces_[piece_of_[i]].first_offset = offsets_[i];
         }
-        vertices_.insert(vertices_.end(), piece.vertices.begin(), piece.vertices.end());
-        limit_.insert(limit_.end(), piece.limit.begin(), piece.limit.end());
-        piece = Piece{};
+        offsets_[i + 1] += offsets_[i];
     }
 }
 
 std::span<const Index> LimitSampler::vertices(Index s) const {
     const auto i = static_cast<std::size_t>(s);
-    return {vertices_.data() + offsets_[i], offsets_[i + 1] - offsets_[i]};
+    const Piece& piece = pieces_[piece_of_[i]];
+    return {piece.vertices.data() + (offsets_[i] - piece.first_offset), offsets_[i + 1] - offsets_[i]};
 }
 
 Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> LimitSampler::limit_weights(Index s) const {
     const auto i = static_cast<std::size_t>(s);
-    return {limit_.data() + 6 * offsets_[i], 6, static_cast<Eigen::Index>(offsets_[i + 1] - offsets_[i])};
+    const Piece& piece = pieces_[piece_of_[i]];
+    return {piece.limit.data() + 6 * (offsets_[i] - piece.first_offset), 6,
+            static_cast<Eigen::Index>(offsets_[i + 1] - offsets_[i])};
 }
 
 Eigen::Matrix<double, 6, 3> LimitSampler::evaluate(const Points& X, Index s) const {
