@@ -6,7 +6,7 @@
 // its parameter-domain weight weight(s) and the sparse limit weights (value, ∂u,
 // ∂v, ∂uu, ∂uv, ∂vv) over the control vertices the surface depends on there.
 // Storage is CSR-like: offsets into arrays of vertex indices and of
-// 6 weights per entry (column-major, 6 × k per sample), one pair per construction thread (a
+// 6 weights per entry (column-major, 6 × k per sample), in blocks of consecutive samples (a
 // sample's entries are contiguous; two samples' need not be). After construction,
 // integrating anything over the limit surface of control points X (#V × 3) is a
 // sequence of sparse products: evaluate(X) gives every sample's 6 × 3 derivatives.
@@ -90,16 +90,18 @@ class LimitSampler {
     Index num_vertices_ = 0;
     std::vector<SurfacePoint> points_;
     std::vector<double> weights_;
-    /// The samples of one construction thread, in order: their vertices and limit weights (6 per
-    /// entry, column-major per sample), kept apart rather than concatenated (sampler.cpp says why).
-    struct Piece {
+    /// Consecutive samples' vertices and limit weights (6 per entry, column-major per sample), filled
+    /// by one construction thread up to a fixed capacity and never moved after (sampler.cpp says why).
+    struct Block {
         std::size_t first_offset = 0;  ///< offsets_ of its first sample
         std::vector<Index> vertices;
         std::vector<double> limit;
     };
-    std::vector<Piece> pieces_;
-    std::vector<std::uint32_t> piece_of_;  // per sample: its piece
-    std::vector<std::size_t> offsets_;     // num_samples + 1 entry offsets, counted across the pieces
+    /// Entries per block (a sample with more gets a block of its own): 3.5 MiB of storage.
+    static constexpr std::size_t block_entries = std::size_t{1} << 16;
+    std::vector<Block> blocks_;
+    std::vector<std::uint32_t> block_of_;  // per sample: its block
+    std::vector<std::size_t> offsets_;     // num_samples + 1 entry offsets, counted across the blocks
 };
 
 }  // namespace limsurf

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/parallel.h"
@@ -223,33 +224,54 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
         weights_[s] = pending[s].weight;
     }
 
-    // Evaluate in parallel chunks, each into its own CSR piece, kept as it is: concatenating them
-    // copied every weight once more on one thread, into fresh pages, while the pieces still held
-    // theirs (half of a plate study's time went to such copies and their page faults, and the
-    // sampler's peak was twice its size).
+    // Evaluate in parallel chunks of samples. Each thread writes its samples' entries into blocks
+    // of a fixed capacity, opened as they fill, and the blocks are the storage: nothing is copied
+    // after it is written. Growing one vector per thread copied everything it held at every
+    // reallocation into fresh pages, and concatenating the threads' vectors copied it all once more
+    // on one thread (80 % of `limsurf measure` went to those copies and their page faults).
     const int threads = thread_count(options.num_threads, n);
-    pieces_.resize(static_cast<std::size_t>(threads));
-    piece_of_.resize(pending.size());
+    std::vector<std::vector<Block>> per_thread(static_cast<std::size_t>(threads));
+    block_of_.resize(pending.size());
     offsets_.assign(pending.size() + 1, 0);  // each sample's entry count at s + 1 first
     run_ranges(threads, threads, [&](Index first_chunk, Index last_chunk) {
         LimitWeights w;
         for (Index c = first_chunk; c < last_chunk; ++c) {
-            Piece& piece = pieces_[static_cast<std::size_t>(c)];
+            std::vector<Block>& blocks = per_thread[static_cast<std::size_t>(c)];
             const Index begin = static_cast<Index>(std::int64_t{n} * c / threads);
             const Index end = static_cast<Index>(std::int64_t{n} * (c + 1) / threads);
             for (Index s = begin; s < end; ++s) {
                 const auto i = static_cast<std::size_t>(s);
                 basis.evaluate(points_[i], w, DerivativeOrder::Second);
-                offsets_[i + 1] = w.vertices.size();
-                piece_of_[i] = static_cast<std::uint32_t>(c);
-                piece.vertices.insert(piece.vertices.end(), w.vertices.begin(), w.vertices.end());
-                piece.limit.insert(piece.limit.end(), w.w.data(), w.w.data() + w.w.size());
+                const std::size_t k = w.vertices.size();
+                if (blocks.empty() || blocks.back().vertices.size() + k > blocks.back().vertices.capacity()) {
+                    const std::size_t capacity = std::max(block_entries, k);
+                    blocks.emplace_back();
+                    blocks.back().vertices.reserve(capacity);
+                    blocks.back().limit.reserve(6 * capacity);
+                }
+                offsets_[i + 1] = k;
+                block_of_[i] = static_cast<std::uint32_t>(blocks.size() - 1);  // within the thread's, for now
+                blocks.back().vertices.insert(blocks.back().vertices.end(), w.vertices.begin(), w.vertices.end());
+                blocks.back().limit.insert(blocks.back().limit.end(), w.w.data(), w.w.data() + w.w.size());
             }
         }
     });
+    // The threads' blocks in order (moved, not copied), each sample's block numbered among all.
+    std::vector<std::uint32_t> first_block(per_thread.size());
+    for (std::size_t c = 0; c < per_thread.size(); ++c) {
+        first_block[c] = static_cast<std::uint32_t>(blocks_.size());
+        std::move(per_thread[c].begin(), per_thread[c].end(), std::back_inserter(blocks_));
+    }
+    for (Index c = 0; c < threads; ++c) {
+        const Index begin = static_cast<Index>(std::int64_t{n} * c / threads);
+        const Index end = static_cast<Index>(std::int64_t{n} * (c + 1) / threads);
+        for (Index s = begin; s < end; ++s) {
+            block_of_[static_cast<std::size_t>(s)] += first_block[static_cast<std::size_t>(c)];
+        }
+    }
     for (std::size_t i = 0; i < pending.size(); ++i) {
-        if (i == 0 || piece_of_[i] != piece_of_[i - 1]) {
-            pieces_[piece_of_[i]].first_offset = offsets_[i];
+        if (i == 0 || block_of_[i] != block_of_[i - 1]) {
+            blocks_[block_of_[i]].first_offset = offsets_[i];
         }
         offsets_[i + 1] += offsets_[i];
     }
@@ -257,14 +279,14 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
 
 std::span<const Index> LimitSampler::vertices(Index s) const {
     const auto i = static_cast<std::size_t>(s);
-    const Piece& piece = pieces_[piece_of_[i]];
-    return {piece.vertices.data() + (offsets_[i] - piece.first_offset), offsets_[i + 1] - offsets_[i]};
+    const Block& block = blocks_[block_of_[i]];
+    return {block.vertices.data() + (offsets_[i] - block.first_offset), offsets_[i + 1] - offsets_[i]};
 }
 
 Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> LimitSampler::limit_weights(Index s) const {
     const auto i = static_cast<std::size_t>(s);
-    const Piece& piece = pieces_[piece_of_[i]];
-    return {piece.limit.data() + 6 * (offsets_[i] - piece.first_offset), 6,
+    const Block& block = blocks_[block_of_[i]];
+    return {block.limit.data() + 6 * (offsets_[i] - block.first_offset), 6,
             static_cast<Eigen::Index>(offsets_[i + 1] - offsets_[i])};
 }
 
