@@ -117,6 +117,26 @@ TEST(LimitSampler, PiecesOfPtexFacesAreTheWholeSampler) {
     EXPECT_THROW(LimitSampler(m.basis, options, 0, faces + 1), InputError);
 }
 
+// The weights are stored in blocks of 2^16 entries, each thread filling its own: every sample's
+// vertices and weights are still exactly its own evaluation's, on 1, 2 and 3 threads, over more
+// entries than several blocks hold.
+TEST(LimitSampler, EverySampleKeepsItsOwnWeightsAcrossBlocksAndThreads) {
+    const Loaded m("dodecahedron");
+    for (const int threads : {1, 2, 3}) {
+        const LimitSampler sampler(m.basis, SamplerOptions{10, 6, threads});
+        std::size_t entries = 0;
+        LimitWeights expected;
+        for (Index s = 0; s < sampler.num_samples(); ++s) {
+            m.basis.evaluate(sampler.point(s), expected, DerivativeOrder::Second);
+            const auto vertices = sampler.vertices(s);
+            ASSERT_TRUE(std::ranges::equal(vertices, expected.vertices)) << "sample " << s << ", " << threads;
+            ASSERT_TRUE(sampler.limit_weights(s) == expected.w) << "sample " << s << ", " << threads;
+            entries += vertices.size();
+        }
+        EXPECT_GT(entries, std::size_t{4} << 16) << "the test should span several blocks per thread";
+    }
+}
+
 TEST(LimitSampler, EvaluateAllMatchesEvaluateOne) {
     const Loaded torus("quad_torus");
     const LimitSampler sampler(torus.basis, SamplerOptions{6, 0, 3});
