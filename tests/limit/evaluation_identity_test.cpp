@@ -373,25 +373,37 @@ void expect_patch_equals_weights(const LimitBasis& basis, const Points& X, const
     }
 }
 
-TEST_P(LimitIdentity, PositionsPathEqualsTheWeightsApplied) {
-    const Loaded m = load(GetParam().mesh);
-    const LimitBasis basis(m.topology, GetParam().scheme, m.options);
+/// @p check(point, where) at eight sampled points of every ptex face with a limit surface and
+/// 2^-3, 2^-17, 2^-45 from its corner 0 (an extraordinary vertex on many faces), with the points
+/// @p deeper(k, uvs) adds at each of those depths k.
+template <class Deeper, class Check>
+void for_each_test_point(const LimitBasis& basis, unsigned seed, const Deeper& deeper, const Check& check) {
     const bool quad = basis.domain() == ParameterDomain::Quad;
-    std::mt19937 rng(29);
+    std::mt19937 rng(seed);
     for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
         if (!basis.has_limit_surface(p)) {
             continue;
         }
         std::vector<Eigen::Vector2d> uvs = sample_domain(quad, rng, 8);
-        for (const int k : {3, 17, 45}) {  // towards corner 0 (an extraordinary vertex on many faces)
+        for (const int k : {3, 17, 45}) {
             uvs.emplace_back(std::ldexp(1.0, -k), std::ldexp(0.7, -k));
+            deeper(k, uvs);
         }
         for (const auto& uv : uvs) {
-            expect_positions_equal_weights(basis, m.X, {p, uv.x(), uv.y()},
-                                           "ptex " + std::to_string(p) + " at (" + std::to_string(uv.x()) + ", " +
-                                               std::to_string(uv.y()) + ")");
+            check(SurfacePoint{p, uv.x(), uv.y()},
+                  "ptex " + std::to_string(p) + " at (" + std::to_string(uv.x()) + ", " + std::to_string(uv.y()) + ")");
         }
     }
+}
+
+TEST_P(LimitIdentity, PositionsPathEqualsTheWeightsApplied) {
+    const Loaded m = load(GetParam().mesh);
+    const LimitBasis basis(m.topology, GetParam().scheme, m.options);
+    for_each_test_point(
+        basis, 29, [](int, std::vector<Eigen::Vector2d>&) {},
+        [&](const SurfacePoint& point, const std::string& where) {
+            expect_positions_equal_weights(basis, m.X, point, where);
+        });
 }
 
 // LimitBasis::patch at the positions path's points: the patch holds the point and gives the weights'
@@ -400,33 +412,23 @@ TEST_P(LimitIdentity, PatchesEqualTheWeightsOnTheirTiles) {
     const Loaded m = load(GetParam().mesh);
     const LimitBasis basis(m.topology, GetParam().scheme, m.options);
     const bool quad = basis.domain() == ParameterDomain::Quad;
-    std::mt19937 rng(37);
-    for (Index p = 0; p < basis.num_ptex_faces(); ++p) {
-        if (!basis.has_limit_surface(p)) {
-            continue;
+    // Triangles: in the middle child k levels deep, 2^-6 from its corners. A Loop middle triangle at
+    // a boundary corner is a subtree meeting another class there: the patch is carried by powers of
+    // R. (Nearer, the vertex's own conditioning costs the second derivatives of both paths digits
+    // this tolerance does not count: 1e-9 at 2^-20.)
+    const auto middle_child = [quad](int k, std::vector<Eigen::Vector2d>& uvs) {
+        if (quad) {
+            return;
         }
-        std::vector<Eigen::Vector2d> uvs = sample_domain(quad, rng, 8);
-        for (const int k : {3, 17, 45}) {
-            uvs.emplace_back(std::ldexp(1.0, -k), std::ldexp(0.7, -k));
-            // Triangles: in the middle child k levels deep, 2^-6 from its corners. A Loop middle
-            // triangle at a boundary corner is a subtree meeting another class there: the patch is
-            // carried by powers of R. (Nearer, the vertex's own conditioning costs the second
-            // derivatives of both paths digits this tolerance does not count: 1e-9 at 2^-20.)
-            if (!quad) {
-                const double d = std::ldexp(1.0, -6);
-                for (const Eigen::Vector2d& near :
-                     {Eigen::Vector2d(0.5 - d, 1.5 * d), Eigen::Vector2d(0.5 - d, 0.5 - d),
-                      Eigen::Vector2d(1.5 * d, 0.5 - d)}) {
-                    uvs.push_back(std::ldexp(1.0, -k) * near);
-                }
-            }
+        const double d = std::ldexp(1.0, -6);
+        for (const Eigen::Vector2d& near : {Eigen::Vector2d(0.5 - d, 1.5 * d), Eigen::Vector2d(0.5 - d, 0.5 - d),
+                                            Eigen::Vector2d(1.5 * d, 0.5 - d)}) {
+            uvs.push_back(std::ldexp(1.0, -k) * near);
         }
-        for (const auto& uv : uvs) {
-            expect_patch_equals_weights(basis, m.X, {p, uv.x(), uv.y()},
-                                        "ptex " + std::to_string(p) + " at (" + std::to_string(uv.x()) + ", " +
-                                            std::to_string(uv.y()) + ")");
-        }
-    }
+    };
+    for_each_test_point(basis, 37, middle_child, [&](const SurfacePoint& point, const std::string& where) {
+        expect_patch_equals_weights(basis, m.X, point, where);
+    });
 }
 
 // The stationary tables against plain local subdivision (LimitEvaluation::Subdivision,
