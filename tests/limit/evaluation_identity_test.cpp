@@ -693,6 +693,21 @@ TEST(LimitPatch, EqualsTheWeightsOnItsTileOffTheCommonPath) {
     OffCommonPath().for_each_point(rng, expect_patch_equals_weights);
 }
 
+TEST(LimitPatch, BadDataAndPointsAreRefused) {
+    const Loaded m = load("quad_valence_5");
+    const LimitBasis basis(m.topology, SchemeKind::CatmullClark, m.options);
+    LimitPatch patch;
+    ASSERT_TRUE(basis.patch({0, 0.3, 0.4}, patch));
+    const Eigen::MatrixXd data = patch.control_data(m.X);
+    Eigen::Matrix<double, 6, Eigen::Dynamic> rows;
+    EXPECT_THROW(patch.evaluate(data.topRows(patch.size()), 0.3, 0.4, rows), InputError);
+    EXPECT_THROW(patch.evaluate(data, std::nan(""), 0.4, rows), InputError);
+    EXPECT_THROW(patch.evaluate(data, 0.3, std::numeric_limits<double>::infinity(), rows), InputError);
+    EXPECT_THROW((void)patch.control_data(m.X.topRows(1)), InputError);
+    EXPECT_THROW(basis.patch({basis.num_ptex_faces(), 0.3, 0.4}, patch), InputError);
+    EXPECT_THROW(basis.patch({0, 1.5, 0.4}, patch), InputError);
+}
+
 TEST(LimitTunedWeights, RefusesWeightsOnRegularVertices) {
     const Loaded m = load("quad_grid");
     TunedWeights w;

@@ -131,7 +131,7 @@ struct LimitPatch {
     ///   (6 × m; rows as LimitWeights::w, those past @p order 0).
     ///   Equal to LimitBasis::evaluate(point).apply(X)'s rows up to rounding inside the domain;
     ///   outside it, the patch's polynomial continued (contains() says which).
-    /// @pre P has size() + 1 rows
+    /// @throws InputError when P does not have size() + 1 rows or (u, v) is not finite
     void evaluate(const Eigen::MatrixXd& P, double u, double v, Eigen::Matrix<double, 6, Eigen::Dynamic>& out,
                   DerivativeOrder order = DerivativeOrder::Second) const;
 };

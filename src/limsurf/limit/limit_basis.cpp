@@ -1272,6 +1272,8 @@ void LimitPatch::evaluate(const Eigen::MatrixXd& P, double u, double v, Eigen::M
                           DerivativeOrder order) const {
     LIMSURF_CHECK(P.rows() == size() + 1, InputError, "limit patch: data of ", P.rows(), " rows, expected ", size() + 1,
                   " (control_data)");
+    LIMSURF_CHECK(std::isfinite(u) && std::isfinite(v), InputError, "limit patch: parameter (", u, ", ", v,
+                  ") is not finite");
     const int keep = rows_of(order);
     const Eigen::Vector2d st = parameter(u, v);
     // Column by column, as sums of the basis's columns (6-vectors) scaled by the data: vectorised
