@@ -230,6 +230,7 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
     // reallocation into fresh pages, and concatenating the threads' vectors copied it all once more
     // on one thread (80 % of `limsurf measure` went to those copies and their page faults).
     const int threads = thread_count(options.num_threads, n);
+    const auto chunk_begin = [&](Index c) { return static_cast<Index>(std::int64_t{n} * c / threads); };
     std::vector<std::vector<Block>> per_thread(static_cast<std::size_t>(threads));
     block_of_.resize(pending.size());
     offsets_.assign(pending.size() + 1, 0);  // each sample's entry count at s + 1 first
@@ -237,9 +238,7 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
         LimitWeights w;
         for (Index c = first_chunk; c < last_chunk; ++c) {
             std::vector<Block>& blocks = per_thread[static_cast<std::size_t>(c)];
-            const Index begin = static_cast<Index>(std::int64_t{n} * c / threads);
-            const Index end = static_cast<Index>(std::int64_t{n} * (c + 1) / threads);
-            for (Index s = begin; s < end; ++s) {
+            for (Index s = chunk_begin(c); s < chunk_begin(c + 1); ++s) {
                 const auto i = static_cast<std::size_t>(s);
                 basis.evaluate(points_[i], w, DerivativeOrder::Second);
                 const std::size_t k = w.vertices.size();
@@ -256,24 +255,20 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
             }
         }
     });
-    // The threads' blocks in order (moved, not copied), each sample's block numbered among all.
-    std::vector<std::uint32_t> first_block(per_thread.size());
-    for (std::size_t c = 0; c < per_thread.size(); ++c) {
-        first_block[c] = static_cast<std::uint32_t>(blocks_.size());
-        std::move(per_thread[c].begin(), per_thread[c].end(), std::back_inserter(blocks_));
-    }
+    // The threads' blocks in order (moved, not copied), each sample's block numbered among all, and
+    // the entry counts summed into offsets.
     for (Index c = 0; c < threads; ++c) {
-        const Index begin = static_cast<Index>(std::int64_t{n} * c / threads);
-        const Index end = static_cast<Index>(std::int64_t{n} * (c + 1) / threads);
-        for (Index s = begin; s < end; ++s) {
-            block_of_[static_cast<std::size_t>(s)] += first_block[static_cast<std::size_t>(c)];
+        const auto base = static_cast<std::uint32_t>(blocks_.size());
+        std::vector<Block>& blocks = per_thread[static_cast<std::size_t>(c)];
+        std::move(blocks.begin(), blocks.end(), std::back_inserter(blocks_));
+        for (Index s = chunk_begin(c); s < chunk_begin(c + 1); ++s) {
+            const auto i = static_cast<std::size_t>(s);
+            block_of_[i] += base;
+            if (i == 0 || block_of_[i] != block_of_[i - 1]) {
+                blocks_[block_of_[i]].first_offset = offsets_[i];
+            }
+            offsets_[i + 1] += offsets_[i];
         }
-    }
-    for (std::size_t i = 0; i < pending.size(); ++i) {
-        if (i == 0 || block_of_[i] != block_of_[i - 1]) {
-            blocks_[block_of_[i]].first_offset = offsets_[i];
-        }
-        offsets_[i + 1] += offsets_[i];
     }
 }
 
