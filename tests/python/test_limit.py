@@ -1,5 +1,6 @@
 """limsurf.LimitBasis: vectorised evaluation equals `limsurf eval`, weights are the evaluation,
 the GIL is released, bad points are named."""
+import functools
 import threading
 import time
 
@@ -107,6 +108,84 @@ def test_a_patch_control_net_gives_the_surface_on_its_tile(mesh_path, name):
     moved = mesh.V * 2.0 + 1.0
     assert np.allclose(basis.patch(0, 0.5, 0.5, X=moved)["control_points"],
                        basis.patch(0, 0.5, 0.5)["control_points"] * 2.0 + 1.0, rtol=0, atol=1e-12)
+
+
+# patch_basis.h's numbering of the Loop patch's 12 points on the triangular lattice (i along s, j
+# along t; neighbours ±(1, 0), ±(0, 1), ±(1, −1)).
+BOX_SPLINE_LATTICE = [(0, -1), (1, -1), (2, -1), (-1, 0), (0, 0), (1, 0), (2, 0), (-1, 1), (0, 1), (1, 1), (-1, 2), (0, 2)]
+
+
+@functools.lru_cache(maxsize=None)
+def box_spline_by_subdivision(s, t, levels=4):
+    """The 12 quartic box-spline weights at the dyadic point (s, t) = (i, j) / 2^levels, from Loop's
+    regular rules alone: each point's impulse on the lattice is refined `levels` times (vertex 10/16
+    and 1/16, edge 3/8 and 1/8) and Loop's regular limit mask (1/2 and 1/12) read at (i, j). It
+    shares no formula with Stam's polynomials, which the library uses."""
+    pad = 4
+    grid = np.zeros((12, 2 * pad + 2, 2 * pad + 2))
+    for k, (i, j) in enumerate(BOX_SPLINE_LATTICE):
+        grid[k, i + pad, j + pad] = 1.0
+    origin = pad
+
+    def at(g, di, dj):  # g shifted: at(g, di, dj)[a, b] = g[a + di, b + dj], zero outside
+        out = np.zeros_like(g)
+        n, m = g.shape[1:]
+        out[:, max(0, -di):n - max(0, di), max(0, -dj):m - max(0, dj)] = \
+            g[:, max(0, di):n - max(0, -di), max(0, dj):m - max(0, -dj)]
+        return out
+
+    for _ in range(levels):
+        n, m = grid.shape[1:]
+        fine = np.zeros((12, 2 * n - 1, 2 * m - 1))
+        ring = sum(at(grid, di, dj) for di, dj in [(1, 0), (-1, 0), (0, 1), (0, -1), (1, -1), (-1, 1)])
+        fine[:, 0::2, 0::2] = 10 / 16 * grid + 1 / 16 * ring
+        # Edge points of the edges along (1, 0), (0, 1) and (−1, 1) from lattice point (a, b).
+        e10 = 3 / 8 * (grid + at(grid, 1, 0)) + 1 / 8 * (at(grid, 0, 1) + at(grid, 1, -1))
+        e01 = 3 / 8 * (grid + at(grid, 0, 1)) + 1 / 8 * (at(grid, 1, 0) + at(grid, -1, 1))
+        e11 = 3 / 8 * (at(grid, 1, 0) + at(grid, 0, 1)) + 1 / 8 * (grid + at(grid, 1, 1))
+        fine[:, 1::2, 0::2] = e10[:, :-1, :]
+        fine[:, 0::2, 1::2] = e01[:, :, :-1]
+        fine[:, 1::2, 1::2] = e11[:, :-1, :-1]
+        grid, origin = fine, 2 * origin
+    a, b = origin + round(s * 2 ** levels), origin + round(t * 2 ** levels)
+    assert abs(s * 2 ** levels - round(s * 2 ** levels)) < 1e-12 and abs(t * 2 ** levels - round(t * 2 ** levels)) < 1e-12
+    ring = sum(grid[:, a + di, b + dj] for di, dj in [(1, 0), (-1, 0), (0, 1), (0, -1), (1, -1), (-1, 1)])
+    return grid[:, a, b] / 2 + ring / 12
+
+
+def test_the_box_spline_by_subdivision_is_a_partition_of_unity_with_loops_limit_mask():
+    corner = box_spline_by_subdivision(0.0, 0.0)
+    assert np.isclose(corner[4], 0.5, rtol=0, atol=1e-15)
+    ring = [0, 1, 3, 5, 7, 8]  # (0, −1), (1, −1), (−1, 0), (1, 0), (−1, 1), (0, 1)
+    assert np.allclose(corner[ring], 1 / 12, rtol=0, atol=1e-15)
+    assert np.allclose(np.delete(corner, ring + [4]), 0.0, rtol=0, atol=1e-15)
+    for s, t in [(0.25, 0.5), (0.0625, 0.875), (1.0, 0.0)]:
+        w = box_spline_by_subdivision(s, t)
+        assert np.isclose(w.sum(), 1.0, rtol=0, atol=1e-14) and np.all(w >= -1e-15)
+
+
+@pytest.mark.parametrize("name", ["icosahedron", "tri_grid", "disk_ev7_tris", "tri_valence_7"])
+def test_a_loop_patch_control_net_gives_the_surface_on_its_tile(mesh_path, name):
+    """The 12-point net of a Loop patch, with the box spline computed from Loop's own rules (above),
+    is the limit surface at dyadic points of its tile: regular faces, tiles near extraordinary
+    vertices (valences 5 and 7), boundary patches, and tiles at tri_grid's corner vertices (one face)."""
+    mesh = limsurf.read_mesh(mesh_path(name))
+    basis = limsurf.LimitBasis(mesh, "loop")
+    dyadic = [(0.25, 0.25), (0.5, 0.125), (0.1875, 0.625), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.3125, 0.6875)]
+    rng = np.random.default_rng(7)
+    checked = 0
+    for face in range(basis.num_ptex_faces):
+        for u, v in [(1 / 3, 1 / 3), tuple(rng.random(2) / 2), (2.0 ** -12, 2.0 ** -13)]:
+            patch = basis.patch(face, u, v)
+            assert patch is not None and patch["domain"] == "triangle"
+            assert patch["points"].shape == (12, len(patch["vertices"]))
+            net = patch["control_points"]
+            for s, t in dyadic:
+                uv = patch["origin"] + patch["axes"] @ np.array([s, t])
+                expected = basis.evaluate([face], [uv[0]], [uv[1]], order=0)["position"][0]
+                assert np.allclose(box_spline_by_subdivision(s, t) @ net, expected, rtol=0, atol=1e-12)
+                checked += 1
+    assert checked == 3 * len(dyadic) * basis.num_ptex_faces
 
 
 def test_patches_are_none_where_there_are_none_and_bad_points_are_named(mesh_path):
