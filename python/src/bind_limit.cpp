@@ -413,24 +413,31 @@ The GIL is released while C++ works. Raises InputError naming the first bad poin
              "to rounding (evaluate applies V before the basis, the faster path; docs/limit_evaluation.md).")
         .def(
             "patch",
-            [](const Basis& b, Index face, double u, double v, const py::handle& X) -> py::object {
-                const Points P = control_points(b, X);
+            [](const Basis& b, Index face, double u, double v, const py::handle& X, bool points) -> py::object {
+                const Eigen::MatrixXd P = control_points(b, X);
+                const SurfacePoint point{face, u, v};
                 LimitPatch patch;
-                if (!b.basis.patch(SurfacePoint{face, u, v}, patch)) {
+                Eigen::MatrixXd data;
+                if (!(points ? b.basis.patch(point, patch) : b.basis.patch_data(point, P, patch, data))) {
                     return py::none();
+                }
+                if (points) {
+                    data = patch.control_data(P);
                 }
                 py::array_t<Index> vertices(static_cast<py::ssize_t>(patch.vertices.size()));
                 std::copy(patch.vertices.begin(), patch.vertices.end(), vertices.mutable_data());
                 // The control net itself: each point its weights (with the offset) applied to X.
-                const Eigen::MatrixXd data = patch.control_data(P);
                 const Eigen::MatrixXd net = data.topRows(patch.size()).rowwise() + data.bottomRows<1>();
-                return py::dict("domain"_a = patch.domain == ParameterDomain::Quad ? "quad" : "triangle",
-                                "vertices"_a = vertices, "points"_a = to_numpy(patch.points),
-                                "offset"_a = to_numpy(Eigen::VectorXd(patch.offset.transpose())),
-                                "origin"_a = to_numpy(Eigen::VectorXd(patch.origin)),
-                                "axes"_a = to_numpy(Eigen::MatrixXd(patch.axes)), "control_points"_a = to_numpy(net));
+                py::dict out("domain"_a = patch.domain == ParameterDomain::Quad ? "quad" : "triangle",
+                             "vertices"_a = vertices, "origin"_a = to_numpy(Eigen::VectorXd(patch.origin)),
+                             "axes"_a = to_numpy(Eigen::MatrixXd(patch.axes)), "control_points"_a = to_numpy(net));
+                if (points) {
+                    out["points"] = to_numpy(patch.points);
+                    out["offset"] = to_numpy(Eigen::VectorXd(patch.offset.transpose()));
+                }
+                return out;
             },
-            "face"_a, "u"_a, "v"_a, py::kw_only(), "X"_a = py::none(),
+            "face"_a, "u"_a, "v"_a, py::kw_only(), "X"_a = py::none(), "points"_a = true,
             R"(The regular patch of the limit surface that holds the point (face, u, v), or None where there is
 none (Doo–Sabin, C2g0, and within 2^-60 of an extraordinary vertex; docs/limit_evaluation.md "Patches").
 
@@ -440,7 +447,9 @@ over the support, less 'offset') and 'offset' (#support: part of every control p
 mask of an extraordinary vertex the patch is n levels towards, else zeros), 'origin' and 'axes'
 (ptex (u, v) = origin + axes @ (s, t) for the patch parameter (s, t)), and 'control_points'
 (16 or 12 × 3: the control net of X, default the mesh's V). Every point of the patch's tile shares
-them. Raises InputError for a bad point, as evaluate().)")
+them. points=False leaves out 'points' and 'offset' and forms the control net without them, in the
+cheaper order (LimitBasis::patch_data; the same net to rounding). Raises InputError for a bad point,
+as evaluate().)")
         .def(
             "vertex_limit_matrix",
             [](const Basis& b) {

@@ -339,6 +339,9 @@ void expect_patch_equals_weights(const LimitBasis& basis, const Points& X, const
                                  const std::string& where) {
     LimitPatch patch;
     const bool found = basis.patch(point, patch);
+    LimitPatch framed;  // patch_data's: the same patch without its points, and the same data
+    Eigen::MatrixXd direct;
+    ASSERT_EQ(basis.patch_data(point, X, framed, direct), found) << where;
     if (basis.scheme() == SchemeKind::DooSabin || basis.scheme() == SchemeKind::C2g0) {
         ASSERT_FALSE(found) << where;
         return;
@@ -356,6 +359,15 @@ void expect_patch_equals_weights(const LimitBasis& basis, const Points& X, const
     const Eigen::VectorXd sums = patch.points.rowwise().sum().array() + patch.offset.sum();
     ASSERT_LT((sums.array() - 1.0).abs().maxCoeff(), 1e-12) << where << ": control points not affine";
     const Eigen::MatrixXd data = patch.control_data(X);
+    ASSERT_EQ(framed.domain, patch.domain) << where;
+    ASSERT_EQ(framed.vertices, patch.vertices) << where;
+    ASSERT_EQ(framed.origin, patch.origin) << where;
+    ASSERT_EQ(framed.axes, patch.axes) << where;
+    ASSERT_EQ(framed.points.size() + framed.offset.size(), 0) << where << ": patch_data leaves the points empty";
+    ASSERT_EQ(direct.rows(), data.rows()) << where;
+    ASSERT_EQ(direct.cols(), data.cols()) << where;
+    ASSERT_LE((direct - data).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + X.cwiseAbs().maxCoeff()))
+        << where << ": patch_data's data differ from control_data's";
     const Eigen::Vector2d own = patch.parameter(point.u, point.v);
     for (const Eigen::Vector2d& st :
          {own, Eigen::Vector2d(0.2, 0.3), Eigen::Vector2d(0.8, 0.1), Eigen::Vector2d(0.1, 0.7)}) {
@@ -704,6 +716,9 @@ TEST(LimitPatch, BadDataAndPointsAreRefused) {
     EXPECT_THROW(patch.evaluate(data, std::nan(""), 0.4, rows), InputError);
     EXPECT_THROW(patch.evaluate(data, 0.3, std::numeric_limits<double>::infinity(), rows), InputError);
     EXPECT_THROW((void)patch.control_data(m.X.topRows(1)), InputError);
+    Eigen::MatrixXd direct;
+    EXPECT_THROW(basis.patch_data({0, 0.3, 0.4}, m.X.topRows(1), patch, direct), InputError);
+    EXPECT_THROW(basis.patch_data({0, 1.5, 0.4}, m.X, patch, direct), InputError);
     EXPECT_THROW(basis.patch({basis.num_ptex_faces(), 0.3, 0.4}, patch), InputError);
     EXPECT_THROW(basis.patch({0, 1.5, 0.4}, patch), InputError);
 }

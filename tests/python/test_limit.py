@@ -82,6 +82,15 @@ def bicubic_bspline(s, t):
     return np.outer(pieces(t), pieces(s)).ravel()
 
 
+def expect_the_same_net_without_points(basis, face, u, v, patch):
+    """points=False (LimitBasis::patch_data): the same patch and net, without 'points' and 'offset'."""
+    lean = basis.patch(face, u, v, points=False)
+    assert set(lean) == set(patch) - {"points", "offset"}
+    assert lean["domain"] == patch["domain"] and np.array_equal(lean["vertices"], patch["vertices"])
+    assert np.array_equal(lean["origin"], patch["origin"]) and np.array_equal(lean["axes"], patch["axes"])
+    assert np.allclose(lean["control_points"], patch["control_points"], rtol=0, atol=1e-12)
+
+
 @pytest.mark.parametrize("name", ["genus2", "cube_creases"])
 def test_a_patch_control_net_gives_the_surface_on_its_tile(mesh_path, name):
     mesh = limsurf.read_mesh(mesh_path(name))
@@ -97,6 +106,7 @@ def test_a_patch_control_net_gives_the_surface_on_its_tile(mesh_path, name):
             net = patch["control_points"]
             assert np.allclose(net, patch["points"] @ mesh.V[patch["vertices"]] + patch["offset"] @ mesh.V[patch["vertices"]],
                                rtol=0, atol=1e-12)
+            expect_the_same_net_without_points(basis, face, u, v, patch)
             # Three points of the tile: the net's B-spline against the basis.
             for s, t in [np.linalg.solve(patch["axes"], np.array([u, v]) - patch["origin"]), (0.2, 0.7), (0.9, 0.4)]:
                 assert -1e-9 <= s <= 1 + 1e-9 and -1e-9 <= t <= 1 + 1e-9
@@ -180,6 +190,7 @@ def test_a_loop_patch_control_net_gives_the_surface_on_its_tile(mesh_path, name)
             assert patch is not None and patch["domain"] == "triangle"
             assert patch["points"].shape == (12, len(patch["vertices"]))
             net = patch["control_points"]
+            expect_the_same_net_without_points(basis, face, u, v, patch)
             for s, t in dyadic:
                 uv = patch["origin"] + patch["axes"] @ np.array([s, t])
                 expected = basis.evaluate([face], [uv[0]], [uv[1]], order=0)["position"][0]
@@ -193,6 +204,7 @@ def test_patches_are_none_where_there_are_none_and_bad_points_are_named(mesh_pat
     basis = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("genus2")), "catmull-clark")
     extraordinary = limsurf.LimitBasis(limsurf.read_mesh(mesh_path("icosahedron")), "loop")
     assert extraordinary.patch(0, 0.0, 0.0) is None  # at a valence-5 vertex itself
+    assert extraordinary.patch(0, 0.0, 0.0, points=False) is None
     assert extraordinary.patch(0, 0.25, 0.25)["domain"] == "triangle"
     with pytest.raises(limsurf.InputError, match="ptex face"):
         basis.patch(basis.num_ptex_faces, 0.5, 0.5)

@@ -224,6 +224,16 @@ class LimitBasis {
     ///   evaluate() there. Nearer than that the patch is never needed: a tile of side 2^-60.
     /// @throws what evaluate(point, out, order) throws
     bool patch(const SurfacePoint& point, LimitPatch& out) const;
+    /// @brief patch(point, out) then out.control_data(X), in one: the same patch, its data in
+    ///   @p data, and out.points and out.offset left empty (the patch's domain, support, origin and
+    ///   axes are set, which is what LimitPatch::evaluate reads). Near an extraordinary vertex a
+    ///   patch's points are a table times its node's map to the support (none at a root); this
+    ///   contracts the map with the data first (K × K · K × m, where the points take 16 × K · K × K)
+    ///   and reads the table in place, for a caller that wants the data of many tiles and not their
+    ///   points (docs/limit_evaluation.md "Patches"). Equal to control_data's to rounding.
+    /// @return false where patch() does, with @p out and @p data unspecified
+    /// @throws what patch() and LimitPatch::control_data throw
+    bool patch_data(const SurfacePoint& point, const Eigen::MatrixXd& X, LimitPatch& out, Eigen::MatrixXd& data) const;
 
     /// @brief Asks the caches for what evaluate(X, point, ...) will read at @p point, without
     ///   waiting for it: a hint for loops over many random points of a mesh larger than the caches,

@@ -518,17 +518,21 @@ ShapeErrors quadratic_shape_errors(int valence, const VertexRuleWeights& weights
         for (const Tile& tile : corner_tiles(corner, options.tile_levels)) {
             const Eigen::Vector2d middle = tile.origin + Eigen::Vector2d::Constant(tile.size / 2);
             const Eigen::Vector2d far = tile.origin + Eigen::Vector2d::Constant(tile.size);
-            const bool one_patch = basis.patch(SurfacePoint{p, middle.x(), middle.y()}, scratch.patch) &&
-                                   scratch.patch.contains(tile.origin.x(), tile.origin.y(), 1e-9) &&
-                                   scratch.patch.contains(far.x(), far.y(), 1e-9);
-            if (one_patch) {
-                scratch.data = scratch.patch.control_data(fields);
-            }
+            const bool one_patch =
+                basis.patch_data(SurfacePoint{p, middle.x(), middle.y()}, fields, scratch.patch, scratch.data) &&
+                scratch.patch.contains(tile.origin.x(), tile.origin.y(), 1e-9) &&
+                scratch.patch.contains(far.x(), far.y(), 1e-9);
+            bool patched = one_patch;  // scratch.patch and scratch.data hold the point's patch
             for (std::size_t q = 0; q < rule.weight.size(); ++q) {
                 const Eigen::Vector2d uv = tile.origin + tile.size * Eigen::Vector2d(rule.u[q], rule.v[q]);
-                if (one_patch) {
+                if (!one_patch && !(patched && scratch.patch.contains(uv.x(), uv.y(), 0.0))) {
+                    // The quarter at the vertex: its patches shrink towards it without end, so each
+                    // point takes the patch that holds it, the previous point's where that holds it too.
+                    patched = basis.patch_data(SurfacePoint{p, uv.x(), uv.y()}, fields, scratch.patch, scratch.data);
+                }
+                if (patched) {
                     scratch.patch.evaluate(scratch.data, uv.x(), uv.y(), scratch.rows);
-                } else {  // the quarter at the vertex: the patches shrink towards it without end
+                } else {  // within 2^-60 of the vertex: no patch
                     basis.evaluate(SurfacePoint{p, uv.x(), uv.y()}, scratch.weights, DerivativeOrder::Second);
                     scratch.rows.setZero(6, 4);
                     for (Index i = 0; i < scratch.weights.size(); ++i) {

@@ -254,6 +254,33 @@ struct StationaryStep {
     Affine scaled;      ///< ptex = scaled(level-n node coordinates)
 };
 
+/// The rows of per-vertex data @p X for @p vertices (a patch's support). @throws InputError for a
+/// vertex without a row
+Eigen::MatrixXd gather_rows(const std::vector<Index>& vertices, const Eigen::MatrixXd& X) {
+    for (const Index v : vertices) {
+        LIMSURF_CHECK(v >= 0 && v < X.rows(), InputError, "limit patch: vertex ", v,
+                      " of the support has no row in data of ", X.rows(), " rows");
+    }
+    Eigen::MatrixXd local(static_cast<Index>(vertices.size()), X.cols());
+    for (Index j = 0; j < X.cols(); ++j) {  // a column at a time: X is stored by columns
+        const double* column = X.col(j).data();
+        double* to = local.col(j).data();
+        for (std::size_t i = 0; i < vertices.size(); ++i) {
+            to[i] = column[vertices[i]];
+        }
+    }
+    return local;
+}
+
+/// The first A.rows() rows of @p out = A · X, a column at a time: a patch's data have a few columns
+/// (three coordinates, four fields), where a general matrix product packs all of A for each call
+/// (as long as the product itself in `limsurf tune`).
+void times_columns(const Eigen::MatrixXd& A, const Eigen::MatrixXd& X, Eigen::MatrixXd& out) {
+    for (Index j = 0; j < X.cols(); ++j) {
+        out.col(j).head(A.rows()).noalias() = A * X.col(j);
+    }
+}
+
 }  // namespace
 
 struct LimitBasis::Impl {
@@ -339,6 +366,11 @@ struct LimitBasis::Impl {
     /// The patch of the node that holds @p p (node coordinates; ptex = frame(p)): out's points and
     /// offset over the columns of node->W, its origin and axes. False at an extraordinary vertex.
     bool node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out) const;
+    /// LimitBasis::patch_data.
+    bool patch_data(const SurfacePoint& point, const Eigen::MatrixXd& X, LimitPatch& out, Dense& data) const;
+    /// node_patch's data for @p X (rows over the columns of node->W) instead of its points.
+    bool node_patch_data(Node* node, Eigen::Vector2d p, Affine frame, const Dense& X, LimitPatch& out,
+                         Dense& data) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
     void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
     void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
@@ -1006,6 +1038,76 @@ bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, L
     return true;
 }
 
+bool LimitBasis::Impl::patch_data(const SurfacePoint& point, const Eigen::MatrixXd& X, LimitPatch& out,
+                                  Dense& data) const {
+    if (!fast_index.empty() && fast_index[at(point.face)] >= 0) {  // the points are the identity
+        if (!patch(point, out)) {
+            return false;
+        }
+        data = out.control_data(X);
+    } else {
+        if (doo_sabin || c2g0) {
+            return false;
+        }
+        const Root& r = root_with_limit(point.face);
+        out.domain = quad ? ParameterDomain::Quad : ParameterDomain::Triangle;
+        out.vertices = r.support;
+        const Dense local = gather_rows(out.vertices, X);
+        if (!node_patch_data(r.node, r.frame.to_child({point.u, point.v}), r.frame, local, out, data)) {
+            return false;
+        }
+    }
+    out.points.resize(0, 0);
+    out.offset.resize(0);
+    return true;
+}
+
+bool LimitBasis::Impl::node_patch_data(Node* node, Eigen::Vector2d p, Affine frame, const Dense& X, LimitPatch& out,
+                                       Dense& data) const {
+    const int size = out.size();
+    data.resize(size + 1, X.cols());
+    Node* const start = node;
+    const Eigen::Vector2d start_p = p;
+    const Affine start_frame = frame;
+    if (node->shape != nullptr) {
+        node = subtree_leaf(node, p, frame);
+    }
+    if (node->shape != nullptr && node->shape->kind != Template::Kind::Regular) {
+        const StationaryClass& cls = *node->shape->stationary;
+        const StationaryStep step = stationary_step(quad, p, frame);
+        if (step.here) {
+            return false;
+        }
+        const StationaryPatch found = stationary_patch(cls, step);
+        if (found.table != nullptr) {
+            // table · (W · X) and ℓ · (W · X): W contracted with the data first.
+            Dense product;
+            if (node->W.size() != 0) {
+                product.noalias() = node->W * X;
+            }
+            const Dense& mapped = node->W.size() == 0 ? X : product;
+            times_columns(*found.table, mapped, data);
+            if (step.n == 0) {
+                data.bottomRows<1>().setZero();
+            } else {
+                data.bottomRows<1>().noalias() = cls.limit_row * mapped;
+            }
+            const Affine patch_to_ptex = found.frame.then(found.patch_frame);
+            out.origin = patch_to_ptex.offset;
+            out.axes = patch_to_ptex.axes;
+            return true;
+        }
+    }
+    // A regular patch (its points G·W are already over the support) or a subtree that meets another
+    // class (its points are carried by powers of R): the points first, as patch() does.
+    if (!node_patch(start, start_p, start_frame, out)) {
+        return false;
+    }
+    times_columns(out.points, X, data);
+    data.bottomRows<1>().noalias() = out.offset * X;
+    return true;
+}
+
 template <class Matrix>
 void LimitBasis::Impl::evaluate(const Matrix& X, const SurfacePoint& point, int rows_needed, LimitPoint& out) const {
     out.at_extraordinary_vertex = false;
@@ -1244,6 +1346,11 @@ bool LimitBasis::patch(const SurfacePoint& point, LimitPatch& out) const {
     return impl_->patch(checked_point(point, impl_->quad, num_ptex_faces()), out);
 }
 
+bool LimitBasis::patch_data(const SurfacePoint& point, const Eigen::MatrixXd& X, LimitPatch& out,
+                            Eigen::MatrixXd& data) const {
+    return impl_->patch_data(checked_point(point, impl_->quad, num_ptex_faces()), X, out, data);
+}
+
 Eigen::Vector2d LimitPatch::parameter(double u, double v) const {
     return axes.inverse() * (Eigen::Vector2d(u, v) - origin);
 }
@@ -1256,14 +1363,9 @@ bool LimitPatch::contains(double u, double v, double tolerance) const {
 }
 
 Eigen::MatrixXd LimitPatch::control_data(const Eigen::MatrixXd& X) const {
-    Eigen::MatrixXd local(static_cast<Index>(vertices.size()), X.cols());
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-        LIMSURF_CHECK(vertices[i] >= 0 && vertices[i] < X.rows(), InputError, "limit patch: vertex ", vertices[i],
-                      " of the support has no row in data of ", X.rows(), " rows");
-        local.row(static_cast<Index>(i)) = X.row(vertices[i]);
-    }
+    const Eigen::MatrixXd local = gather_rows(vertices, X);
     Eigen::MatrixXd P(size() + 1, X.cols());
-    P.topRows(size()).noalias() = points * local;
+    times_columns(points, local, P);
     P.bottomRows<1>().noalias() = offset * local;
     return P;
 }
