@@ -209,6 +209,16 @@ TEST(CliHardening, ValenceTwoIsRefusedByNameWhereTheRulesNeedThree) {
     EXPECT_FALSE(fs::exists(out));
     expect_one_error(limsurf({"eval", pillow, "--scheme", "doo-sabin", "--grid", "1"}),
                      pillow + ":1: Doo-Sabin limit evaluation needs interior vertices in at least 3 faces");
+    // Two triangles with the same corners: Loop's local subdivision never reaches a regular patch
+    // there (it recursed until the stack overflowed: found by fuzz/commands.py).
+    const std::string triangles = ngon(3, true);
+    const std::string refusal =
+        ":1: Loop limit evaluation needs interior vertices of valence 3 or more: vertex 0 has valence 2";
+    expect_one_error(limsurf({"eval", triangles, "--scheme", "loop", "--grid", "1"}), triangles + refusal);
+    expect_one_error(limsurf({"measure", triangles, "--scheme", "loop"}), triangles + refusal);
+    expect_one_error(limsurf({"membrane", triangles, "--scheme", "loop", "--evaluate-only"}), triangles + refusal);
+    const fs::path refined = temp_dir() / "pillow3_loop.obj";  // refinement has no such limit
+    EXPECT_EQ(limsurf({"subdivide", triangles, "--scheme", "loop", "-o", refined.string()}).exit_code, 0);
 }
 
 // --- 2. and 3. results that do not fit a double; verdicts at any scale ---------------------

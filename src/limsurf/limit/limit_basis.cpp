@@ -254,6 +254,15 @@ struct StationaryStep {
     Affine scaled;      ///< ptex = scaled(level-n node coordinates)
 };
 
+/// A walk that passes from one stationary class's subtree into another class and on, as at a
+/// boundary corner next to an extraordinary vertex, takes a step or two; one that goes on for
+/// max_depth hops is a cycle that would only end when the stack overflows (the constructor refuses
+/// the one input known to make one: Loop's valence-2 vertices). @throws NumericalError
+void check_hops(int hops) {
+    LIMSURF_CHECK(hops < max_depth, NumericalError, "limit evaluation: the local subdivision passed between ",
+                  "extraordinary vertices ", max_depth, " times without reaching a regular patch");
+}
+
 /// The rows of per-vertex data @p X for @p vertices (a patch's support). @throws InputError for a
 /// vertex without a row
 Eigen::MatrixXd gather_rows(const std::vector<Index>& vertices, const Eigen::MatrixXd& X) {
@@ -365,16 +374,19 @@ struct LimitBasis::Impl {
     bool patch(const SurfacePoint& point, LimitPatch& out) const;
     /// The patch of the node that holds @p p (node coordinates; ptex = frame(p)): out's points and
     /// offset over the columns of node->W, its origin and axes. False at an extraordinary vertex.
-    bool node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out) const;
+    bool node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out, int hops = 0) const;
     /// LimitBasis::patch_data.
     bool patch_data(const SurfacePoint& point, const Eigen::MatrixXd& X, LimitPatch& out, Dense& data) const;
     /// node_patch's data for @p X (rows over the columns of node->W) instead of its points.
     bool node_patch_data(Node* node, Eigen::Vector2d p, Affine frame, const Dense& X, LimitPatch& out,
                          Dense& data) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
-    void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows) const;
+    /// @p hops: how many times the walk has passed from a class's subtree into another class
+    /// (check_hops bounds it).
+    void descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex, Rows& rows,
+                 int hops = 0) const;
     void stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame, int rows_needed,
-                         bool& at_vertex, Rows& rows) const;
+                         bool& at_vertex, Rows& rows, int hops = 0) const;
     /// The regular patch that holds a point of a stationary class, n levels deep (StationaryStep):
     /// its rows over the class's local vertices (`table`: the class's own, or a subtree patch's
     /// G·W·R^n), its patch frame, and the point and ptex map in the patch's node coordinates.
@@ -759,7 +771,7 @@ void times_power(const StationaryClass& cls, int n, Matrix& M) {
 }  // namespace
 
 void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector2d p, const Affine& frame,
-                                       int rows_needed, bool& at_vertex, Rows& rows) const {
+                                       int rows_needed, bool& at_vertex, Rows& rows, int hops) const {
     const StationaryStep step = stationary_step(quad, p, frame);
     at_vertex = at_vertex || step.here;
     const StationaryPatch patch = stationary_patch(cls, step);
@@ -771,7 +783,8 @@ void LimitBasis::Impl::stationary_rows(const StationaryClass& cls, Eigen::Vector
         }
     } else {
         // A subtree that meets another stationary class: its rows, then the powers of R.
-        descend(patch.leaf, patch.p, patch.frame, rows_needed, at_vertex, rows);
+        check_hops(hops);
+        descend(patch.leaf, patch.p, patch.frame, rows_needed, at_vertex, rows, hops + 1);
         if (step.n > 0) {
             // A^n = 1ℓᵀ + R^n; derivative rows sum to zero, so only the value row keeps 1ℓᵀ
             // (adding their rounding-level sums back would undo what R^n removes).
@@ -838,7 +851,7 @@ bool LimitBasis::Impl::stationary_values(const StationaryClass& cls, Eigen::Vect
 }
 
 void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, int rows_needed, bool& at_vertex,
-                               Rows& rows) const {
+                               Rows& rows, int hops) const {
     while (node->shape != nullptr && node->shape->kind == Template::Kind::Refine) {
         const int q = child_containing(quad, p);
         const Affine map = child_map(quad, q);
@@ -853,7 +866,8 @@ void LimitBasis::Impl::descend(Node* node, Eigen::Vector2d p, Affine frame, int 
         return;
     }
     Rows local;
-    stationary_rows(*node->shape->stationary, p, frame, rows_needed, at_vertex, node->W.size() == 0 ? rows : local);
+    stationary_rows(*node->shape->stationary, p, frame, rows_needed, at_vertex, node->W.size() == 0 ? rows : local,
+                    hops);
     if (node->W.size() != 0) {
         multiply_rows(local, node->W, rows_needed, rows);
     }
@@ -994,7 +1008,7 @@ bool LimitBasis::Impl::patch(const SurfacePoint& point, LimitPatch& out) const {
     return node_patch(r.node, r.frame.to_child({point.u, point.v}), r.frame, out);
 }
 
-bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out) const {
+bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out, int hops) const {
     if (node->shape != nullptr) {
         node = subtree_leaf(node, p, frame);
     }
@@ -1022,7 +1036,8 @@ bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, L
         // A subtree that meets another class: its patch over this class's local vertices, carried n
         // levels by R^n as stationary_rows does. Each point is P_i + o with rows of P summing to a
         // common s, and (P + 1o)(1ℓᵀ + R^n) = P R^n + 1(o R^n + (s + Σo) ℓ), s + Σo = 1.
-        if (!node_patch(found.leaf, found.p, found.frame, out)) {
+        check_hops(hops);
+        if (!node_patch(found.leaf, found.p, found.frame, out, hops + 1)) {
             return false;
         }
         if (step.n > 0) {
@@ -1221,6 +1236,14 @@ LimitBasis::LimitBasis(const Topology& topology, SchemeKind scheme, const Scheme
             m.first_ptex.push_back(f + 1);
         }
         return;
+    }
+    for (Index v = 0; !m.quad && v < topology.num_vertices(); ++v) {
+        // Two triangles with the same corners: every vertex of its refinements stays irregular (the
+        // edge points have valence 4), so no level of local subdivision reaches a regular patch.
+        LIMSURF_CHECK_AT(topology.is_boundary_vertex(v) || topology.valence(v) != 2, UnsupportedError,
+                         vertex_element(v),
+                         "Loop limit evaluation needs interior vertices of valence 3 or more: vertex ", v,
+                         " has valence 2 (two triangles with the same corners)");
     }
     m.use_tables = evaluation == LimitEvaluation::Stationary;
     m.first_ptex.reserve(at(topology.num_faces() + 1));
