@@ -224,7 +224,9 @@ TEST(CliTune, UnprotectedSearchInARange) {
 TEST(CliTune, ThreadsDoNotChangeTheResult) {
     for (const std::vector<std::string>& args :
          {std::vector<std::string>{"tune", "--valence", "7", "--samples", "5", "--json"},
-          std::vector<std::string>{"tune", "--valence", "7", "--lambda", "0.6", "--json"}}) {
+          std::vector<std::string>{"tune", "--valence", "7", "--lambda", "0.6", "--json"},
+          // The protection binds with several crossings, bisected at once on 2 and 3 threads.
+          std::vector<std::string>{"tune", "--valence", "5", "--samples", "21", "--json"}}) {
         std::vector<nlohmann::json> outs;
         // The search's curve runs several λ at once, one per thread: 5 samples on 2 and 3 threads.
         for (const char* threads : {"1", "2", "3"}) {
@@ -235,6 +237,17 @@ TEST(CliTune, ThreadsDoNotChangeTheResult) {
         }
         EXPECT_EQ(outs[0], outs[1]) << args[3];
         EXPECT_EQ(outs[0], outs[2]) << args[3];
+        if (args[4] == "21") {
+            ASSERT_TRUE(outs[0].at("protection_binds").get<bool>());
+            const double limit = outs[0].at("classical").at("saddle_error").get<double>();
+            const auto& curve = outs[0].at("curve");
+            int crossings = 0;
+            for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
+                crossings += (curve[i].at("saddle_error").get<double>() <= limit) !=
+                             (curve[i + 1].at("saddle_error").get<double>() <= limit);
+            }
+            EXPECT_GE(crossings, 2) << "the case no longer bisects several crossings at once";
+        }
     }
 }
 

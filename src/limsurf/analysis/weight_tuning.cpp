@@ -617,8 +617,9 @@ TuningResult tune_weights(const TuningRequest& request) {
     const auto sample = [&](double lambda) { return sample_with(lambda, request.options); };
     // The curve's samples are independent: several λ at once, each evaluated on one thread, so that
     // the building of each λ's local complex and tables runs in parallel too (an evaluation's
-    // numbers do not depend on its thread count). The searches after it are sequential: their
-    // evaluations share the threads over faces.
+    // numbers do not depend on its thread count). The golden-section search after it is
+    // sequential (its evaluations share the threads over faces); the protection's bisections of
+    // several crossings run at once.
     const int m = request.curve_samples;
     TuningOptions one_thread = request.options;
     one_thread.num_threads = 1;
@@ -665,20 +666,22 @@ TuningResult tune_weights(const TuningRequest& request) {
     if (request.protect_other_shape && other_of(winner.errors) > other_limit) {
         // The protected optimum lies where the other error meets Catmull–Clark's: bisect every grid
         // interval where it crosses, keep the crossing with the smallest error of the shape.
-        bool found = false;
+        std::vector<std::size_t> crossings;
         for (std::size_t i = 0; i + 1 < out.curve.size(); ++i) {
+            if ((other_of(out.curve[i].errors) <= other_limit) != (other_of(out.curve[i + 1].errors) <= other_limit)) {
+                crossings.push_back(i);
+            }
+        }
+        const auto bisect = [&](std::size_t i, const TuningOptions& options) {
             const TuningSample& left = out.curve[i];
             const TuningSample& right = out.curve[i + 1];
             const bool left_ok = other_of(left.errors) <= other_limit;
-            if (left_ok == (other_of(right.errors) <= other_limit)) {
-                continue;
-            }
             double ok = left_ok ? left.vertex.lambda : right.vertex.lambda;
             double bad = left_ok ? right.vertex.lambda : left.vertex.lambda;
             TuningSample kept = left_ok ? left : right;
             while (std::abs(bad - ok) > request.lambda_tolerance) {
                 const double mid = (ok + bad) / 2.0;
-                const TuningSample s = sample(mid);
+                const TuningSample s = sample_with(mid, options);
                 if (other_of(s.errors) <= other_limit) {
                     ok = mid;
                     kept = s;
@@ -686,8 +689,25 @@ TuningResult tune_weights(const TuningRequest& request) {
                     bad = mid;
                 }
             }
-            if (!found || error_of(kept.errors) < error_of(winner.errors)) {
-                winner = kept;
+            return kept;
+        };
+        // Several crossings are bisected at once, one thread each, as the curve's λ are; one alone
+        // shares the threads over faces. Either way each evaluation gives the same numbers.
+        std::vector<TuningSample> kept(crossings.size());
+        const auto count = static_cast<Index>(crossings.size());
+        if (count > 1) {
+            run_ranges(count, thread_count(request.options.num_threads, count, 1), [&](Index begin, Index end) {
+                for (Index k = begin; k < end; ++k) {
+                    kept[at(k)] = bisect(crossings[at(k)], one_thread);
+                }
+            });
+        } else if (count == 1) {
+            kept[0] = bisect(crossings[0], request.options);
+        }
+        bool found = false;
+        for (const TuningSample& s : kept) {  // in λ order, as the intervals were bisected before
+            if (!found || error_of(s.errors) < error_of(winner.errors)) {
+                winner = s;
                 found = true;
             }
         }
