@@ -1,6 +1,7 @@
 // `limsurf plate`: the simply supported square against Navier through the command (uniform load,
 // Table 2's two-wave load with its zero centre), clamped support, loads from per-vertex values, and
 // refusals.
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "cli_runner.h"
 #include "support/mesh_zoo.h"
 #include "support/paths.h"
+#include "support/timing.h"
 
 namespace limsurf {
 namespace {
@@ -119,6 +121,36 @@ TEST(CliPlate, LoopPlatesConvergeToNavier) {
     // Tuned weights are Catmull–Clark's; a quad mesh is not Loop's.
     EXPECT_EQ(limsurf({"plate", triangulated_square_plate(), "--scheme", "loop", "--tuned", "cup"}).exit_code, 1);
     EXPECT_EQ(limsurf({"plate", square_plate(), "--scheme", "loop"}).exit_code, 1);
+}
+
+// A plate far from its bounding rectangle (a corner of the square 80 000 away; fuzz/commands.py
+// found plate_sym): the comparison is not made, and Navier's series — 10⁵ terms a point for a box
+// that long — is not summed at every sample either (it was: a minute).
+TEST(CliPlate, APlateFarFromItsBoxSkipsNavierAtOnce) {
+    const fs::path path = temp_dir() / "stretched.obj";
+    {
+        std::ofstream out(path);
+        out << "v 80000 0 0\n";
+        for (int j = 0; j <= 4; ++j) {
+            for (int i = j == 0 ? 1 : 0; i <= 4; ++i) {
+                out << "v " << 2.5 * i << ' ' << 2.5 * j << " 0\n";
+            }
+        }
+        for (int j = 0; j < 4; ++j) {
+            for (int i = 0; i < 4; ++i) {
+                const int a = j * 5 + i + 1;
+                out << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+            }
+        }
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun run = limsurf({"plate", path.string(), "--json"});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto out = nlohmann::json::parse(run.out);
+    EXPECT_EQ(out.at("navier"), "not compared: the plate is not its bounding rectangle") << run.out;
+    EXPECT_FALSE(out.at("levels")[0].contains("navier")) << run.out;
+    EXPECT_LT(seconds, 2.0 * test::time_scale);
 }
 
 TEST(CliPlate, TableTwoLoadReportsTheQuarterPoint) {
