@@ -239,43 +239,47 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
         const Eigen::VectorXd& w = pass.solution.w;
         pass.centre_deflection = deflection_at(basis, mesh.X, w, box.x0 + box.a / 2, box.y0 + box.b / 2);
         pass.quarter_deflection = deflection_at(basis, mesh.X, w, box.x0 + box.a / 4, box.y0 + box.b / 4);
+        // Each sample once: its point, the area element of the flat plate and the deflection there.
+        struct Sample {
+            Eigen::RowVector3d x;
+            double dA, wh;
+        };
+        std::vector<Sample> samples(static_cast<std::size_t>(sampler.num_samples()));
+        double largest = 0.0, area = 0.0;
+        for (Index s = 0; s < sampler.num_samples(); ++s) {
+            const Eigen::Matrix<double, 6, 3> Dx = sampler.evaluate(mesh.X, s);
+            Sample& at = samples[static_cast<std::size_t>(s)];
+            at.x = Dx.row(Value);
+            at.dA = sampler.weight(s) * std::abs(Dx(Du, 0) * Dx(Dv, 1) - Dx(Du, 1) * Dx(Dv, 0));
+            at.wh = 0.0;
+            const auto W = sampler.limit_weights(s);
+            const auto verts = sampler.vertices(s);
+            for (std::size_t j = 0; j < verts.size(); ++j) {
+                at.wh += W(Value, static_cast<Index>(j)) * w(verts[j]);
+            }
+            largest = std::max(largest, std::abs(at.wh));
+            area += at.dA;
+        }
+        pass.max_deflection = largest;
         if (level == 0) {
             // Is the plate its bounding rectangle? Decided before Navier's series is summed at the
             // samples: on a plate far from its box (one vertex 8 000 away: found by fuzz/commands.py)
             // the series needs 10⁵ terms a point, a minute in all, for a comparison not made.
             // Quadrature-accurate: 1e-6 with Catmull–Clark's weights; own β, γ make the patches next
             // to a tuned vertex bicubic on quarters only, which the tiles integrate to ~1e-5.
-            double area = 0.0;
-            for (Index s = 0; s < sampler.num_samples(); ++s) {
-                const Eigen::Matrix<double, 6, 3> Dx = sampler.evaluate(mesh.X, s);
-                area += sampler.weight(s) * std::abs(Dx(Du, 0) * Dx(Dv, 1) - Dx(Du, 1) * Dx(Dv, 0));
-            }
             rectangle = std::abs(area - box.a * box.b) <= 1e-4 * box.a * box.b;
             out.rectangle_plate = rectangle;
         }
         const bool compare = navier && rectangle;
-        // Largest deflection and, against Navier, the L2 error and the work ∫ p w dA.
-        double largest = 0.0, l2 = 0.0, l2_exact = 0.0, work = 0.0;
-        for (Index s = 0; s < sampler.num_samples(); ++s) {
-            const Eigen::Matrix<double, 6, 3> Dx = sampler.evaluate(mesh.X, s);
-            const double dA = sampler.weight(s) * std::abs(Dx(Du, 0) * Dx(Dv, 1) - Dx(Du, 1) * Dx(Dv, 0));
-            double wh = 0.0;
-            const auto W = sampler.limit_weights(s);
-            const auto verts = sampler.vertices(s);
-            for (std::size_t j = 0; j < verts.size(); ++j) {
-                wh += W(Value, static_cast<Index>(j)) * w(verts[j]);
-            }
-            largest = std::max(largest, std::abs(wh));
-            if (compare) {
-                const double we = exact(Dx(Value, 0), Dx(Value, 1));
-                const Points here = Dx.row(Value);
-                l2 += dA * (wh - we) * (wh - we);
-                l2_exact += dA * we * we;
-                work += dA * f(here)(0) * we;
-            }
-        }
-        pass.max_deflection = largest;
         if (compare) {
+            // Against Navier: the L2 error and the work ∫ p w dA.
+            double l2 = 0.0, l2_exact = 0.0, work = 0.0;
+            for (const Sample& at : samples) {
+                const double we = exact(at.x(0), at.x(1));
+                l2 += at.dA * (at.wh - we) * (at.wh - we);
+                l2_exact += at.dA * we * we;
+                work += at.dA * f(Points(at.x))(0) * we;
+            }
             const double wc = exact(box.x0 + box.a / 2, box.y0 + box.b / 2);
             const double wq = exact(box.x0 + box.a / 4, box.y0 + box.b / 4);
             PlateNavierComparison c;
