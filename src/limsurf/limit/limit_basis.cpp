@@ -372,14 +372,19 @@ struct LimitBasis::Impl {
     const Root& root_with_limit(Index face) const;
     /// LimitBasis::patch.
     bool patch(const SurfacePoint& point, LimitPatch& out) const;
+    /// Data for node_patch to contract instead of giving the points: X has rows over the columns
+    /// of node->W; `data` receives the patch's points times X and, last, the offset times X.
+    struct PatchData {
+        const Dense& X;
+        Dense& data;
+    };
     /// The patch of the node that holds @p p (node coordinates; ptex = frame(p)): out's points and
-    /// offset over the columns of node->W, its origin and axes. False at an extraordinary vertex.
-    bool node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out, int hops = 0) const;
+    /// offset over the columns of node->W, its origin and axes — or, given @p want, their data
+    /// (out's points and offset then unspecified). False at an extraordinary vertex.
+    bool node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out, const PatchData* want = nullptr,
+                    int hops = 0) const;
     /// LimitBasis::patch_data.
     bool patch_data(const SurfacePoint& point, const Eigen::MatrixXd& X, LimitPatch& out, Dense& data) const;
-    /// node_patch's data for @p X (rows over the columns of node->W) instead of its points.
-    bool node_patch_data(Node* node, Eigen::Vector2d p, Affine frame, const Dense& X, LimitPatch& out,
-                         Dense& data) const;
     /// Rows over the columns of node->W (the root's support, or a class's local vertices).
     /// @p hops: how many times the walk has passed from a class's subtree into another class
     /// (check_hops bounds it).
@@ -1008,7 +1013,8 @@ bool LimitBasis::Impl::patch(const SurfacePoint& point, LimitPatch& out) const {
     return node_patch(r.node, r.frame.to_child({point.u, point.v}), r.frame, out);
 }
 
-bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out, int hops) const {
+bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, LimitPatch& out, const PatchData* want,
+                                  int hops) const {
     if (node->shape != nullptr) {
         node = subtree_leaf(node, p, frame);
     }
@@ -1016,10 +1022,18 @@ bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, L
         out.origin = patch_to_ptex.offset;
         out.axes = patch_to_ptex.axes;
     };
+    if (want != nullptr) {
+        want->data.resize(out.size() + 1, want->X.cols());
+    }
     if (node->shape == nullptr || node->shape->kind == Template::Kind::Regular) {
+        set_frame(frame.then(node->shape == nullptr ? Affine{} : node->shape->patch_frame));
+        if (want != nullptr) {  // the points G·W are already over the support, the offset zero
+            times_columns(node->GW, want->X, want->data);
+            want->data.bottomRows<1>().setZero();
+            return true;
+        }
         out.points = node->GW;
         out.offset.setZero(node->GW.cols());
-        set_frame(frame.then(node->shape == nullptr ? Affine{} : node->shape->patch_frame));
         return true;
     }
     const StationaryClass& cls = *node->shape->stationary;
@@ -1029,15 +1043,30 @@ bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, L
     }
     const StationaryPatch found = stationary_patch(cls, step);
     if (found.table != nullptr) {
+        set_frame(found.frame.then(found.patch_frame));
+        if (want != nullptr) {
+            // table · (W · X) and ℓ · (W · X): W contracted with the data first, the table read in place.
+            Dense product;
+            if (node->W.size() != 0) {
+                product.noalias() = node->W * want->X;
+            }
+            const Dense& mapped = node->W.size() == 0 ? want->X : product;
+            times_columns(*found.table, mapped, want->data);
+            if (step.n == 0) {
+                want->data.bottomRows<1>().setZero();
+            } else {
+                want->data.bottomRows<1>().noalias() = cls.limit_row * mapped;
+            }
+            return true;
+        }
         out.points = *found.table;
         out.offset = step.n == 0 ? Eigen::RowVectorXd::Zero(found.table->cols()) : cls.limit_row;
-        set_frame(found.frame.then(found.patch_frame));
     } else {
         // A subtree that meets another class: its patch over this class's local vertices, carried n
         // levels by R^n as stationary_rows does. Each point is P_i + o with rows of P summing to a
         // common s, and (P + 1o)(1ℓᵀ + R^n) = P R^n + 1(o R^n + (s + Σo) ℓ), s + Σo = 1.
         check_hops(hops);
-        if (!node_patch(found.leaf, found.p, found.frame, out, hops + 1)) {
+        if (!node_patch(found.leaf, found.p, found.frame, out, nullptr, hops + 1)) {
             return false;
         }
         if (step.n > 0) {
@@ -1049,6 +1078,10 @@ bool LimitBasis::Impl::node_patch(Node* node, Eigen::Vector2d p, Affine frame, L
     if (node->W.size() != 0) {  // the node's local vertices mapped to the support
         out.points = out.points * node->W;
         out.offset = out.offset * node->W;
+    }
+    if (want != nullptr) {
+        times_columns(out.points, want->X, want->data);
+        want->data.bottomRows<1>().noalias() = out.offset * want->X;
     }
     return true;
 }
@@ -1068,58 +1101,13 @@ bool LimitBasis::Impl::patch_data(const SurfacePoint& point, const Eigen::Matrix
         out.domain = quad ? ParameterDomain::Quad : ParameterDomain::Triangle;
         out.vertices = r.support;
         const Dense local = gather_rows(out.vertices, X);
-        if (!node_patch_data(r.node, r.frame.to_child({point.u, point.v}), r.frame, local, out, data)) {
+        const PatchData want{local, data};
+        if (!node_patch(r.node, r.frame.to_child({point.u, point.v}), r.frame, out, &want)) {
             return false;
         }
     }
     out.points.resize(0, 0);
     out.offset.resize(0);
-    return true;
-}
-
-bool LimitBasis::Impl::node_patch_data(Node* node, Eigen::Vector2d p, Affine frame, const Dense& X, LimitPatch& out,
-                                       Dense& data) const {
-    const int size = out.size();
-    data.resize(size + 1, X.cols());
-    Node* const start = node;
-    const Eigen::Vector2d start_p = p;
-    const Affine start_frame = frame;
-    if (node->shape != nullptr) {
-        node = subtree_leaf(node, p, frame);
-    }
-    if (node->shape != nullptr && node->shape->kind != Template::Kind::Regular) {
-        const StationaryClass& cls = *node->shape->stationary;
-        const StationaryStep step = stationary_step(quad, p, frame);
-        if (step.here) {
-            return false;
-        }
-        const StationaryPatch found = stationary_patch(cls, step);
-        if (found.table != nullptr) {
-            // table · (W · X) and ℓ · (W · X): W contracted with the data first.
-            Dense product;
-            if (node->W.size() != 0) {
-                product.noalias() = node->W * X;
-            }
-            const Dense& mapped = node->W.size() == 0 ? X : product;
-            times_columns(*found.table, mapped, data);
-            if (step.n == 0) {
-                data.bottomRows<1>().setZero();
-            } else {
-                data.bottomRows<1>().noalias() = cls.limit_row * mapped;
-            }
-            const Affine patch_to_ptex = found.frame.then(found.patch_frame);
-            out.origin = patch_to_ptex.offset;
-            out.axes = patch_to_ptex.axes;
-            return true;
-        }
-    }
-    // A regular patch (its points G·W are already over the support) or a subtree that meets another
-    // class (its points are carried by powers of R): the points first, as patch() does.
-    if (!node_patch(start, start_p, start_frame, out)) {
-        return false;
-    }
-    times_columns(out.points, X, data);
-    data.bottomRows<1>().noalias() = out.offset * X;
     return true;
 }
 
