@@ -163,15 +163,33 @@ def box_spline_by_subdivision(s, t, levels=4):
     return grid[:, a, b] / 2 + ring / 12
 
 
-def test_the_box_spline_by_subdivision_is_a_partition_of_unity_with_loops_limit_mask():
+def test_loops_regular_weights_are_its_published_limit_mask_and_the_box_spline(mesh_path):
+    """On tri_torus (every valence 6) the library's limit weights: at each control vertex Loop's
+    published limit mask, 1/2 and 1/12 at each of the six neighbours (χ = 1/(3/(8β) + n) with
+    β = 1/16); inside each face, non-negative, summing to 1 and equal to the box spline built by the
+    helper above from Loop's refinement rules alone (its corner, the same mask, checked too)."""
+    mesh = limsurf.read_mesh(mesh_path("tri_torus"))
+    basis = limsurf.LimitBasis(mesh, "loop")
+    P = basis.vertex_limit_matrix().toarray()
+    for v in range(mesh.num_vertices):
+        row = P[v]
+        assert np.isclose(row[v], 0.5, rtol=0, atol=1e-15)
+        others = np.delete(row, v)
+        assert np.count_nonzero(np.abs(others) > 1e-15) == 6
+        assert np.allclose(others[np.abs(others) > 1e-15], 1 / 12, rtol=0, atol=1e-15)
     corner = box_spline_by_subdivision(0.0, 0.0)
-    assert np.isclose(corner[4], 0.5, rtol=0, atol=1e-15)
     ring = [0, 1, 3, 5, 7, 8]  # (0, −1), (1, −1), (−1, 0), (1, 0), (−1, 1), (0, 1)
-    assert np.allclose(corner[ring], 1 / 12, rtol=0, atol=1e-15)
+    assert np.isclose(corner[4], 0.5, rtol=0, atol=1e-15) and np.allclose(corner[ring], 1 / 12, rtol=0, atol=1e-15)
     assert np.allclose(np.delete(corner, ring + [4]), 0.0, rtol=0, atol=1e-15)
-    for s, t in [(0.25, 0.5), (0.0625, 0.875), (1.0, 0.0)]:
-        w = box_spline_by_subdivision(s, t)
-        assert np.isclose(w.sum(), 1.0, rtol=0, atol=1e-14) and np.all(w >= -1e-15)
+    for face in range(0, basis.num_ptex_faces, 7):
+        patch = basis.patch(face, 1 / 3, 1 / 3)
+        for s, t in [(0.25, 0.5), (0.0625, 0.875), (1.0, 0.0), (0.5, 0.0)]:
+            uv = patch["origin"] + patch["axes"] @ np.array([s, t])
+            w = basis.weights([face], [uv[0]], [uv[1]])["position"].toarray()[0]
+            assert np.isclose(w.sum(), 1.0, rtol=0, atol=1e-14) and np.all(w >= -1e-15)
+            expected = np.zeros(mesh.num_vertices)
+            np.add.at(expected, patch["vertices"], patch["points"].T @ box_spline_by_subdivision(s, t))
+            assert np.allclose(w, expected, rtol=0, atol=1e-14)
 
 
 @pytest.mark.parametrize("name", ["icosahedron", "tri_grid", "disk_ev7_tris", "tri_valence_7"])
