@@ -115,6 +115,33 @@ TEST(Plate, NavierSeriesMatchesTimoshenkosTable) {
     EXPECT_NEAR(navier_sine(1.0, 1.0, 1.0, 1.0, 1, 1, 0.5, 0.5), 1.0 / (4.0 * std::pow(std::numbers::pi, 4)), 1e-16);
 }
 
+TEST(Plate, LevysSeriesEqualsNaviersAtEveryAspectRatio) {
+    // Two independent series for the same deflection: Lévy's single one and Navier's double one.
+    for (const auto& [a, b] : {std::pair{1.0, 1.0}, {2.0, 1.0}, {1.0, 3.0}, {0.7, 1.3}}) {
+        const double scale = navier_uniform(a, b, 1.0, 1.0, a / 2, b / 2, 1e-12);
+        for (const double s : {0.0, 0.05, 0.3, 0.5, 0.81, 1.0}) {
+            for (const double t : {0.0, 0.1, 0.45, 0.5, 0.9, 1.0}) {
+                const double navier = navier_uniform(a, b, 1.0, 1.0, s * a, t * b, 1e-12);
+                EXPECT_NEAR(levy_uniform(a, b, 1.0, 1.0, s * a, t * b), navier, 1e-9 * scale) << a << " " << b;
+                // Either side may be the shorter: the same deflection with x and y exchanged.
+                EXPECT_NEAR(levy_uniform(b, a, 1.0, 1.0, t * b, s * a), levy_uniform(a, b, 1.0, 1.0, s * a, t * b),
+                            1e-14 * scale);
+            }
+        }
+    }
+    // Timoshenko and Woinowsky-Krieger, Table 8: w_max = α p a⁴ / D for b/a = 1, 1.5, 2, 3, 4, 5
+    // (three significant digits), and the strip's 5/384 as b/a → ∞, here 5 000: exponentially close.
+    const std::pair<double, double> table[] = {{1.0, 0.00406}, {1.5, 0.00772}, {2.0, 0.01013},
+                                               {3.0, 0.01223}, {4.0, 0.01282}, {5.0, 0.01297}};
+    for (const auto& [ratio, alpha] : table) {
+        EXPECT_NEAR(levy_uniform(1.0, ratio, 1.0, 1.0, 0.5, ratio / 2), alpha, 5e-6) << ratio;
+    }
+    EXPECT_NEAR(levy_uniform(1.0, 5000.0, 1.0, 1.0, 0.5, 2500.0), 5.0 / 384.0, 1e-15);
+    EXPECT_NEAR(levy_uniform(5000.0, 1.0, 2.0, 3.0, 2500.0, 0.5), 3.0 * 5.0 / (384.0 * 2.0), 1e-15);
+    EXPECT_EQ(levy_uniform(1.0, 5000.0, 1.0, 1.0, 0.5, 0.0), 0.0);
+    EXPECT_THROW((void)levy_uniform(1.0, 1.0, 1.0, 1.0, 0.5, 0.5, 0.0), InputError);
+}
+
 struct Level {
     double uniform_centre = 0.0;
     double wave_centre = 0.0;

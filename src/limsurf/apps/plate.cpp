@@ -156,7 +156,7 @@ PlateStudy solve_plate_levels(const Topology& topology, const Points& X0, const 
                       (load.shape == PlateLoadShape::Uniform || waves > 0);  // the rectangle is checked below
     const bool navier = out.navier_load;
     const auto exact = [&](double x, double y) {
-        return waves == 0 ? navier_uniform(box.a, box.b, D, p, x - box.x0, y - box.y0, 1e-10)
+        return waves == 0 ? levy_uniform(box.a, box.b, D, p, x - box.x0, y - box.y0, 1e-12)
                           : navier_sine(box.a, box.b, D, p, waves, waves, x - box.x0, y - box.y0);
     };
     const bool tuned = options.tuning != PlateTuning::None;

@@ -11,9 +11,9 @@
 
 #include "boundary_samples.h"
 #include "element_assembly.h"
-#include "material.h"
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
+#include "material.h"
 
 namespace limsurf {
 namespace {
@@ -233,8 +233,9 @@ PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler,
 PlateSolution solve_plate(const Topology& topology, const LimitSampler& sampler, const Points& X,
                           const PlateMaterial& material, PlateSupport support, const Eigen::VectorXd& load_values) {
     LIMSURF_CHECK(topology.has_boundary(), InputError, "plate: the control mesh is closed: a plate needs a boundary");
-    LIMSURF_CHECK(load_values.size() == topology.num_vertices() && load_values.allFinite(), InputError, "plate: ",
-                  load_values.size(), " load values for ", topology.num_vertices(), " control vertices, or not finite");
+    LIMSURF_CHECK(load_values.size() == topology.num_vertices() && load_values.allFinite(), InputError,
+                  "plate: ", load_values.size(), " load values for ", topology.num_vertices(),
+                  " control vertices, or not finite");
     const Eigen::VectorXd b = assemble_laplace_beltrami(sampler, X).mass * load_values;
     SparseMatrix clamping;
     if (support == PlateSupport::ClampedNitsche) {
@@ -302,6 +303,8 @@ bool locate_planar_point(const LimitBasis& basis, const Points& X, double x, dou
 }
 
 double navier_uniform(double a, double b, double D, double p, double x, double y, double tolerance) {
+    LIMSURF_CHECK(tolerance > 0.0 && tolerance < 1.0, InputError,
+                  "navier_uniform: the tolerance must be in (0, 1), got ", tolerance);
     const double pi = std::numbers::pi;
     // Terms are bounded by 1/(m n q²) with q ≥ m²/a², n²/b²: rows beyond m with a⁴/m⁵ below the
     // tolerance times the first term, and columns beyond n with b⁴/(m n⁵) likewise, are dropped.
@@ -316,6 +319,51 @@ double navier_uniform(double a, double b, double D, double p, double x, double y
         }
     }
     return 16.0 * p / (std::pow(pi, 6) * D) * sum;
+}
+
+double levy_uniform(double a, double b, double D, double p, double x, double y, double tolerance) {
+    LIMSURF_CHECK(tolerance > 0.0 && tolerance < 1.0, InputError, "levy_uniform: the tolerance must be in (0, 1), got ",
+                  tolerance);
+    const double pi = std::numbers::pi;
+    if (a > b) {  // the series along the shorter side: its terms then fall like 1/m⁵ from the first
+        std::swap(a, b);
+        std::swap(x, y);
+    }
+    const double eta = 2.0 * y / b - 1.0;
+    const double e_eta = std::abs(eta);
+    const double alpha1 = pi * b / (2.0 * a);
+    // cosh(αη)/cosh α = (e^{α(|η|−1)} + e^{−α(|η|+1)}) / (1 + e^{−2α}), sinh likewise with a minus
+    // and η's sign: each exponential is a power m of its value at m = 1, advanced by its square.
+    const double near1 = std::exp(alpha1 * (e_eta - 1.0)), far1 = std::exp(-alpha1 * (e_eta + 1.0));
+    const double damp1 = std::exp(-2.0 * alpha1);
+    const double near_step = near1 * near1, far_step = far1 * far1, damp_step = damp1 * damp1;
+    double near = near1, far = far1, damp = damp1;
+    // sin(mπx/a) as the imaginary part of e^{imθ}, advanced by e^{2iθ} (error growing like m ε).
+    const double theta = pi * x / a;
+    double wave_cos = std::cos(theta), wave_sin = std::sin(theta);
+    const double step_cos = std::cos(2.0 * theta), step_sin = std::sin(2.0 * theta);
+    // Σ_{m > M odd} 1/m⁵ < 1/(8 (M − 1)⁴): stop once that is below the tolerance.
+    const double last = 1.0 + std::pow(8.0 * tolerance, -0.25);
+    double sum = 0.0;
+    for (int m = 1;; m += 2) {
+        const double alpha = m * alpha1;
+        const double C = (near + far) / (1.0 + damp);
+        const double S = std::copysign((near - far) / (1.0 + damp), eta);
+        const double tanh_alpha = (1.0 - damp) / (1.0 + damp);
+        const double bracket = 1.0 - (alpha * tanh_alpha + 2.0) / 2.0 * C + alpha * eta / 2.0 * S;
+        const double mm = static_cast<double>(m);
+        sum += wave_sin * bracket / (mm * mm * mm * mm * mm);
+        if (m >= last) {
+            break;
+        }
+        near *= near_step;
+        far *= far_step;
+        damp *= damp_step;
+        const double next_cos = wave_cos * step_cos - wave_sin * step_sin;
+        wave_sin = wave_sin * step_cos + wave_cos * step_sin;
+        wave_cos = next_cos;
+    }
+    return 4.0 * p * std::pow(a, 4) / (std::pow(pi, 5) * D) * sum;
 }
 
 double navier_sine(double a, double b, double D, double p, int m, int n, double x, double y) {
