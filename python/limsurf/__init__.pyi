@@ -274,6 +274,10 @@ def shell_stiffness(mesh: Mesh, scheme: LimitScheme, *, E: float = 1.0, nu: floa
                     boundary: Boundary | None = None, creasing: Creasing | None = None,
                     triangles: Triangles | None = None) -> scipy.sparse.csr_matrix: ...
 def rigid_body_modes(V: Mesh | ArrayLike) -> FloatArray: ...
+def rectangle_plate_deflection(a: float, b: float, x: float | ArrayLike, y: float | ArrayLike, *, D: float = 1.0,
+                               p: float = 1.0, waves: tuple[int, int] | None = None,
+                               series: Literal["levy", "navier"] = "levy",
+                               tolerance: float = 1e-14) -> float | FloatArray: ...
 def plate(mesh: Mesh, scheme: FemScheme, load: float | PlateLoadName | SurfaceFunction | ArrayLike, *,
           support: PlateSupport = "simply", E: float = 2e11, nu: float = 0.3, thickness: float = 0.1, levels: int = 0,
           pressure: float | None = None, degree: int = 6, tiles: int = 6,

@@ -71,6 +71,33 @@ def test_plate_equals_the_cli(mesh_path, cli, tmp_path, name, python_load, cli_l
     assert ours["levels"][-1]["mesh"].num_faces == theirs["levels"][-1]["faces"]
 
 
+def test_rectangle_plate_deflection_is_the_clis_reference_and_timoshenkos_table(mesh_path, cli):
+    theirs = cli("plate", mesh_path("plate_sym"), "--json")
+    box = theirs["rectangle"]
+    a, b = box["a"], box["b"]
+    D, p = theirs["bending_rigidity"], theirs["pressure"]
+    navier = theirs["levels"][0]["navier"]
+    assert limsurf.rectangle_plate_deflection(a, b, a / 2, b / 2, D=D, p=p, tolerance=1e-12) == \
+        navier["centre_deflection"]
+    assert limsurf.rectangle_plate_deflection(a, b, a / 4, b / 4, D=D, p=p, tolerance=1e-12) == \
+        navier["quarter_deflection"]
+    # Timoshenko & Woinowsky-Krieger, Table 8 (b/a = 2): 0.01013 p a⁴ / D; Navier's series agrees.
+    assert abs(limsurf.rectangle_plate_deflection(1.0, 2.0, 0.5, 1.0) - 0.01013) < 5e-6
+    x, y = np.meshgrid(np.linspace(0, 1, 5), np.linspace(0, 2, 4))
+    levy = limsurf.rectangle_plate_deflection(1.0, 2.0, x, y)
+    assert levy.shape == (4, 5) and levy.dtype == np.float64
+    assert np.allclose(levy, limsurf.rectangle_plate_deflection(1.0, 2.0, x, y, series="navier", tolerance=1e-12),
+                       rtol=0, atol=1e-12)
+    wave = limsurf.rectangle_plate_deflection(1.0, 1.0, 0.5, 0.5, waves=(1, 1))
+    assert np.isclose(wave, 1 / (4 * np.pi ** 4), rtol=1e-15, atol=0)
+    for bad, match in [(dict(a=0.0), "sides"), (dict(D=-1.0), "D must"), (dict(tolerance=0.0), "tolerance"),
+                       (dict(x=[0.1, np.nan], y=[0.1, 0.2]), "x"), (dict(x=[0.1, 0.2], y=[0.1]), "same shape"),
+                       (dict(series="ritz"), "series"), (dict(waves=(0, 1)), "wave numbers")]:
+        args = dict(a=1.0, b=1.0, x=0.5, y=0.5) | bad
+        with pytest.raises(limsurf.InputError, match=match):
+            limsurf.rectangle_plate_deflection(args.pop("a"), args.pop("b"), args.pop("x"), args.pop("y"), **args)
+
+
 def test_plate_load_values_equal_the_load_file(mesh_path, cli, tmp_path):
     mesh = limsurf.read_mesh(mesh_path("plate_asym"))
     p = 1e3 * (1.0 + mesh.V[:, 0] * mesh.V[:, 1] / 7.0)

@@ -119,7 +119,7 @@ struct PlateSolution {
 ///   load p: (16 p / (π⁶ D)) Σ_{m,n odd} sin(mπx/a) sin(nπy/b) / (m n (m²/a² + n²/b²)²), the terms
 ///   bounded by @p tolerance times the first dropped (the tail is about tolerance relative: 1e-13
 ///   takes about 10⁵ terms, 1e-9 about 10³).
-/// @throws InputError unless 0 < tolerance < 1
+/// @throws InputError unless 0 < tolerance < 1, a, b, D > 0 and a, b, D, p, x, y finite
 [[nodiscard]] double navier_uniform(double a, double b, double D, double p, double x, double y,
                                     double tolerance = 1e-13);
 
@@ -131,12 +131,13 @@ struct PlateSolution {
 ///   overflow at any aspect ratio) and sin(mπx/s) by rotation. Terms stop where the tail is below
 ///   @p tolerance times 4 p s⁴ / (π⁵ D): about (8 tolerance)^(-1/4) / 2 terms whatever the aspect
 ///   ratio (300 for 1e-12), where the double series needs 10³–10⁵ and more as a rectangle lengthens.
-/// @pre a, b > 0 and finite; (x, y) in the rectangle (outside it the series continues the formula)
-/// @throws InputError unless 0 < tolerance < 1
+/// (x, y) belongs in the rectangle: outside it the series continues the formula, not the plate.
+/// @throws InputError as navier_uniform
 [[nodiscard]] double levy_uniform(double a, double b, double D, double p, double x, double y, double tolerance = 1e-14);
 
 /// The Navier deflection under p sin(mπx/a) sin(nπy/b): that same shape times
 /// p / (π⁴ D (m²/a² + n²/b²)²).
+/// @throws InputError as navier_uniform, and for m or n below 1
 [[nodiscard]] double navier_sine(double a, double b, double D, double p, int m, int n, double x, double y);
 
 }  // namespace limsurf

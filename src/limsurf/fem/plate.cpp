@@ -302,9 +302,28 @@ bool locate_planar_point(const LimitBasis& basis, const Points& X, double x, dou
     return false;
 }
 
+namespace {
+
+/// The rectangle and point of an exact deflection: sides positive and finite, the rest finite.
+void check_rectangle(const char* name, double a, double b, double D, double p, double x, double y) {
+    LIMSURF_CHECK(a > 0.0 && b > 0.0 && std::isfinite(a) && std::isfinite(b), InputError, name,
+                  ": the sides must be positive and finite, got ", a, " and ", b);
+    LIMSURF_CHECK(D > 0.0 && std::isfinite(D) && std::isfinite(p), InputError, name,
+                  ": D must be positive and finite and p finite, got D = ", D, ", p = ", p);
+    LIMSURF_CHECK(std::isfinite(x) && std::isfinite(y), InputError, name, ": the point must be finite, got (", x,
+                  ", ", y, ")");
+}
+
+void check_tolerance(const char* name, double tolerance) {
+    LIMSURF_CHECK(tolerance > 0.0 && tolerance < 1.0, InputError, name, ": the tolerance must be in (0, 1), got ",
+                  tolerance);
+}
+
+}  // namespace
+
 double navier_uniform(double a, double b, double D, double p, double x, double y, double tolerance) {
-    LIMSURF_CHECK(tolerance > 0.0 && tolerance < 1.0, InputError,
-                  "navier_uniform: the tolerance must be in (0, 1), got ", tolerance);
+    check_rectangle("navier_uniform", a, b, D, p, x, y);
+    check_tolerance("navier_uniform", tolerance);
     const double pi = std::numbers::pi;
     // Terms are bounded by 1/(m n q²) with q ≥ m²/a², n²/b²: rows beyond m with a⁴/m⁵ below the
     // tolerance times the first term, and columns beyond n with b⁴/(m n⁵) likewise, are dropped.
@@ -322,8 +341,8 @@ double navier_uniform(double a, double b, double D, double p, double x, double y
 }
 
 double levy_uniform(double a, double b, double D, double p, double x, double y, double tolerance) {
-    LIMSURF_CHECK(tolerance > 0.0 && tolerance < 1.0, InputError, "levy_uniform: the tolerance must be in (0, 1), got ",
-                  tolerance);
+    check_rectangle("levy_uniform", a, b, D, p, x, y);
+    check_tolerance("levy_uniform", tolerance);
     const double pi = std::numbers::pi;
     if (a > b) {  // the series along the shorter side: its terms then fall like 1/m⁵ from the first
         std::swap(a, b);
@@ -367,6 +386,9 @@ double levy_uniform(double a, double b, double D, double p, double x, double y, 
 }
 
 double navier_sine(double a, double b, double D, double p, int m, int n, double x, double y) {
+    check_rectangle("navier_sine", a, b, D, p, x, y);
+    LIMSURF_CHECK(m >= 1 && n >= 1, InputError, "navier_sine: the wave numbers must be at least 1, got ", m, " and ",
+                  n);
     const double pi = std::numbers::pi;
     const double q = static_cast<double>(m * m) / (a * a) + static_cast<double>(n * n) / (b * b);
     return p / (std::pow(pi, 4) * D * q * q) * std::sin(m * pi * x / a) * std::sin(n * pi * y / b);
