@@ -1,7 +1,9 @@
 #include "output.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -85,6 +87,21 @@ void check_output_paths(const std::vector<std::string>& outputs, const std::vect
 
 namespace {
 
+/// Whether every number in @p json is finite: the common case, checked without building paths.
+bool all_finite(const nlohmann::json& json) {
+    if (json.is_number_float()) {
+        return std::isfinite(json.get<double>());
+    }
+    if (json.is_structured()) {
+        for (const auto& value : json) {
+            if (!all_finite(value)) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 /// The path of the first non-finite number in @p json ("reference.l2_relative"), or empty.
 std::string non_finite_entry(const nlohmann::json& json, const std::string& path) {
     if (json.is_number_float() && !std::isfinite(json.get<double>())) {
@@ -108,10 +125,20 @@ std::string non_finite_entry(const nlohmann::json& json, const std::string& path
 
 }  // namespace
 
-void require_finite(const nlohmann::json& json) {
-    const std::string bad = non_finite_entry(json, "");
+void require_finite(const nlohmann::json& json, const std::string& path) {
+    if (all_finite(json)) {
+        return;
+    }
+    const std::string bad = non_finite_entry(json, path);
     LIMSURF_CHECK(bad.empty(), NumericalError, "the result '", bad,
                   "' is not a finite number (an overflow: the mesh or the data may be too large)");
+}
+
+void write_g17(std::ostream& out, double value) {
+    std::array<char, 32> buffer{};  // %.17g needs at most 24 characters ("-1.2345678901234567e-308")
+    const auto result =
+        std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 17);
+    out.write(buffer.data(), result.ptr - buffer.data());
 }
 
 void print_json(const nlohmann::json& json) {

@@ -1,10 +1,10 @@
 // limsurf eval MESH --scheme S (--points FILE | --grid N) [--threads N] [--json] [-o OUT]:
 // position, derivatives, normal and curvatures of the limit surface at ptex points.
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -108,44 +108,82 @@ nlohmann::json row_json(const Eigen::Matrix<double, 6, 3>& d, int row) {
     return {d(row, 0), d(row, 1), d(row, 2)};
 }
 
-nlohmann::json points_json(const std::vector<Evaluated>& results) {
-    nlohmann::json points = nlohmann::json::array();
+nlohmann::json point_json(const Evaluated& r) {
     const char* names[] = {"position", "du", "dv", "duu", "duv", "dvv"};
-    for (const Evaluated& r : results) {
-        nlohmann::json p{{"face", r.point.face}, {"u", r.point.u}, {"v", r.point.v}};
-        for (int row = 0; row < 6; ++row) {
-            p[names[row]] = row_json(r.d, row);
-        }
-        if (r.frame) {
-            p["normal"] = {r.frame->normal.x(), r.frame->normal.y(), r.frame->normal.z()};
-            p["gaussian_curvature"] =
-                r.at_vertex ? nlohmann::json(nullptr) : nlohmann::json(r.frame->gaussian_curvature);
-            p["mean_curvature"] = r.at_vertex ? nlohmann::json(nullptr) : nlohmann::json(r.frame->mean_curvature);
-        } else {
-            p["normal"] = nullptr;
-            p["gaussian_curvature"] = nullptr;
-            p["mean_curvature"] = nullptr;
-        }
-        points.push_back(p);
+    nlohmann::json p{{"face", r.point.face}, {"u", r.point.u}, {"v", r.point.v}};
+    for (int row = 0; row < 6; ++row) {
+        p[names[row]] = row_json(r.d, row);
     }
-    return {{"points", points}};
+    if (r.frame) {
+        p["normal"] = {r.frame->normal.x(), r.frame->normal.y(), r.frame->normal.z()};
+        p["gaussian_curvature"] = r.at_vertex ? nlohmann::json(nullptr) : nlohmann::json(r.frame->gaussian_curvature);
+        p["mean_curvature"] = r.at_vertex ? nlohmann::json(nullptr) : nlohmann::json(r.frame->mean_curvature);
+    } else {
+        p["normal"] = nullptr;
+        p["gaussian_curvature"] = nullptr;
+        p["mean_curvature"] = nullptr;
+    }
+    return p;
+}
+
+/// {"points": [...]} with a 2-space indent, the bytes nlohmann's dump(2) gives for the whole
+/// document, written a point at a time (the document of 10⁵ points took 5× the memory of the
+/// results). @throws NumericalError for a non-finite number, naming it as require_finite does
+void write_points_json(std::ostream& out, const std::vector<Evaluated>& results) {
+    if (results.empty()) {
+        out << "{\n  \"points\": []\n}\n";
+        return;
+    }
+    out << "{\n  \"points\": [\n";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const std::string text = point_json(results[i]).dump(2);
+        out << "    ";
+        for (const char c : text) {  // each line indented two levels deeper
+            out << c;
+            if (c == '\n') {
+                out << "    ";
+            }
+        }
+        out << (i + 1 < results.size() ? ",\n" : "\n");
+    }
+    out << "  ]\n}\n";
+}
+
+bool all_finite(const std::vector<Evaluated>& results) {
+    return std::all_of(results.begin(), results.end(), [](const Evaluated& r) {
+        return std::isfinite(r.point.u) && std::isfinite(r.point.v) && r.d.allFinite() &&
+               (!r.frame ||
+                (r.frame->normal.allFinite() && (r.at_vertex || (std::isfinite(r.frame->gaussian_curvature) &&
+                                                                 std::isfinite(r.frame->mean_curvature)))));
+    });
 }
 
 void write_table(std::ostream& out, const std::vector<Evaluated>& results) {
     out << "# face u v  x y z  du(3) dv(3) duu(3) duv(3) dvv(3)  normal(3)  gaussian_curvature mean_curvature\n"
         << "# '-' where the tangent plane is degenerate, and for curvatures at an extraordinary vertex itself\n";
-    out << std::setprecision(17);
+    const auto number = [&out](double value) {
+        out << ' ';
+        write_g17(out, value);
+    };
     for (const Evaluated& r : results) {
-        out << r.point.face << ' ' << r.point.u << ' ' << r.point.v;
+        out << r.point.face;
+        number(r.point.u);
+        number(r.point.v);
         for (int row = 0; row < 6; ++row) {
-            out << ' ' << r.d(row, 0) << ' ' << r.d(row, 1) << ' ' << r.d(row, 2);
+            for (int c = 0; c < 3; ++c) {
+                number(r.d(row, c));
+            }
         }
         if (r.frame) {
-            out << ' ' << r.frame->normal.x() << ' ' << r.frame->normal.y() << ' ' << r.frame->normal.z();
+            for (int c = 0; c < 3; ++c) {
+                number(r.frame->normal(c));
+            }
             if (r.at_vertex) {
                 out << " - -\n";
             } else {
-                out << ' ' << r.frame->gaussian_curvature << ' ' << r.frame->mean_curvature << '\n';
+                number(r.frame->gaussian_curvature);
+                number(r.frame->mean_curvature);
+                out << '\n';
             }
         } else {
             out << " - - - - -\n";
@@ -211,21 +249,26 @@ int run_eval(const EvalOptions& options) {
             options.points.empty() ? grid_points(options.grid, basis) : read_points(options.points, basis);
         return evaluate_points(basis, built.mesh.positions(), points, options.threads);
     });
-    const nlohmann::json json = points_json(results);
-    require_finite(json);
     const bool json_file = std::filesystem::path(options.output).extension() == ".json";
+    const bool as_json = options.output.empty() ? options.json : json_file;
+    // Nothing non-finite is printed: the first such number is named as require_finite names it
+    // (a point's JSON, only on that rare path).
+    if (!all_finite(results)) {
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            require_finite(point_json(results[i]), "points[" + std::to_string(i) + "]");
+        }
+    }
+    const auto write = [&](std::ostream& out) {
+        if (as_json) {
+            write_points_json(out, results);
+        } else {
+            write_table(out, results);
+        }
+    };
     if (!options.output.empty()) {
-        write_file_atomically(options.output, [&](std::ostream& out) {
-            if (json_file) {
-                out << json.dump(2) << '\n';
-            } else {
-                write_table(out, results);
-            }
-        });
-    } else if (options.json) {
-        std::cout << json.dump(2) << '\n';
+        write_file_atomically(options.output, write);
     } else {
-        write_table(std::cout, results);
+        write(std::cout);
     }
     return exit_ok;
 }
