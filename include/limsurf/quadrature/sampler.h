@@ -47,6 +47,19 @@ struct SamplerOptions {
     int num_threads = 0;                   ///< threads for construction and evaluate(); 0: hardware concurrency
 };
 
+/// The points and parameter-domain weights of quadrature samples.
+struct QuadratureSamples {
+    std::vector<SurfacePoint> points;
+    std::vector<double> weights;
+};
+
+/// @brief The samples a LimitSampler with @p options places on ptex faces [first_ptex_face,
+///   last_ptex_face), in its order, without their limit weights: for one pass over the samples
+///   that needs no stored weights (measure_with_error evaluates each sample once and keeps nothing).
+/// @throws InputError as LimitSampler's constructor
+[[nodiscard]] QuadratureSamples quadrature_samples(const LimitBasis& basis, const SamplerOptions& options,
+                                                   Index first_ptex_face, Index last_ptex_face);
+
 /// @brief Quadrature samples of a limit surface with precomputed sparse limit weights.
 /// @details Immutable after construction; evaluate() is thread-safe. Does not keep a
 ///   reference to the basis.

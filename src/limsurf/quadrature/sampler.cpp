@@ -173,16 +173,15 @@ LimitSampler::LimitSampler(const LimitBasis& basis, int degree, int subdivide_ne
 LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& options)
     : LimitSampler(basis, options, 0, basis.num_ptex_faces()) {}
 
-LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& options, Index first_ptex_face,
-                           Index last_ptex_face)
-    : options_(options), domain_(basis.domain()), num_vertices_(basis.topology().num_vertices()) {
+QuadratureSamples quadrature_samples(const LimitBasis& basis, const SamplerOptions& options, Index first_ptex_face,
+                                     Index last_ptex_face) {
     LIMSURF_CHECK(0 <= first_ptex_face && first_ptex_face <= last_ptex_face && last_ptex_face <= basis.num_ptex_faces(),
                   InputError, "ptex faces [", first_ptex_face, ", ", last_ptex_face, ") are not within the ",
                   basis.num_ptex_faces(), " ptex faces of the surface");
     LIMSURF_CHECK(options.subdivide_near_extraordinary >= 0 && options.subdivide_near_extraordinary <= 30, InputError,
                   "tile levels near extraordinary vertices must be in 0..30, not ",
                   options.subdivide_near_extraordinary);
-    const bool quads = domain_ == ParameterDomain::Quad;
+    const bool quads = basis.domain() == ParameterDomain::Quad;
     const int max_degree = quads ? max_square_rule_degree : max_triangle_rule_degree;
     LIMSURF_CHECK(options.degree >= 1 && options.degree <= max_degree, InputError,
                   "the quadrature degree per tile must be in 1..", max_degree, " on ", quads ? "quad" : "triangle",
@@ -195,7 +194,7 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
             continue;
         }
         Tile root;
-        if (domain_ == ParameterDomain::Quad) {
+        if (quads) {
             root.corner = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
             root.num_corners = 4;
         } else {
@@ -215,14 +214,23 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
         }
         place_tiles(rule, root, p, irregular, options.subdivide_near_extraordinary, pending);
     }
-
-    const Index n = static_cast<Index>(pending.size());
-    points_.resize(pending.size());
-    weights_.resize(pending.size());
+    QuadratureSamples samples;
+    samples.points.resize(pending.size());
+    samples.weights.resize(pending.size());
     for (std::size_t s = 0; s < pending.size(); ++s) {
-        points_[s] = pending[s].point;
-        weights_[s] = pending[s].weight;
+        samples.points[s] = pending[s].point;
+        samples.weights[s] = pending[s].weight;
     }
+    return samples;
+}
+
+LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& options, Index first_ptex_face,
+                           Index last_ptex_face)
+    : options_(options), domain_(basis.domain()), num_vertices_(basis.topology().num_vertices()) {
+    QuadratureSamples samples = quadrature_samples(basis, options, first_ptex_face, last_ptex_face);
+    points_ = std::move(samples.points);
+    weights_ = std::move(samples.weights);
+    const Index n = num_samples();
 
     // Evaluate in parallel chunks of samples. Each thread writes its samples' entries into blocks
     // of a fixed capacity, opened as they fill, and the blocks are the storage: nothing is copied
@@ -232,8 +240,8 @@ LimitSampler::LimitSampler(const LimitBasis& basis, const SamplerOptions& option
     const int threads = thread_count(options.num_threads, n);
     const auto chunk_begin = [&](Index c) { return static_cast<Index>(std::int64_t{n} * c / threads); };
     std::vector<std::vector<Block>> per_thread(static_cast<std::size_t>(threads));
-    block_of_.resize(pending.size());
-    offsets_.assign(pending.size() + 1, 0);  // each sample's entry count at s + 1 first
+    block_of_.resize(points_.size());
+    offsets_.assign(points_.size() + 1, 0);  // each sample's entry count at s + 1 first
     run_ranges(threads, threads, [&](Index first_chunk, Index last_chunk) {
         LimitWeights w;
         for (Index c = first_chunk; c < last_chunk; ++c) {
