@@ -138,6 +138,13 @@ def cases(limsurf, np):
         a = mutate(rng, {"load": np.ones(plate.num_vertices)})
         return lambda: limsurf.plate(plate, "catmull-clark", a["load"])
 
+    def rectangle_plate(rng):
+        x, y = rng.random((2, 3, 4))
+        a = mutate(rng, {"x": x, "y": y})
+        waves = (1, 2) if rng.random() < 0.3 else None
+        return lambda: limsurf.rectangle_plate_deflection(1.0, 2.0, a["x"], a["y"], waves=waves,
+                                                          series=str(rng.choice(["levy", "navier"])), tolerance=1e-8)
+
     def tessellate(rng):
         a = mutate(rng, {"X": ico.V})
         return lambda: limsurf.tessellate(ico, "loop", resolution=2, X=a["X"])
@@ -153,7 +160,8 @@ def cases(limsurf, np):
     return [("LimitBasis.evaluate", evaluate), ("LimitBasis.evaluate(out=)", evaluate_out),
             ("LimitBasis.weights", weights), ("LimitBasis.patch", patch), ("Mesh", mesh),
             ("Mesh.with_positions", with_positions), ("volume", volume), ("LimitBasis.limit_positions", limit_positions),
-            ("poisson", poisson), ("geodesic_distance", geodesic), ("plate", plate_load), ("tessellate", tessellate),
+            ("poisson", poisson), ("geodesic_distance", geodesic), ("plate", plate_load),
+            ("rectangle_plate_deflection", rectangle_plate), ("tessellate", tessellate),
             ("one_form_vectors", one_form), ("hodge_decomposition", hodge)]
 
 
