@@ -57,6 +57,11 @@ ColMatrix saddle_matrix(const SparseMatrix& M1, const SparseMatrix& d1, Index sk
     return S;
 }
 
+/// A closed surface of genus 0: no harmonic 1-forms, so no saddle-point system (HodgeDecomposer::Impl).
+bool genus_zero(const Topology& topology) {
+    return topology.is_closed() && topology.euler_characteristic() == 2 && topology.num_faces() > 1;
+}
+
 double m1_norm(const SparseMatrix& M1, const Eigen::VectorXd& a) {
     return std::sqrt(std::max(a.dot(M1 * a), 0.0));
 }
@@ -77,8 +82,26 @@ struct HodgeDecomposer::Impl {
     InnerProducts ip;
     Index pinned_faces = 0;  // 1 on closed surfaces (d1ᵀ 1 = 0 there), else 0
     std::unique_ptr<detail::SparseCholesky> poisson;
+    // A closed surface of genus 0 has no harmonic 1-forms: every closed form is exact, so the
+    // co-exact part is what is left of w after the exact part, and γ solves d1ᵀ γ = M1 δβ (through
+    // d1 d1ᵀ, the dual graph's Laplacian). Other surfaces solve the saddle-point system by LU.
+    std::unique_ptr<detail::SparseCholesky> face_laplacian;  // genus 0: d1 d1ᵀ without face 0
     ColMatrix saddle;
     Eigen::SparseLU<ColMatrix, Eigen::COLAMDOrdering<int>> lu;
+
+    /// γ (#F, mean 0) with d1ᵀ γ = M1 c, on a closed surface of genus 0.
+    Eigen::VectorXd solve_gamma(const Eigen::VectorXd& c) const {
+        const Eigen::VectorXd rhs = d1 * (ip.M1 * c);
+        const Eigen::Index F = rhs.size();
+        Eigen::VectorXd gamma = Eigen::VectorXd::Zero(F);
+        const SparseMatrix dual_laplacian = d1 * SparseMatrix(d1.transpose());
+        for (int pass = 0; pass < 2; ++pass) {  // the second pass: iterative refinement
+            const Eigen::VectorXd r = rhs - dual_laplacian * gamma;
+            gamma.tail(F - 1) += face_laplacian->solve(r.tail(F - 1));
+        }
+        gamma.array() -= gamma.mean();
+        return gamma;
+    }
 
     Eigen::VectorXd solve_alpha(const Eigen::VectorXd& b) const {
         const Eigen::Index n = b.size();
@@ -112,6 +135,12 @@ HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_p
     m.laplacian = m.divergence * m.d0;
     m.poisson = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.laplacian), "the Laplacian d0ᵀ M1 d0");
     m.pinned_faces = topology.is_closed() ? 1 : 0;
+    if (genus_zero(topology)) {
+        const SparseMatrix dual_laplacian = m.d1 * SparseMatrix(m.d1.transpose());
+        m.face_laplacian = std::make_unique<detail::SparseCholesky>(pinned_laplacian(dual_laplacian),
+                                                                    "the dual graph's Laplacian d1 d1ᵀ");
+        return;
+    }
     m.saddle = saddle_matrix(m.ip.M1, m.d1, m.pinned_faces);
     m.lu.analyzePattern(m.saddle);
     m.lu.factorize(m.saddle);
@@ -143,6 +172,12 @@ HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& w) const {
     p.alpha = m.solve_alpha(m.divergence * w);
     p.alpha.array() -= p.alpha.mean();
     p.exact = m.d0 * p.alpha;
+    if (m.face_laplacian) {  // genus 0: no harmonic part
+        p.coexact = w - p.exact;
+        p.gamma = m.solve_gamma(p.coexact);
+        p.harmonic = Eigen::VectorXd::Zero(E);
+        return p;
+    }
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(E + F - m.pinned_faces);
     rhs.tail(F - m.pinned_faces) = (m.d1 * w).tail(F - m.pinned_faces);
     const Eigen::VectorXd x = m.solve_saddle(rhs);
@@ -299,7 +334,9 @@ HodgeResult hodge_decomposition(const Topology& topology, const Points& X0, Sche
         topology, control_inner_products(topology, X0, scheme, options.inner_products, options.scheme_options));
     HodgeResult r;
     r.parts = dec.decompose(w);
-    r.solver = std::string(detail::SparseCholesky::name()) + " + sparse LU (saddle point)";
+    r.solver = std::string(detail::SparseCholesky::name()) +
+               (genus_zero(topology) ? " (genus 0: δβ = w − dα, γ by the dual graph's Laplacian)"
+                                     : " + sparse LU (saddle point)");
     measure(r, dec, w);
     r.genus = static_cast<int>(topology.genus());
     r.boundary_loops = topology.num_boundary_loops();
