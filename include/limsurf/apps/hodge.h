@@ -57,6 +57,10 @@ class HodgeDecomposer {
     [[nodiscard]] const InnerProducts& inner_products() const noexcept;
     [[nodiscard]] const SparseMatrix& d0() const noexcept;
     [[nodiscard]] const SparseMatrix& d1() const noexcept;
+    /// @brief Whether the co-exact part comes from the saddle-point system [[M1, d1ᵀ], [d1, 0]] (sparse
+    ///   LU: surfaces with boundary); on closed surfaces it is w − dα less its projection on a harmonic
+    ///   basis from tree–cotree generators, and γ comes from the dual graph's Laplacian (Cholesky).
+    [[nodiscard]] bool solves_saddle_point_system() const noexcept;
 
   private:
     struct Impl;

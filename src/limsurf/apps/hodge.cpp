@@ -57,9 +57,82 @@ ColMatrix saddle_matrix(const SparseMatrix& M1, const SparseMatrix& d1, Index sk
     return S;
 }
 
-/// A closed surface of genus 0: no harmonic 1-forms, so no saddle-point system (HodgeDecomposer::Impl).
-bool genus_zero(const Topology& topology) {
-    return topology.is_closed() && topology.euler_characteristic() == 2 && topology.num_faces() > 1;
+/// @brief 2g closed 1-forms on a closed surface that span its cohomology (tree–cotree: a spanning tree T
+///   of the vertices, a spanning tree C of the faces across edges not in T, and the 2g edges left over;
+///   generator i is 1 on left-over edge i, 0 on T and the other left-over edges, and on C whatever makes
+///   every face's d1 vanish, found from the leaves of C to its root). Each is non-exact: its integral
+///   around the loop that its edge closes through T is 1.
+/// @return empty when the construction does not apply (a face meeting one edge twice), with @p ok false
+Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1, bool& ok) {
+    ok = false;
+    const Index V = t.num_vertices(), E = t.num_edges(), F = t.num_faces();
+    std::vector<char> in_tree(static_cast<std::size_t>(E), 0);
+    std::vector<char> seen(static_cast<std::size_t>(V), 0);
+    std::vector<Index> queue{0};
+    seen[0] = 1;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        for (const Index e : t.vertex_edges(queue[head])) {
+            for (const Index v : t.edge_vertices(e)) {
+                if (!seen[static_cast<std::size_t>(v)]) {
+                    seen[static_cast<std::size_t>(v)] = 1;
+                    in_tree[static_cast<std::size_t>(e)] = 1;
+                    queue.push_back(v);
+                }
+            }
+        }
+    }
+    // The cotree: faces in breadth-first order, each (but the root) with the edge to its parent.
+    std::vector<Index> order{0}, parent_edge(static_cast<std::size_t>(F), -1);
+    std::vector<char> reached(static_cast<std::size_t>(F), 0), in_cotree(static_cast<std::size_t>(E), 0);
+    reached[0] = 1;
+    for (std::size_t head = 0; head < order.size(); ++head) {
+        const Index f = order[head];
+        for (const Index e : t.face_edges(f)) {
+            if (in_tree[static_cast<std::size_t>(e)]) {
+                continue;
+            }
+            for (const Index g : t.edge_faces(e)) {
+                if (g != invalid_index && g != f && !reached[static_cast<std::size_t>(g)]) {
+                    reached[static_cast<std::size_t>(g)] = 1;
+                    parent_edge[static_cast<std::size_t>(g)] = e;
+                    in_cotree[static_cast<std::size_t>(e)] = 1;
+                    order.push_back(g);
+                }
+            }
+        }
+    }
+    std::vector<Index> left;
+    for (Index e = 0; e < E; ++e) {
+        if (!in_tree[static_cast<std::size_t>(e)] && !in_cotree[static_cast<std::size_t>(e)]) {
+            left.push_back(e);
+        }
+    }
+    if (static_cast<Index>(order.size()) != F || static_cast<Index>(left.size()) != 2 - t.euler_characteristic()) {
+        return {};
+    }
+    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(E, static_cast<Eigen::Index>(left.size()));
+    for (std::size_t i = 0; i < left.size(); ++i) {
+        auto z = Z.col(static_cast<Eigen::Index>(i));
+        z[left[i]] = 1.0;
+        for (std::size_t k = order.size() - 1; k > 0; --k) {  // leaves first; the root balances itself
+            const Index f = order[k];
+            const Index p = parent_edge[static_cast<std::size_t>(f)];
+            double rest = 0.0, own = 0.0;
+            for (SparseMatrix::InnerIterator it(d1, f); it; ++it) {
+                if (it.col() == p) {
+                    own += it.value();
+                } else {
+                    rest += it.value() * z[it.col()];
+                }
+            }
+            if (std::abs(own) != 1.0) {  // the parent edge twice in this face: not this construction
+                return {};
+            }
+            z[p] = -rest / own;
+        }
+    }
+    ok = true;
+    return Z;
 }
 
 double m1_norm(const SparseMatrix& M1, const Eigen::VectorXd& a) {
@@ -82,10 +155,13 @@ struct HodgeDecomposer::Impl {
     InnerProducts ip;
     Index pinned_faces = 0;  // 1 on closed surfaces (d1ᵀ 1 = 0 there), else 0
     std::unique_ptr<detail::SparseCholesky> poisson;
-    // A closed surface of genus 0 has no harmonic 1-forms: every closed form is exact, so the
-    // co-exact part is what is left of w after the exact part, and γ solves d1ᵀ γ = M1 δβ (through
-    // d1 d1ᵀ, the dual graph's Laplacian). Other surfaces solve the saddle-point system by LU.
-    std::unique_ptr<detail::SparseCholesky> face_laplacian;  // genus 0: d1 d1ᵀ without face 0
+    // On a closed surface the closed 1-forms are the exact ones plus the 2g harmonic ones, M1-orthogonal:
+    // the co-exact part is what is left of w after its exact part and its projection on an
+    // M1-orthonormal harmonic basis H, and γ solves d1ᵀ γ = M1 δβ (through d1 d1ᵀ, the dual graph's
+    // Laplacian). H: the cohomology generators less their exact parts. Surfaces with boundary solve the
+    // saddle-point system by LU.
+    std::unique_ptr<detail::SparseCholesky> face_laplacian;  // closed: d1 d1ᵀ without face 0
+    Eigen::MatrixXd harmonic;                                // closed: H, #E × 2g
     ColMatrix saddle;
     Eigen::SparseLU<ColMatrix, Eigen::COLAMDOrdering<int>> lu;
 
@@ -135,10 +211,26 @@ HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_p
     m.laplacian = m.divergence * m.d0;
     m.poisson = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.laplacian), "the Laplacian d0ᵀ M1 d0");
     m.pinned_faces = topology.is_closed() ? 1 : 0;
-    if (genus_zero(topology)) {
+    bool generators = false;
+    Eigen::MatrixXd Z;
+    if (topology.is_closed() && topology.num_faces() > 1) {
+        Z = cohomology_generators(topology, m.d1, generators);
+    }
+    if (generators) {
         const SparseMatrix dual_laplacian = m.d1 * SparseMatrix(m.d1.transpose());
         m.face_laplacian = std::make_unique<detail::SparseCholesky>(pinned_laplacian(dual_laplacian),
                                                                     "the dual graph's Laplacian d1 d1ᵀ");
+        for (Eigen::Index i = 0; i < Z.cols(); ++i) {  // each generator less its exact part
+            Z.col(i) -= m.d0 * m.solve_alpha(m.divergence * Z.col(i));
+        }
+        for (int pass = 0; pass < 2; ++pass) {  // M1-orthonormal (twice: Cholesky–QR loses orthogonality once)
+            const Eigen::MatrixXd gram = Z.transpose() * (m.ip.M1 * Z);
+            const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (gram + gram.transpose()));
+            LIMSURF_CHECK(llt.info() == Eigen::Success, NumericalError,
+                          "the harmonic 1-forms' Gram matrix in M1 is not positive definite (degenerate geometry?)");
+            Z = llt.matrixU().solve<Eigen::OnTheRight>(Z);
+        }
+        m.harmonic = std::move(Z);
         return;
     }
     m.saddle = saddle_matrix(m.ip.M1, m.d1, m.pinned_faces);
@@ -161,6 +253,9 @@ const SparseMatrix& HodgeDecomposer::d0() const noexcept {
 const SparseMatrix& HodgeDecomposer::d1() const noexcept {
     return impl_->d1;
 }
+bool HodgeDecomposer::solves_saddle_point_system() const noexcept {
+    return !impl_->face_laplacian;
+}
 
 HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& w) const {
     const Impl& m = *impl_;
@@ -172,10 +267,11 @@ HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& w) const {
     p.alpha = m.solve_alpha(m.divergence * w);
     p.alpha.array() -= p.alpha.mean();
     p.exact = m.d0 * p.alpha;
-    if (m.face_laplacian) {  // genus 0: no harmonic part
-        p.coexact = w - p.exact;
+    if (m.face_laplacian) {  // closed: w − dα less its harmonic projection
+        const Eigen::VectorXd rest = w - p.exact;
+        p.harmonic = m.harmonic * (m.harmonic.transpose() * (m.ip.M1 * rest));
+        p.coexact = rest - p.harmonic;
         p.gamma = m.solve_gamma(p.coexact);
-        p.harmonic = Eigen::VectorXd::Zero(E);
         return p;
     }
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(E + F - m.pinned_faces);
@@ -335,8 +431,8 @@ HodgeResult hodge_decomposition(const Topology& topology, const Points& X0, Sche
     HodgeResult r;
     r.parts = dec.decompose(w);
     r.solver = std::string(detail::SparseCholesky::name()) +
-               (genus_zero(topology) ? " (genus 0: δβ = w − dα, γ by the dual graph's Laplacian)"
-                                     : " + sparse LU (saddle point)");
+               (dec.solves_saddle_point_system() ? " + sparse LU (saddle point)"
+                                                 : " (closed: δβ = w − dα − h, h on a tree–cotree basis)");
     measure(r, dec, w);
     r.genus = static_cast<int>(topology.genus());
     r.boundary_loops = topology.num_boundary_loops();
