@@ -35,6 +35,18 @@ SparseMatrix pinned_laplacian(const SparseMatrix& L) {
     return R;
 }
 
+/// x with L x = b and x_0 = 0 (a Laplacian's constant null space pinned), through @p pinned, the factor
+/// of L without row and column 0, with one step of iterative refinement.
+Eigen::VectorXd solve_pinned(const SparseMatrix& L, const detail::SparseCholesky& pinned, const Eigen::VectorXd& b) {
+    const Eigen::Index n = b.size();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    for (int pass = 0; pass < 2; ++pass) {  // the second pass: iterative refinement
+        const Eigen::VectorXd r = b - L * x;
+        x.tail(n - 1) += pinned.solve(r.tail(n - 1));
+    }
+    return x;
+}
+
 /// [[M1, d1rᵀ], [d1r, 0]] with d1r = d1 without its first @p skip rows.
 ColMatrix saddle_matrix(const SparseMatrix& M1, const SparseMatrix& d1, Index skip) {
     const Index E = static_cast<Index>(M1.rows());
@@ -160,34 +172,20 @@ struct HodgeDecomposer::Impl {
     // M1-orthonormal harmonic basis H, and γ solves d1ᵀ γ = M1 δβ (through d1 d1ᵀ, the dual graph's
     // Laplacian). H: the cohomology generators less their exact parts. Surfaces with boundary solve the
     // saddle-point system by LU.
+    SparseMatrix dual_laplacian;                             // closed: d1 d1ᵀ
     std::unique_ptr<detail::SparseCholesky> face_laplacian;  // closed: d1 d1ᵀ without face 0
     Eigen::MatrixXd harmonic;                                // closed: H, #E × 2g
     ColMatrix saddle;
     Eigen::SparseLU<ColMatrix, Eigen::COLAMDOrdering<int>> lu;
 
-    /// γ (#F, mean 0) with d1ᵀ γ = M1 c, on a closed surface of genus 0.
+    /// γ (#F, mean 0) with d1ᵀ γ = M1 c, on a closed surface (c co-exact, so the system is consistent).
     Eigen::VectorXd solve_gamma(const Eigen::VectorXd& c) const {
-        const Eigen::VectorXd rhs = d1 * (ip.M1 * c);
-        const Eigen::Index F = rhs.size();
-        Eigen::VectorXd gamma = Eigen::VectorXd::Zero(F);
-        const SparseMatrix dual_laplacian = d1 * SparseMatrix(d1.transpose());
-        for (int pass = 0; pass < 2; ++pass) {  // the second pass: iterative refinement
-            const Eigen::VectorXd r = rhs - dual_laplacian * gamma;
-            gamma.tail(F - 1) += face_laplacian->solve(r.tail(F - 1));
-        }
+        Eigen::VectorXd gamma = solve_pinned(dual_laplacian, *face_laplacian, d1 * (ip.M1 * c));
         gamma.array() -= gamma.mean();
         return gamma;
     }
 
-    Eigen::VectorXd solve_alpha(const Eigen::VectorXd& b) const {
-        const Eigen::Index n = b.size();
-        Eigen::VectorXd alpha = Eigen::VectorXd::Zero(n);
-        for (int pass = 0; pass < 2; ++pass) {  // the second pass: iterative refinement
-            const Eigen::VectorXd r = b - laplacian * alpha;
-            alpha.tail(n - 1) += poisson->solve(r.tail(n - 1));
-        }
-        return alpha;
-    }
+    Eigen::VectorXd solve_alpha(const Eigen::VectorXd& b) const { return solve_pinned(laplacian, *poisson, b); }
 
     Eigen::VectorXd solve_saddle(const Eigen::VectorXd& rhs) const {
         Eigen::VectorXd x = lu.solve(rhs);
@@ -217,8 +215,8 @@ HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_p
         Z = cohomology_generators(topology, m.d1, generators);
     }
     if (generators) {
-        const SparseMatrix dual_laplacian = m.d1 * SparseMatrix(m.d1.transpose());
-        m.face_laplacian = std::make_unique<detail::SparseCholesky>(pinned_laplacian(dual_laplacian),
+        m.dual_laplacian = m.d1 * SparseMatrix(m.d1.transpose());
+        m.face_laplacian = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.dual_laplacian),
                                                                     "the dual graph's Laplacian d1 d1ᵀ");
         for (Eigen::Index i = 0; i < Z.cols(); ++i) {  // each generator less its exact part
             Z.col(i) -= m.d0 * m.solve_alpha(m.divergence * Z.col(i));
