@@ -45,8 +45,11 @@ struct HodgeParts {
 /// Factorises once for one mesh and inner products; then each decompose() is a few back-substitutions.
 class HodgeDecomposer {
   public:
-    /// @throws InputError when the matrices do not fit the topology or the mesh is not connected (naming
-    ///   the component count); NumericalError when a factorisation fails (degenerate geometry)
+    /// @details Factorises the Laplacians d0ᵀ M1 d0 and d1 d1ᵀ, and builds an M1-orthonormal basis of the
+    ///   b1 harmonic 1-forms from tree–cotree cohomology generators (docs/guide/hodge.md).
+    /// @throws InputError when the matrices do not fit the topology, the mesh is not connected (naming
+    ///   the component count) or a face meets one edge twice; NumericalError when a factorisation fails
+    ///   (degenerate geometry)
     HodgeDecomposer(const Topology& topology, InnerProducts inner_products);
     ~HodgeDecomposer();
     HodgeDecomposer(HodgeDecomposer&&) noexcept;
@@ -57,10 +60,6 @@ class HodgeDecomposer {
     [[nodiscard]] const InnerProducts& inner_products() const noexcept;
     [[nodiscard]] const SparseMatrix& d0() const noexcept;
     [[nodiscard]] const SparseMatrix& d1() const noexcept;
-    /// @brief Whether the co-exact part comes from the saddle-point system [[M1, d1ᵀ], [d1, 0]] (sparse
-    ///   LU: surfaces with boundary); on closed surfaces it is w − dα less its projection on a harmonic
-    ///   basis from tree–cotree generators, and γ comes from the dual graph's Laplacian (Cholesky).
-    [[nodiscard]] bool solves_saddle_point_system() const noexcept;
 
   private:
     struct Impl;

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
-#include <Eigen/SparseLU>
 
 #include "limsurf/core/error.h"
 #include "limsurf/detail/sparse_cholesky.h"
@@ -16,8 +16,6 @@
 
 namespace limsurf {
 namespace {
-
-using ColMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
 
 /// The Laplacian d0ᵀ M1 d0 without row and column 0 (the pinned vertex).
 SparseMatrix pinned_laplacian(const SparseMatrix& L) {
@@ -35,48 +33,29 @@ SparseMatrix pinned_laplacian(const SparseMatrix& L) {
     return R;
 }
 
-/// x with L x = b and x_0 = 0 (a Laplacian's constant null space pinned), through @p pinned, the factor
-/// of L without row and column 0, with one step of iterative refinement.
-Eigen::VectorXd solve_pinned(const SparseMatrix& L, const detail::SparseCholesky& pinned, const Eigen::VectorXd& b) {
+/// x with L x = b through @p factor, with one step of iterative refinement; with @p pin, x_0 = 0 (a
+/// Laplacian's constant null space pinned) and @p factor is that of L without row and column 0.
+Eigen::VectorXd solve_pinned(const SparseMatrix& L, const detail::SparseCholesky& factor, const Eigen::VectorXd& b,
+                             bool pin = true) {
     const Eigen::Index n = b.size();
+    const Eigen::Index skip = pin ? 1 : 0;
     Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
     for (int pass = 0; pass < 2; ++pass) {  // the second pass: iterative refinement
         const Eigen::VectorXd r = b - L * x;
-        x.tail(n - 1) += pinned.solve(r.tail(n - 1));
+        x.tail(n - skip) += factor.solve(r.tail(n - skip));
     }
     return x;
 }
 
-/// [[M1, d1rᵀ], [d1r, 0]] with d1r = d1 without its first @p skip rows.
-ColMatrix saddle_matrix(const SparseMatrix& M1, const SparseMatrix& d1, Index skip) {
-    const Index E = static_cast<Index>(M1.rows());
-    const Index F = static_cast<Index>(d1.rows()) - skip;
-    std::vector<Eigen::Triplet<double>> tr;
-    for (Index i = 0; i < E; ++i) {
-        for (SparseMatrix::InnerIterator it(M1, i); it; ++it) {
-            tr.emplace_back(i, static_cast<Index>(it.col()), it.value());
-        }
-    }
-    for (Index f = 0; f < F; ++f) {
-        for (SparseMatrix::InnerIterator it(d1, f + skip); it; ++it) {
-            tr.emplace_back(E + f, static_cast<Index>(it.col()), it.value());
-            tr.emplace_back(static_cast<Index>(it.col()), E + f, it.value());
-        }
-    }
-    ColMatrix S(E + F, E + F);
-    S.setFromTriplets(tr.begin(), tr.end());
-    S.makeCompressed();
-    return S;
-}
-
-/// @brief 2g closed 1-forms on a closed surface that span its cohomology (tree–cotree: a spanning tree T
-///   of the vertices, a spanning tree C of the faces across edges not in T, and the 2g edges left over;
+/// @brief b1 closed 1-forms that span the surface's cohomology, b1 = 2g closed and 2g + b − 1 with b
+///   boundary loops (tree–cotree: a spanning tree T of the vertices, a spanning tree C of the faces
+///   across edges not in T, rooted outside across the boundary, and the b1 edges left over;
 ///   generator i is 1 on left-over edge i, 0 on T and the other left-over edges, and on C whatever makes
 ///   every face's d1 vanish, found from the leaves of C to its root). Each is non-exact: its integral
 ///   around the loop that its edge closes through T is 1.
-/// @return empty when the construction does not apply (a face meeting one edge twice), with @p ok false
-Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1, bool& ok) {
-    ok = false;
+/// @throws InputError naming a face that meets one edge twice (the construction needs distinct edges;
+///   validated meshes, whose faces repeat no vertex, have them)
+Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1) {
     const Index V = t.num_vertices(), E = t.num_edges(), F = t.num_faces();
     std::vector<char> in_tree(static_cast<std::size_t>(E), 0);
     std::vector<char> seen(static_cast<std::size_t>(V), 0);
@@ -93,10 +72,27 @@ Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1,
             }
         }
     }
-    // The cotree: faces in breadth-first order, each (but the root) with the edge to its parent.
-    std::vector<Index> order{0}, parent_edge(static_cast<std::size_t>(F), -1);
+    // The cotree: faces in breadth-first order, each (but a closed surface's root, face 0) with the
+    // edge to its parent. With boundary the root is the outside, whose children are the faces along
+    // boundary edges not in T (every boundary loop has one: T has no cycle), and it has no d1 row.
+    const bool closed = t.is_closed();
+    std::vector<Index> order, parent_edge(static_cast<std::size_t>(F), -1);
     std::vector<char> reached(static_cast<std::size_t>(F), 0), in_cotree(static_cast<std::size_t>(E), 0);
-    reached[0] = 1;
+    if (closed) {
+        order.push_back(0);
+        reached[0] = 1;
+    } else {
+        for (Index e = 0; e < E; ++e) {
+            const Index f = t.edge_faces(e)[0];
+            if (t.is_boundary_edge(e) && !in_tree[static_cast<std::size_t>(e)] &&
+                !reached[static_cast<std::size_t>(f)]) {
+                reached[static_cast<std::size_t>(f)] = 1;
+                parent_edge[static_cast<std::size_t>(f)] = e;
+                in_cotree[static_cast<std::size_t>(e)] = 1;
+                order.push_back(f);
+            }
+        }
+    }
     for (std::size_t head = 0; head < order.size(); ++head) {
         const Index f = order[head];
         for (const Index e : t.face_edges(f)) {
@@ -119,14 +115,16 @@ Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1,
             left.push_back(e);
         }
     }
-    if (static_cast<Index>(order.size()) != F || static_cast<Index>(left.size()) != 2 - t.euler_characteristic()) {
-        return {};
+    const Index betti = (closed ? 2 : 1) - t.euler_characteristic();
+    if (static_cast<Index>(order.size()) != F || static_cast<Index>(left.size()) != betti) {  // checked always
+        throw std::logic_error(detail::concat("limsurf bug: tree–cotree reached ", order.size(), " of ", F,
+                                              " faces and left ", left.size(), " edges for b1 = ", betti));
     }
     Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(E, static_cast<Eigen::Index>(left.size()));
     for (std::size_t i = 0; i < left.size(); ++i) {
         auto z = Z.col(static_cast<Eigen::Index>(i));
         z[left[i]] = 1.0;
-        for (std::size_t k = order.size() - 1; k > 0; --k) {  // leaves first; the root balances itself
+        for (std::size_t k = order.size(); k-- > (closed ? 1 : 0);) {  // leaves first; a root face balances itself
             const Index f = order[k];
             const Index p = parent_edge[static_cast<std::size_t>(f)];
             double rest = 0.0, own = 0.0;
@@ -137,13 +135,13 @@ Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1,
                     rest += it.value() * z[it.col()];
                 }
             }
-            if (std::abs(own) != 1.0) {  // the parent edge twice in this face: not this construction
-                return {};
-            }
+            LIMSURF_CHECK(std::abs(own) == 1.0, InputError,
+                          "the Hodge decomposition needs faces whose edges are "
+                          "distinct: face ",
+                          f, " meets edge ", p, " twice");
             z[p] = -rest / own;
         }
     }
-    ok = true;
     return Z;
 }
 
@@ -167,31 +165,25 @@ struct HodgeDecomposer::Impl {
     InnerProducts ip;
     Index pinned_faces = 0;  // 1 on closed surfaces (d1ᵀ 1 = 0 there), else 0
     std::unique_ptr<detail::SparseCholesky> poisson;
-    // On a closed surface the closed 1-forms are the exact ones plus the 2g harmonic ones, M1-orthogonal:
-    // the co-exact part is what is left of w after its exact part and its projection on an
-    // M1-orthonormal harmonic basis H, and γ solves d1ᵀ γ = M1 δβ (through d1 d1ᵀ, the dual graph's
-    // Laplacian). H: the cohomology generators less their exact parts. Surfaces with boundary solve the
-    // saddle-point system by LU.
-    SparseMatrix dual_laplacian;                             // closed: d1 d1ᵀ
-    std::unique_ptr<detail::SparseCholesky> face_laplacian;  // closed: d1 d1ᵀ without face 0
-    Eigen::MatrixXd harmonic;                                // closed: H, #E × 2g
-    ColMatrix saddle;
-    Eigen::SparseLU<ColMatrix, Eigen::COLAMDOrdering<int>> lu;
+    // The closed 1-forms are the exact ones plus the b1 harmonic ones, M1-orthogonal: the co-exact part
+    // is what is left of w after its exact part and its projection on an M1-orthonormal harmonic basis
+    // H, and γ solves d1ᵀ γ = M1 δβ (through d1 d1ᵀ, the dual graph's Laplacian). H: the cohomology
+    // generators less their exact parts. (Until 2026-12-07 the co-exact part came from the saddle-point
+    // system [[M1, d1ᵀ], [d1, 0]] by sparse LU, whose fill made it 20× slower at 20 000 faces.)
+    SparseMatrix dual_laplacian;                             // d1 d1ᵀ
+    std::unique_ptr<detail::SparseCholesky> face_laplacian;  // its factor (without face 0 when closed)
+    Eigen::MatrixXd harmonic;                                // H, #E × b1
 
-    /// γ (#F, mean 0) with d1ᵀ γ = M1 c, on a closed surface (c co-exact, so the system is consistent).
+    /// γ (#F; mean 0 when closed) with d1ᵀ γ = M1 c (c co-exact, so the system is consistent).
     Eigen::VectorXd solve_gamma(const Eigen::VectorXd& c) const {
-        Eigen::VectorXd gamma = solve_pinned(dual_laplacian, *face_laplacian, d1 * (ip.M1 * c));
-        gamma.array() -= gamma.mean();
+        Eigen::VectorXd gamma = solve_pinned(dual_laplacian, *face_laplacian, d1 * (ip.M1 * c), pinned_faces > 0);
+        if (pinned_faces > 0) {
+            gamma.array() -= gamma.mean();
+        }
         return gamma;
     }
 
     Eigen::VectorXd solve_alpha(const Eigen::VectorXd& b) const { return solve_pinned(laplacian, *poisson, b); }
-
-    Eigen::VectorXd solve_saddle(const Eigen::VectorXd& rhs) const {
-        Eigen::VectorXd x = lu.solve(rhs);
-        x += Eigen::VectorXd(lu.solve(Eigen::VectorXd(rhs - saddle * x)));
-        return x;
-    }
 };
 
 HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_products)
@@ -209,33 +201,22 @@ HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_p
     m.laplacian = m.divergence * m.d0;
     m.poisson = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.laplacian), "the Laplacian d0ᵀ M1 d0");
     m.pinned_faces = topology.is_closed() ? 1 : 0;
-    bool generators = false;
-    Eigen::MatrixXd Z;
-    if (topology.is_closed() && topology.num_faces() > 1) {
-        Z = cohomology_generators(topology, m.d1, generators);
+    Eigen::MatrixXd Z = cohomology_generators(topology, m.d1);
+    m.dual_laplacian = m.d1 * SparseMatrix(m.d1.transpose());
+    m.face_laplacian = std::make_unique<detail::SparseCholesky>(m.pinned_faces > 0 ? pinned_laplacian(m.dual_laplacian)
+                                                                                   : m.dual_laplacian,
+                                                                "the dual graph's Laplacian d1 d1ᵀ");
+    for (Eigen::Index i = 0; i < Z.cols(); ++i) {  // each generator less its exact part
+        Z.col(i) -= m.d0 * m.solve_alpha(m.divergence * Z.col(i));
     }
-    if (generators) {
-        m.dual_laplacian = m.d1 * SparseMatrix(m.d1.transpose());
-        m.face_laplacian = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.dual_laplacian),
-                                                                    "the dual graph's Laplacian d1 d1ᵀ");
-        for (Eigen::Index i = 0; i < Z.cols(); ++i) {  // each generator less its exact part
-            Z.col(i) -= m.d0 * m.solve_alpha(m.divergence * Z.col(i));
-        }
-        for (int pass = 0; pass < 2; ++pass) {  // M1-orthonormal (twice: Cholesky–QR loses orthogonality once)
-            const Eigen::MatrixXd gram = Z.transpose() * (m.ip.M1 * Z);
-            const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (gram + gram.transpose()));
-            LIMSURF_CHECK(llt.info() == Eigen::Success, NumericalError,
-                          "the harmonic 1-forms' Gram matrix in M1 is not positive definite (degenerate geometry?)");
-            Z = llt.matrixU().solve<Eigen::OnTheRight>(Z);
-        }
-        m.harmonic = std::move(Z);
-        return;
+    for (int pass = 0; pass < 2; ++pass) {  // M1-orthonormal (twice: Cholesky–QR loses orthogonality once)
+        const Eigen::MatrixXd gram = Z.transpose() * (m.ip.M1 * Z);
+        const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (gram + gram.transpose()));
+        LIMSURF_CHECK(llt.info() == Eigen::Success, NumericalError,
+                      "the harmonic 1-forms' Gram matrix in M1 is not positive definite (degenerate geometry?)");
+        Z = llt.matrixU().solve<Eigen::OnTheRight>(Z);
     }
-    m.saddle = saddle_matrix(m.ip.M1, m.d1, m.pinned_faces);
-    m.lu.analyzePattern(m.saddle);
-    m.lu.factorize(m.saddle);
-    LIMSURF_CHECK(m.lu.info() == Eigen::Success, NumericalError,
-                  "the factorisation of the saddle-point system [[M1, d1ᵀ], [d1, 0]] failed (degenerate geometry?)");
+    m.harmonic = std::move(Z);
 }
 
 HodgeDecomposer::~HodgeDecomposer() = default;
@@ -251,37 +232,21 @@ const SparseMatrix& HodgeDecomposer::d0() const noexcept {
 const SparseMatrix& HodgeDecomposer::d1() const noexcept {
     return impl_->d1;
 }
-bool HodgeDecomposer::solves_saddle_point_system() const noexcept {
-    return !impl_->face_laplacian;
-}
 
 HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& w) const {
     const Impl& m = *impl_;
     const Eigen::Index E = m.d0.rows();
-    const Eigen::Index F = m.d1.rows();
     LIMSURF_CHECK(w.size() == E, InputError, "the 1-form has ", w.size(), " values for ", E, " edges");
     LIMSURF_CHECK(w.allFinite(), InputError, "the 1-form has a non-finite value");
     HodgeParts p;
     p.alpha = m.solve_alpha(m.divergence * w);
     p.alpha.array() -= p.alpha.mean();
     p.exact = m.d0 * p.alpha;
-    if (m.face_laplacian) {  // closed: w − dα less its harmonic projection
-        const Eigen::VectorXd rest = w - p.exact;
-        p.harmonic = m.harmonic * (m.harmonic.transpose() * (m.ip.M1 * rest));
-        p.coexact = rest - p.harmonic;
-        p.gamma = m.solve_gamma(p.coexact);
-        return p;
-    }
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(E + F - m.pinned_faces);
-    rhs.tail(F - m.pinned_faces) = (m.d1 * w).tail(F - m.pinned_faces);
-    const Eigen::VectorXd x = m.solve_saddle(rhs);
-    p.coexact = x.head(E);
-    p.gamma = Eigen::VectorXd::Zero(F);
-    p.gamma.tail(F - m.pinned_faces) = -x.tail(F - m.pinned_faces);
-    if (m.pinned_faces > 0) {
-        p.gamma.array() -= p.gamma.mean();
-    }
-    p.harmonic = w - p.exact - p.coexact;
+    // w − dα less its harmonic projection: what is left is M1-orthogonal to every closed form.
+    const Eigen::VectorXd rest = w - p.exact;
+    p.harmonic = m.harmonic * (m.harmonic.transpose() * (m.ip.M1 * rest));
+    p.coexact = rest - p.harmonic;
+    p.gamma = m.solve_gamma(p.coexact);
     return p;
 }
 
@@ -428,9 +393,7 @@ HodgeResult hodge_decomposition(const Topology& topology, const Points& X0, Sche
         topology, control_inner_products(topology, X0, scheme, options.inner_products, options.scheme_options));
     HodgeResult r;
     r.parts = dec.decompose(w);
-    r.solver = std::string(detail::SparseCholesky::name()) +
-               (dec.solves_saddle_point_system() ? " + sparse LU (saddle point)"
-                                                 : " (closed: δβ = w − dα − h, h on a tree–cotree basis)");
+    r.solver = std::string(detail::SparseCholesky::name()) + " (h on a tree–cotree basis, no saddle point)";
     measure(r, dec, w);
     r.genus = static_cast<int>(topology.genus());
     r.boundary_loops = topology.num_boundary_loops();
