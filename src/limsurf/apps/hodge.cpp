@@ -47,18 +47,10 @@ Eigen::VectorXd solve_pinned(const SparseMatrix& L, const detail::SparseCholesky
     return x;
 }
 
-/// @brief b1 closed 1-forms that span the surface's cohomology, b1 = 2g closed and 2g + b − 1 with b
-///   boundary loops (tree–cotree: a spanning tree T of the vertices, a spanning tree C of the faces
-///   across edges not in T, rooted outside across the boundary, and the b1 edges left over;
-///   generator i is 1 on left-over edge i, 0 on T and the other left-over edges, and on C whatever makes
-///   every face's d1 vanish, found from the leaves of C to its root). Each is non-exact: its integral
-///   around the loop that its edge closes through T is 1.
-/// @throws InputError naming a face that meets one edge twice (the construction needs distinct edges;
-///   validated meshes, whose faces repeat no vertex, have them)
-Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1) {
-    const Index V = t.num_vertices(), E = t.num_edges(), F = t.num_faces();
-    std::vector<char> in_tree(static_cast<std::size_t>(E), 0);
-    std::vector<char> seen(static_cast<std::size_t>(V), 0);
+/// A spanning tree of the vertices (breadth-first from vertex 0): per edge, whether it is in it.
+std::vector<char> vertex_tree(const Topology& t) {
+    std::vector<char> in_tree(static_cast<std::size_t>(t.num_edges()), 0);
+    std::vector<char> seen(static_cast<std::size_t>(t.num_vertices()), 0);
     std::vector<Index> queue{0};
     seen[0] = 1;
     for (std::size_t head = 0; head < queue.size(); ++head) {
@@ -72,61 +64,89 @@ Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1)
             }
         }
     }
-    // The cotree: faces in breadth-first order, each (but a closed surface's root, face 0) with the
-    // edge to its parent. With boundary the root is the outside, whose children are the faces along
-    // boundary edges not in T (every boundary loop has one: T has no cycle), and it has no d1 row.
-    const bool closed = t.is_closed();
-    std::vector<Index> order, parent_edge(static_cast<std::size_t>(F), -1);
-    std::vector<char> reached(static_cast<std::size_t>(F), 0), in_cotree(static_cast<std::size_t>(E), 0);
-    if (closed) {
-        order.push_back(0);
-        reached[0] = 1;
+    return in_tree;
+}
+
+/// A spanning tree of the faces across edges not in the vertex tree: the faces in breadth-first order,
+/// each (but a closed surface's root, face 0) with the edge to its parent. With boundary the root is
+/// the outside, whose children are the faces along boundary edges not in the vertex tree (every
+/// boundary loop has one: a tree has no cycle), and it has no d1 row.
+struct Cotree {
+    std::vector<Index> order;
+    std::vector<Index> parent_edge;  // per face
+    std::vector<char> in_cotree;     // per edge
+};
+
+Cotree face_cotree(const Topology& t, const std::vector<char>& in_tree) {
+    const Index E = t.num_edges(), F = t.num_faces();
+    Cotree c{
+        {}, std::vector<Index>(static_cast<std::size_t>(F), -1), std::vector<char>(static_cast<std::size_t>(E), 0)};
+    std::vector<char> reached(static_cast<std::size_t>(F), 0);
+    const auto reach = [&](Index f, Index across) {
+        reached[static_cast<std::size_t>(f)] = 1;
+        c.parent_edge[static_cast<std::size_t>(f)] = across;
+        if (across >= 0) {
+            c.in_cotree[static_cast<std::size_t>(across)] = 1;
+        }
+        c.order.push_back(f);
+    };
+    if (t.is_closed()) {
+        reach(0, -1);
     } else {
         for (Index e = 0; e < E; ++e) {
             const Index f = t.edge_faces(e)[0];
             if (t.is_boundary_edge(e) && !in_tree[static_cast<std::size_t>(e)] &&
                 !reached[static_cast<std::size_t>(f)]) {
-                reached[static_cast<std::size_t>(f)] = 1;
-                parent_edge[static_cast<std::size_t>(f)] = e;
-                in_cotree[static_cast<std::size_t>(e)] = 1;
-                order.push_back(f);
+                reach(f, e);
             }
         }
     }
-    for (std::size_t head = 0; head < order.size(); ++head) {
-        const Index f = order[head];
+    for (std::size_t head = 0; head < c.order.size(); ++head) {
+        const Index f = c.order[head];
         for (const Index e : t.face_edges(f)) {
             if (in_tree[static_cast<std::size_t>(e)]) {
                 continue;
             }
             for (const Index g : t.edge_faces(e)) {
                 if (g != invalid_index && g != f && !reached[static_cast<std::size_t>(g)]) {
-                    reached[static_cast<std::size_t>(g)] = 1;
-                    parent_edge[static_cast<std::size_t>(g)] = e;
-                    in_cotree[static_cast<std::size_t>(e)] = 1;
-                    order.push_back(g);
+                    reach(g, e);
                 }
             }
         }
     }
+    return c;
+}
+
+/// @brief b1 closed 1-forms that span the surface's cohomology, b1 = 2g closed and 2g + b − 1 with b
+///   boundary loops, by tree–cotree: the edges in neither vertex_tree nor face_cotree are b1; generator
+///   i is 1 on left-over edge i, 0 on the vertex tree and the other left-over edges, and on the cotree
+///   whatever makes every face's d1 vanish, found from the leaves to the root. Each is non-exact: its
+///   integral around the loop that its edge closes through the vertex tree is 1.
+/// @throws InputError naming a face that meets one edge twice (the construction needs distinct edges;
+///   validated meshes, whose faces repeat no vertex, have them)
+Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1) {
+    const std::vector<char> in_tree = vertex_tree(t);
+    const Cotree cotree = face_cotree(t, in_tree);
     std::vector<Index> left;
-    for (Index e = 0; e < E; ++e) {
-        if (!in_tree[static_cast<std::size_t>(e)] && !in_cotree[static_cast<std::size_t>(e)]) {
+    for (Index e = 0; e < t.num_edges(); ++e) {
+        if (!in_tree[static_cast<std::size_t>(e)] && !cotree.in_cotree[static_cast<std::size_t>(e)]) {
             left.push_back(e);
         }
     }
+    const bool closed = t.is_closed();
     const Index betti = (closed ? 2 : 1) - t.euler_characteristic();
-    if (static_cast<Index>(order.size()) != F || static_cast<Index>(left.size()) != betti) {  // checked always
-        throw std::logic_error(detail::concat("limsurf bug: tree–cotree reached ", order.size(), " of ", F,
-                                              " faces and left ", left.size(), " edges for b1 = ", betti));
+    if (static_cast<Index>(cotree.order.size()) != t.num_faces() || static_cast<Index>(left.size()) != betti) {
+        throw std::logic_error(detail::concat("limsurf bug: tree–cotree reached ", cotree.order.size(), " of ",
+                                              t.num_faces(), " faces and left ", left.size(),
+                                              " edges for b1 = ", betti));
     }
-    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(E, static_cast<Eigen::Index>(left.size()));
+    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(t.num_edges(), static_cast<Eigen::Index>(left.size()));
     for (std::size_t i = 0; i < left.size(); ++i) {
         auto z = Z.col(static_cast<Eigen::Index>(i));
         z[left[i]] = 1.0;
-        for (std::size_t k = order.size(); k-- > (closed ? 1 : 0);) {  // leaves first; a root face balances itself
-            const Index f = order[k];
-            const Index p = parent_edge[static_cast<std::size_t>(f)];
+        for (std::size_t k = cotree.order.size(); k-- > (closed ? 1 : 0);) {  // leaves first; a root balances itself
+            const Index f = cotree.order[k];
+            const Index p = cotree.parent_edge[static_cast<std::size_t>(f)];
             double rest = 0.0, own = 0.0;
             for (SparseMatrix::InnerIterator it(d1, f); it; ++it) {
                 if (it.col() == p) {
@@ -136,9 +156,8 @@ Eigen::MatrixXd cohomology_generators(const Topology& t, const SparseMatrix& d1)
                 }
             }
             LIMSURF_CHECK(std::abs(own) == 1.0, InputError,
-                          "the Hodge decomposition needs faces whose edges are "
-                          "distinct: face ",
-                          f, " meets edge ", p, " twice");
+                          "the Hodge decomposition needs faces whose edges are distinct: face ", f, " meets edge ", p,
+                          " twice");
             z[p] = -rest / own;
         }
     }
