@@ -472,7 +472,35 @@ as evaluate().)")
                 }
                 return to_numpy(limit);
             },
-            py::kw_only(), "X"_a = py::none(), "The limit positions of the control vertices (#V × 3).");
+            py::kw_only(), "X"_a = py::none(), "The limit positions of the control vertices (#V × 3).")
+        .def(
+            "quadrature_samples",
+            [](const Basis& b, int degree, int tiles) {
+                QuadratureSamples q;
+                {
+                    const py::gil_scoped_release release;
+                    q = quadrature_samples(b.basis, SamplerOptions{degree, tiles, 0}, 0, b.basis.num_ptex_faces());
+                }
+                const auto n = static_cast<py::ssize_t>(q.points.size());
+                py::array_t<long long> faces(n);
+                py::array_t<double> u = new_vector(n), v = new_vector(n), weights = new_vector(n);
+                for (py::ssize_t i = 0; i < n; ++i) {
+                    const SurfacePoint& p = q.points[static_cast<std::size_t>(i)];
+                    faces.mutable_data()[i] = p.face;
+                    u.mutable_data()[i] = p.u;
+                    v.mutable_data()[i] = p.v;
+                    weights.mutable_data()[i] = q.weights[static_cast<std::size_t>(i)];
+                }
+                return py::dict("faces"_a = faces, "u"_a = u, "v"_a = v, "weights"_a = weights);
+            },
+            py::kw_only(), "degree"_a = 8, "tiles"_a = 0,
+            R"(The quadrature samples limsurf integrates with (measure, the Galerkin matrices): a rule of the
+given degree on every ptex face with a limit surface (Gauss on the unit square, a symmetric rule on the
+triangle), on quadtree tiles `tiles` levels deep towards extraordinary corners, where the surface is
+only piecewise polynomial. Returns 'faces' (int64), 'u', 'v' and the parameter-domain 'weights' (they
+sum to 1 per quad ptex face, 1/2 per triangle): ∫ f dA ≈ Σ weights · f · |∂u x × ∂v x| with the
+derivatives from evaluate(faces, u, v, order=1). Raises InputError for a degree outside the rules'
+range or tiles outside 0..30.)");
 }
 
 }  // namespace limsurf::python

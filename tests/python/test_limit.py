@@ -350,3 +350,20 @@ def test_points_on_faces_without_a_limit_surface_are_named(mesh_path):
             basis.evaluate(faces, np.full(n, 0.5), np.full(n, 0.5), threads=threads)
     with pytest.raises(limsurf.InputError, match=r"^point 5000: "):
         basis.weights(faces, np.full(n, 0.5), np.full(n, 0.5))
+
+
+def test_quadrature_samples_integrate_the_area_that_measure_reports(mesh_path):
+    """The samples measure() integrates with: weights 1 per quad ptex face (1/2 per triangle), and
+    Σ w |∂u x × ∂v x| over them is measure()'s area (the same samples, so to rounding)."""
+    for name, scheme in [("genus2", "catmull-clark"), ("icosahedron", "loop")]:
+        mesh = limsurf.read_mesh(mesh_path(name))
+        basis = limsurf.LimitBasis(mesh, scheme)
+        q = basis.quadrature_samples(degree=7, tiles=3)
+        assert q["faces"].dtype == np.int64 and q["u"].shape == q["weights"].shape == q["faces"].shape
+        per_face = np.bincount(q["faces"], weights=q["weights"], minlength=basis.num_ptex_faces)
+        assert np.allclose(per_face, 1.0 if scheme == "catmull-clark" else 0.5, rtol=0, atol=1e-13)
+        r = basis.evaluate(q["faces"], q["u"], q["v"], order=1, frames=False)
+        area = np.sum(q["weights"] * np.linalg.norm(np.cross(r["du"], r["dv"]), axis=1))
+        assert np.isclose(area, limsurf.measure(mesh, scheme, degree=7, tiles=3)["area"], rtol=1e-12, atol=0)
+    with pytest.raises(limsurf.InputError, match="tile levels"):
+        basis.quadrature_samples(tiles=31)
