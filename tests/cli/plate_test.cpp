@@ -153,6 +153,46 @@ TEST(CliPlate, APlateFarFromItsBoxSkipsNavierAtOnce) {
     EXPECT_LT(seconds, 2.0 * test::time_scale);
 }
 
+TEST(CliPlate, ALongRectangleIsComparedWithTheStripQuickly) {
+    // A 1 × 400 rectangle (4 × 8 quads stretched): the exact deflection is Lévy's series, ~300 terms a
+    // point at any aspect ratio (Navier's double series needed ~10⁶ here); away from the short ends the
+    // plate bends as a strip, w = 5 p a⁴ / (384 D) across its middle.
+    const fs::path path = temp_dir() / "long.obj";
+    {
+        std::ofstream out(path);
+        for (int j = 0; j <= 8; ++j) {
+            for (int i = 0; i <= 4; ++i) {
+                out << "v " << 0.25 * i << ' ' << 50.0 * j << " 0\n";
+            }
+        }
+        for (int j = 0; j < 8; ++j) {
+            for (int i = 0; i < 4; ++i) {
+                const int a = j * 5 + i + 1;
+                out << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+            }
+        }
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun run = limsurf({"plate", path.string(), "--levels", "2", "--json"});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto out = nlohmann::json::parse(run.out);
+    const double D = out.at("bending_rigidity").get<double>();
+    const auto& levels = out.at("levels");
+    ASSERT_EQ(levels.size(), 3u);
+    EXPECT_NEAR(levels[2].at("navier").at("centre_deflection").get<double>(), 5.0 * 1e4 / (384.0 * D), 1e-12 * 1e4 / D)
+        << run.out;
+    // The centre converges fast (measured 5.0e-2, 4.1e-3, 2.7e-5); L2 slowly, the quads 50 long against
+    // the boundary layers at the short ends (0.25, 0.17, 0.11).
+    EXPECT_LT(std::abs(levels[2].at("navier").at("centre_relative_error").get<double>()), 1e-4) << run.out;
+    for (int l = 1; l <= 2; ++l) {
+        EXPECT_LT(levels[l].at("navier").at("l2_relative_error").get<double>(),
+                  levels[l - 1].at("navier").at("l2_relative_error").get<double>())
+            << run.out;
+    }
+    EXPECT_LT(seconds, 2.0 * test::time_scale);
+}
+
 TEST(CliPlate, TableTwoLoadReportsTheQuarterPoint) {
     const CliRun run = limsurf({"plate", square_plate(), "--load", "sinusoidal", "--levels", "2", "--json"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
