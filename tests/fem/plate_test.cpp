@@ -140,6 +140,8 @@ TEST(Plate, LevysSeriesEqualsNaviersAtEveryAspectRatio) {
     EXPECT_NEAR(levy_uniform(5000.0, 1.0, 2.0, 3.0, 2500.0, 0.5), 3.0 * 5.0 / (384.0 * 2.0), 1e-15);
     EXPECT_EQ(levy_uniform(1.0, 5000.0, 1.0, 1.0, 0.5, 0.0), 0.0);
     EXPECT_THROW((void)levy_uniform(1.0, 1.0, 1.0, 1.0, 0.5, 0.5, 0.0), InputError);
+    // A tolerance far below a double's is raised to 1e-17, not summed for ever (10⁷⁵ terms at 1e-300).
+    EXPECT_NEAR(levy_uniform(1.0, 1.0, 1.0, 1.0, 0.5, 0.5, 1e-300), 0.00406235266067505, 1e-16);
 }
 
 struct Level {

@@ -119,6 +119,7 @@ struct PlateSolution {
 ///   load p: (16 p / (π⁶ D)) Σ_{m,n odd} sin(mπx/a) sin(nπy/b) / (m n (m²/a² + n²/b²)²), the terms
 ///   bounded by @p tolerance times the first dropped (the tail is about tolerance relative: 1e-13
 ///   takes about 10⁵ terms, 1e-9 about 10³).
+/// Tolerances below 1e-17 are taken as 1e-17 (doubles gain nothing beyond).
 /// @throws InputError unless 0 < tolerance < 1, a, b, D > 0 and a, b, D, p, x, y finite
 [[nodiscard]] double navier_uniform(double a, double b, double D, double p, double x, double y,
                                     double tolerance = 1e-13);

@@ -310,20 +310,23 @@ void check_rectangle(const char* name, double a, double b, double D, double p, d
                   ": the sides must be positive and finite, got ", a, " and ", b);
     LIMSURF_CHECK(D > 0.0 && std::isfinite(D) && std::isfinite(p), InputError, name,
                   ": D must be positive and finite and p finite, got D = ", D, ", p = ", p);
-    LIMSURF_CHECK(std::isfinite(x) && std::isfinite(y), InputError, name, ": the point must be finite, got (", x,
-                  ", ", y, ")");
+    LIMSURF_CHECK(std::isfinite(x) && std::isfinite(y), InputError, name, ": the point must be finite, got (", x, ", ",
+                  y, ")");
 }
 
-void check_tolerance(const char* name, double tolerance) {
+/// The tolerance checked, and raised to 1e-17: a smaller one gains nothing in doubles and would sum
+/// 10⁷⁵ terms at 1e-300.
+double checked_tolerance(const char* name, double tolerance) {
     LIMSURF_CHECK(tolerance > 0.0 && tolerance < 1.0, InputError, name, ": the tolerance must be in (0, 1), got ",
                   tolerance);
+    return std::max(tolerance, 1e-17);
 }
 
 }  // namespace
 
 double navier_uniform(double a, double b, double D, double p, double x, double y, double tolerance) {
     check_rectangle("navier_uniform", a, b, D, p, x, y);
-    check_tolerance("navier_uniform", tolerance);
+    tolerance = checked_tolerance("navier_uniform", tolerance);
     const double pi = std::numbers::pi;
     // Terms are bounded by 1/(m n q²) with q ≥ m²/a², n²/b²: rows beyond m with a⁴/m⁵ below the
     // tolerance times the first term, and columns beyond n with b⁴/(m n⁵) likewise, are dropped.
@@ -342,7 +345,7 @@ double navier_uniform(double a, double b, double D, double p, double x, double y
 
 double levy_uniform(double a, double b, double D, double p, double x, double y, double tolerance) {
     check_rectangle("levy_uniform", a, b, D, p, x, y);
-    check_tolerance("levy_uniform", tolerance);
+    tolerance = checked_tolerance("levy_uniform", tolerance);
     const double pi = std::numbers::pi;
     if (a > b) {  // the series along the shorter side: its terms then fall like 1/m⁵ from the first
         std::swap(a, b);
