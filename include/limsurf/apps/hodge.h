@@ -5,11 +5,14 @@
 //
 //   exact      dα,          α from the Poisson problem d0ᵀ M1 d0 α = d0ᵀ M1 w (one vertex pinned: the
 //                           constant nullspace), by sparse Cholesky;
-//   co-exact   δβ = M1⁻¹ d1ᵀ γ with (d1 M1⁻¹ d1ᵀ) γ = d1 w. M1⁻¹ is dense (for every method here: the
-//              polygonal M1 is not diagonal either), so γ and x = δβ come from the sparse saddle-point
-//              system [[M1, d1ᵀ], [d1, 0]] [x; −γ] = [0; d1 w] (sparse LU), with one face's γ pinned on
-//              closed surfaces (d1ᵀ 1 = 0 there); one step of iterative refinement;
-//   harmonic   h = w − dα − δβ: d1 h = 0 and d0ᵀ M1 h = 0.
+//   harmonic   h = w's M1-projection on an M1-orthonormal basis H of the harmonic 1-forms, built once
+//              from b1 tree–cotree cohomology generators, each less its exact part: d1 h = 0 and
+//              d0ᵀ M1 h = 0;
+//   co-exact   δβ = w − dα − h = M1⁻¹ d1ᵀ γ, M1-orthogonal to every closed form. M1⁻¹ is dense (for
+//              every method here: the polygonal M1 is not diagonal either), so δβ is not solved for;
+//              γ solves d1ᵀ γ = M1 δβ through d1 d1ᵀ (sparse Cholesky, one face pinned on closed
+//              surfaces, where d1ᵀ 1 = 0), with one step of iterative refinement. (Until 2026-12-07:
+//              the saddle-point system [[M1, d1ᵀ], [d1, 0]] by sparse LU, 4–21× slower.)
 // Orthogonality follows from d1 d0 = 0 alone: ⟨dα, δβ⟩ = αᵀ (d1 d0)ᵀ γ = 0, ⟨dα, h⟩ = αᵀ d0ᵀ M1 h = 0,
 // ⟨δβ, h⟩ = γᵀ d1 h = 0 — up to the solves' residuals, which iterative refinement brings to rounding.
 //
