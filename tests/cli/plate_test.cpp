@@ -46,17 +46,22 @@ void square_vertices(std::ostream& out) {
     }
 }
 
+/// The quads of a grid of nx × ny cells whose (nx + 1) × (ny + 1) vertices come row by row, as OBJ lines.
+void grid_quads(std::ostream& out, int nx, int ny) {
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            const int a = j * (nx + 1) + i + 1;
+            out << "f " << a << ' ' << a + 1 << ' ' << a + nx + 2 << ' ' << a + nx + 1 << '\n';
+        }
+    }
+}
+
 /// The seed's square plate as a 4 × 4 quad grid.
 std::string square_plate() {
     const fs::path path = temp_dir() / "square.obj";
     std::ofstream out(path);
     square_vertices(out);
-    for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) {
-            const int a = j * 5 + i + 1;
-            out << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
-        }
-    }
+    grid_quads(out, 4, 4);
     return path.string();
 }
 
@@ -136,12 +141,7 @@ TEST(CliPlate, APlateFarFromItsBoxSkipsNavierAtOnce) {
                 out << "v " << 2.5 * i << ' ' << 2.5 * j << " 0\n";
             }
         }
-        for (int j = 0; j < 4; ++j) {
-            for (int i = 0; i < 4; ++i) {
-                const int a = j * 5 + i + 1;
-                out << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
-            }
-        }
+        grid_quads(out, 4, 4);
     }
     const auto start = std::chrono::steady_clock::now();
     const CliRun run = limsurf({"plate", path.string(), "--json"});
@@ -165,12 +165,7 @@ TEST(CliPlate, ALongRectangleIsComparedWithTheStripQuickly) {
                 out << "v " << 0.25 * i << ' ' << 50.0 * j << " 0\n";
             }
         }
-        for (int j = 0; j < 8; ++j) {
-            for (int i = 0; i < 4; ++i) {
-                const int a = j * 5 + i + 1;
-                out << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
-            }
-        }
+        grid_quads(out, 4, 8);
     }
     const auto start = std::chrono::steady_clock::now();
     const CliRun run = limsurf({"plate", path.string(), "--levels", "2", "--json"});

@@ -56,8 +56,9 @@ Eigen::Matrix<double, N, 1> reduce(const LimitSampler& sampler, const Points& X,
 }
 
 /// @brief The same sum over the samples a LimitSampler with @p options would place, each sample's
-///   limit weights computed, applied to X and dropped: no storage, and the same bits as reduce()
-///   through a sampler (the same weights, applied in the same order as LimitSampler::evaluate).
+///   limit weights computed, applied to X (LimitWeights::apply) and dropped: no storage, and the same
+///   bits as reduce() through a sampler (the same weights, applied in the same order as
+///   LimitSampler::evaluate).
 template <int N, class F>
 Eigen::Matrix<double, N, 1> reduce(const LimitBasis& basis, const SamplerOptions& options, const Points& X, F term) {
     LIMSURF_CHECK(X.rows() == basis.topology().num_vertices(), InputError, "control points have ", X.rows(),
@@ -69,11 +70,7 @@ Eigen::Matrix<double, N, 1> reduce(const LimitBasis& basis, const SamplerOptions
             return [&, w = LimitWeights()](Index s) mutable {
                 const auto i = static_cast<std::size_t>(s);
                 basis.evaluate(samples.points[i], w, DerivativeOrder::Second);
-                Eigen::Matrix<double, 6, 3> d = Eigen::Matrix<double, 6, 3>::Zero();
-                for (std::size_t k = 0; k < w.vertices.size(); ++k) {
-                    d.noalias() += w.w.col(static_cast<Eigen::Index>(k)) * X.row(w.vertices[k]);
-                }
-                return std::pair(samples.weights[i], d);
+                return std::pair(samples.weights[i], w.apply(X));
             };
         },
         term);
