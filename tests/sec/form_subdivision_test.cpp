@@ -186,11 +186,27 @@ TEST(FormHierarchy, AccumulatedOperatorsCommuteWithD) {
                   1e-13)
             << name;
         EXPECT_EQ(h.accumulated_form(2, 3).rows(), fine.num_faces());
+        // apply_form carries data step by step: the accumulated product's values up to rounding.
+        for (int k = 0; k <= 2; ++k) {
+            const Index n = static_cast<Index>(h.accumulated_form(k, 0).rows());
+            const Eigen::MatrixXd data = Eigen::MatrixXd::Random(n, 2);
+            const Eigen::MatrixXd expected = h.accumulated_form(k, 3) * data;
+            const Eigen::MatrixXd carried = h.apply_form(k, 3, data);
+            ASSERT_EQ(carried.rows(), expected.rows()) << name << " k = " << k;
+            EXPECT_LE((carried - expected).lpNorm<Eigen::Infinity>(), 1e-14 * expected.lpNorm<Eigen::Infinity>())
+                << name << " k = " << k;
+            EXPECT_EQ(h.apply_form(k, 0, data), data) << name << " k = " << k;
+        }
+        EXPECT_THROW((void)h.apply_form(1, 3, Eigen::MatrixXd::Zero(base.num_edges() + 1, 1)), InputError) << name;
+        EXPECT_THROW((void)h.apply_form(2, 4, Eigen::MatrixXd::Zero(base.num_faces(), 1)), InputError) << name;
     }
     const BuildResult cube = read_mesh(test::find_bundled("cube").path);
     const Hierarchy plain(cube.mesh.topology(), RefineOptions{});
     EXPECT_THROW((void)plain.accumulated_form(1, 1), InputError);
     EXPECT_THROW((void)plain.accumulated_form(3, 0), InputError);
+    EXPECT_THROW((void)plain.apply_form(1, 1, Eigen::MatrixXd::Zero(cube.mesh.topology().num_edges(), 1)), InputError);
+    EXPECT_THROW((void)plain.apply_form(3, 0, Eigen::MatrixXd::Zero(8, 1)), InputError);
+    EXPECT_EQ(plain.apply_form(0, 1, Eigen::MatrixXd::Ones(8, 1)), plain.apply(1, Eigen::MatrixXd::Ones(8, 1)));
 }
 
 // --- the rules' values against the reference tables ---------------------------------------------

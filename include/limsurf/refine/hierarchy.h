@@ -136,6 +136,13 @@ class Hierarchy {
     /// S0 products (cheaper than forming A). @throws InputError on a row-count mismatch
     [[nodiscard]] Eigen::MatrixXd apply(int level, const Eigen::MatrixXd& data) const;
 
+    /// k-form data (#V_0, #E_0 or #F_0 rows for k = 0, 1, 2; any number of columns) carried to level
+    /// @p level by successive S_k products: accumulated_form(k, level) · data up to rounding, without
+    /// forming the product matrix (at 327 k triangles it is most of the work). k = 0 is apply().
+    /// @throws InputError when out of range, k is not 0, 1, 2, the forms were not built (k > 0), or
+    ///   on a row-count mismatch
+    [[nodiscard]] Eigen::MatrixXd apply_form(int k, int level, const Eigen::MatrixXd& data) const;
+
     /// Positions at level @p level from control points (#V_0 × 3).
     /// @throws InputError as apply(); NumericalError when finite control points give non-finite
     ///   positions (an overflow, for coordinates near the range of a double)

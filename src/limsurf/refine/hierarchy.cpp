@@ -376,14 +376,28 @@ const SparseMatrix& Hierarchy::accumulated_form(int k, int level) const {
 }
 
 Eigen::MatrixXd Hierarchy::apply(int level, const Eigen::MatrixXd& data) const {
+    return apply_form(0, level, data);
+}
+
+Eigen::MatrixXd Hierarchy::apply_form(int k, int level, const Eigen::MatrixXd& data) const {
     check_level(level, 0);
-    check_rows(base_, data.rows());
+    LIMSURF_CHECK(k >= 0 && k <= 2, InputError, "form degree must be 0, 1 or 2, got ", k);
+    LIMSURF_CHECK(k == 0 || options_.forms || level == 0, InputError, "the ", k,
+                  "-form operators need a hierarchy built with RefineOptions::forms");
+    if (k == 0) {
+        check_rows(base_, data.rows());
+    } else {
+        const Index size = k == 1 ? base_.num_edges() : base_.num_faces();
+        LIMSURF_CHECK(data.rows() == size, InputError, "data has ", data.rows(), " rows but level 0 has ", size,
+                      k == 1 ? " edges" : " faces");
+    }
     Eigen::MatrixXd values = data;
     for (int l = 1; l <= level; ++l) {
-        const SparseMatrix& S0 = step(l).S0;
-        Eigen::MatrixXd next(S0.rows(), values.cols());
+        const Level& s = step(l);
+        const SparseMatrix& S = k == 0 ? s.S0 : k == 1 ? s.S1 : s.S2;
+        Eigen::MatrixXd next(S.rows(), values.cols());
         detail::advise_huge_pages(next.data(), sizeof(double) * static_cast<std::size_t>(next.size()));
-        next.noalias() = S0 * values;  // Eigen's sums, as values = S0 * values would make them
+        next.noalias() = S * values;  // Eigen's sums, as values = S * values would make them
         values.swap(next);
     }
     return values;
