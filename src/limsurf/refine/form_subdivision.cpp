@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "limsurf/core/error.h"
+#include "limsurf/detail/huge_pages.h"
 #include "limsurf/refine/form_rules.h"
 #include "limsurf/refine/refine.h"
 
@@ -57,69 +58,100 @@ void FormRow::add_circulation(const Topology& t, Index f, double w) {
     }
 }
 
-FormAssembler::FormAssembler(const Topology& parent, const Topology& child)
-    : parent_edges_(parent.num_edges()), parent_faces_(parent.num_faces()), child_edges_(child.num_edges()),
-      child_faces_(child.num_faces()), edge_seen_(static_cast<std::size_t>(child.num_edges()), 0),
-      face_seen_(static_cast<std::size_t>(child.num_faces()), 0) {
-    s1_.reserve(static_cast<std::size_t>(child.num_edges()) * 16);
-    s2_.reserve(static_cast<std::size_t>(child.num_faces()) * 6);
+RowStore::RowStore(Index rows, Index cols, std::size_t entries_hint)
+    : rows_(rows), cols_(cols), times_set_(static_cast<std::size_t>(rows), 0) {
+    // Fresh memory faults in page by page (about 10 µs per 4 KiB page on the project's VM): the
+    // large tables are advised for huge pages.
+    detail::assign_huge(first_, static_cast<std::size_t>(rows));
+    detail::assign_huge(count_, static_cast<std::size_t>(rows));
+    detail::reserve_huge(entries_, entries_hint);
 }
 
-void FormAssembler::set_edge_row(DirectedEdge fine, const FormRow& row) {
-    ++edge_seen_[static_cast<std::size_t>(fine.edge)];
-    // A rule names the same coarse edge several times (spokes, diagonals, circulations): merge
-    // them here, so that the triplet list (and its sort) is a few times shorter.
-    merged_.assign(row.entries().begin(), row.entries().end());
-    std::sort(merged_.begin(), merged_.end(), [](const auto& a, const auto& b) { return a.col < b.col; });
-    for (std::size_t i = 0; i < merged_.size();) {
-        double sum = 0.0;
-        const Index col = merged_[i].col;
-        for (; i < merged_.size() && merged_[i].col == col; ++i) {
-            sum += merged_[i].weight;
-        }
-        if (sum != 0.0) {
-            s1_.emplace_back(fine.edge, col, fine.sign * sum);
-        }
-    }
+void RowStore::set_row(Index r, std::span<const FormRow::Entry> entries) {
+    const auto row = static_cast<std::size_t>(r);
+    ++times_set_[row];
+    first_[row] = entries_.size();
+    count_[row] = static_cast<Index>(entries.size());
+    entries_.insert(entries_.end(), entries.begin(), entries.end());
 }
 
-void FormAssembler::set_face_row(Index fine_face, const FormRow& row) {
-    ++face_seen_[static_cast<std::size_t>(fine_face)];
-    for (const auto& entry : row.entries()) {
-        s2_.emplace_back(fine_face, entry.col, entry.weight);
+SparseMatrix RowStore::finish(const char* what) {
+    // Every fine element must get exactly one rule: a gap or a double would be a bug in the rules'
+    // bookkeeping, so it is checked in every build (cheap next to the assembly).
+    for (std::size_t i = 0; i < times_set_.size(); ++i) {
+        if (times_set_[i] != 1) {
+            throw std::logic_error(
+                concat("form subdivision set ", static_cast<int>(times_set_[i]), " rows for child ", what, " ", i));
+        }
     }
+    SparseMatrix m(rows_, cols_);
+    m.resizeNonZeros(static_cast<Eigen::Index>(entries_.size()));
+    advise_huge_pages(m.valuePtr(), sizeof(double) * entries_.size());
+    advise_huge_pages(m.innerIndexPtr(), sizeof(Index) * entries_.size());
+    Index written = 0;
+    for (std::size_t r = 0; r < static_cast<std::size_t>(rows_); ++r) {
+        m.outerIndexPtr()[r] = written;
+        for (std::size_t k = first_[r]; k < first_[r] + static_cast<std::size_t>(count_[r]); ++k) {
+            m.innerIndexPtr()[written] = entries_[k].col;
+            m.valuePtr()[written] = entries_[k].weight;
+            ++written;
+        }
+    }
+    m.outerIndexPtr()[rows_] = written;
+    entries_ = {};
+    return m;
 }
 
 namespace {
 
-/// Every fine element must get exactly one rule: a gap or a double would be a bug in the rules'
-/// bookkeeping, so it is checked in every build (cheap next to the assembly).
-void check_coverage(const std::vector<std::uint8_t>& seen, const char* what) {
-    for (std::size_t i = 0; i < seen.size(); ++i) {
-        if (seen[i] != 1) {
-            throw std::logic_error(
-                concat("form subdivision set ", static_cast<int>(seen[i]), " rows for child ", what, " ", i));
+/// Sums the weights of each column of @p row (sorted by column), in the order they stand, times
+/// @p scale into @p out, leaving out sums of zero: what setFromTriplets and prune(0) made of them.
+void sum_columns(const std::vector<FormRow::Entry>& row, double scale, std::vector<FormRow::Entry>& out) {
+    out.clear();
+    for (std::size_t i = 0; i < row.size();) {
+        double sum = 0.0;
+        const Index col = row[i].col;
+        for (; i < row.size() && row[i].col == col; ++i) {
+            sum += row[i].weight;
+        }
+        if (sum != 0.0) {
+            out.push_back({col, scale * sum});
         }
     }
 }
 
-SparseMatrix build(Index rows, Index cols, const std::vector<Eigen::Triplet<double, Index>>& triplets) {
-    SparseMatrix m(rows, cols);
-    m.setFromTriplets(triplets.begin(), triplets.end());
-    m.prune(0.0);
-    return m;
-}
-
 }  // namespace
 
+FormAssembler::FormAssembler(const Topology& parent, const Topology& child)
+    : s1_(child.num_edges(), parent.num_edges(), static_cast<std::size_t>(child.num_edges()) * 16),
+      s2_(child.num_faces(), parent.num_faces(), static_cast<std::size_t>(child.num_faces()) * 6) {}
+
+void FormAssembler::set_edge_row(DirectedEdge fine, const FormRow& row) {
+    // A rule names the same coarse edge several times (spokes, diagonals, circulations): merged here.
+    merged_.assign(row.entries().begin(), row.entries().end());
+    std::sort(merged_.begin(), merged_.end(), [](const auto& a, const auto& b) { return a.col < b.col; });
+    sum_columns(merged_, fine.sign, sums_);
+    s1_.set_row(fine.edge, sums_);
+}
+
+void FormAssembler::set_face_row(Index fine_face, const FormRow& row) {
+    // Stable (insertion sort; rows are short), so that repeated faces sum in the order they come.
+    merged_.assign(row.entries().begin(), row.entries().end());
+    for (std::size_t i = 1; i < merged_.size(); ++i) {
+        for (std::size_t j = i; j > 0 && merged_[j - 1].col > merged_[j].col; --j) {
+            std::swap(merged_[j - 1], merged_[j]);
+        }
+    }
+    sum_columns(merged_, 1.0, sums_);
+    s2_.set_row(fine_face, sums_);
+}
+
 SparseMatrix FormAssembler::finish_s1() {
-    check_coverage(edge_seen_, "edge");
-    return build(child_edges_, parent_edges_, s1_);
+    return s1_.finish("edge");
 }
 
 SparseMatrix FormAssembler::finish_s2() {
-    check_coverage(face_seen_, "face");
-    return build(child_faces_, parent_faces_, s2_);
+    return s2_.finish("face");
 }
 
 DirectedEdge even_child(const Topology& child, const VertexFan& fan, Index i) {
