@@ -938,6 +938,7 @@ const TemplateChild& LimitBasis::Impl::template_step(const Template& shape, int 
 
 void LimitBasis::Impl::find_fast_patches() {
     fast_index.assign(ptex.size(), -1);
+    fast.reserve(ptex.size());  // most ptex faces are regular: growing by doubling copied them all again
     detail::RegularPatch patch;
     for (std::size_t p = 0; p < ptex.size(); ++p) {
         const Index f = ptex[p].control_face;
