@@ -225,6 +225,10 @@ TEST(VectorFieldTest, MatchesADenseMinimisationBuiltFromOperators) {
         target.head(3) << 0.7, -0.7, -0.3;
         weight << 50.0, 50.0, 20.0, 10.0, 10.0;
         weight /= area;
+        if (!exact) {  // anti_holomorphic_matrix (summed row by row, lumped M0) is this L1
+            const Eigen::MatrixXd built = Eigen::MatrixXd(anti_holomorphic_matrix(t, ops.inner_products()));
+            EXPECT_LT((built - L1).lpNorm<Eigen::Infinity>(), 1e-13 * L1.lpNorm<Eigen::Infinity>()) << to_string(m);
+        }
         const Eigen::MatrixXd N = L1 + A.transpose() * weight.asDiagonal() * A;
         const Eigen::VectorXd w = N.ldlt().solve(A.transpose() * weight.cwiseProduct(target));
         EXPECT_LT((r.w - w).lpNorm<Eigen::Infinity>(), 1e-7 * w.lpNorm<Eigen::Infinity>()) << to_string(m);
