@@ -153,6 +153,49 @@ TEST(SpectralConformal, NormalisationIsDocumented) {
     EXPECT_NEAR(r.uv(first, 1), 0.0, 1e-12 * r.uv(first, 0));
 }
 
+TEST(SpectralConformal, PulledBackAreaFormIsTheFineBoundarysFormThroughTheWholeOperator) {
+    // A_s = diag(A^L, A^L)ᵀ A_s^L diag(A^L, A^L) with the whole accumulated operator, as written: the
+    // library carries only the level-L boundary rows of A^L, from the left.
+    for (const auto& [name, scheme] :
+         {std::pair{"shell_hemisphere", SchemeKind::CatmullClark}, std::pair{"annulus", SchemeKind::CatmullClark},
+          std::pair{"disk_ev7_tris", SchemeKind::Loop}}) {
+        const ControlMesh mesh = bundled(name);
+        const int level = 2;
+        const ConformalSystem system = conformal_system(mesh, scheme, options_for(IPM::Sec, level, Free));
+        RefineOptions refine;
+        refine.scheme = scheme;
+        refine.levels = level;
+        const Hierarchy h(mesh.topology(), refine);
+        const Topology& fine = h.topology(level);
+        const Index n = fine.num_vertices();
+        std::vector<Eigen::Triplet<double>> form;  // ½ Σ (u_i v_j − u_j v_i) over boundary edges i → j
+        for (Index loop = 0; loop < fine.num_boundary_loops(); ++loop) {
+            const auto b = fine.boundary_loop(loop);
+            for (std::size_t k = 0; k < b.size(); ++k) {
+                const Index i = b[k];
+                const Index j = b[(k + 1) % b.size()];
+                form.insert(form.end(), {{i, n + j, 0.5}, {n + j, i, 0.5}, {j, n + i, -0.5}, {n + i, j, -0.5}});
+            }
+        }
+        SparseMatrix AL(2 * n, 2 * n);
+        AL.setFromTriplets(form.begin(), form.end());
+        const SparseMatrix& A = h.accumulated(level);
+        std::vector<Eigen::Triplet<double>> blocks;
+        for (Index r = 0; r < n; ++r) {
+            for (SparseMatrix::InnerIterator it(A, r); it; ++it) {
+                blocks.insert(blocks.end(), {{r, static_cast<Index>(it.col()), it.value()},
+                                             {n + r, static_cast<Index>(A.cols() + it.col()), it.value()}});
+            }
+        }
+        SparseMatrix A2(2 * n, 2 * A.cols());
+        A2.setFromTriplets(blocks.begin(), blocks.end());
+        const Eigen::MatrixXd expected = Eigen::MatrixXd(SparseMatrix(SparseMatrix(A2.transpose()) * (AL * A2)));
+        EXPECT_LT((Eigen::MatrixXd(system.area) - expected).lpNorm<Eigen::Infinity>(),
+                  1e-14 * expected.lpNorm<Eigen::Infinity>())
+            << name;
+    }
+}
+
 TEST(SpectralConformal, EigenResidualAndRayleighQuotient) {
     const ControlMesh mesh = bundled("shell_hemisphere");
     for (const auto& [method, level] : std::vector<std::pair<IPM, int>>{{IPM::Dec, 0}, {IPM::Sec, 2}}) {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -49,15 +50,15 @@ void check_parameterizable(const Topology& t, const ParameterizationOptions& opt
                   "similarity)");
 }
 
-/// A_s with A(U) = ½ Uᵀ A_s U = ½ Σ_{boundary edges i→j} (u_i v_j − u_j v_i), U = (u; v).
-SparseMatrix boundary_area_form(const Topology& t) {
-    const Index n = t.num_vertices();
+/// A_s with A(U) = ½ Uᵀ A_s U = ½ Σ_{boundary edges i→j} (u_i v_j − u_j v_i), U = (u; v), over the
+/// vertices numbered by @p slot (vertex → 0..n−1; every boundary vertex must have a number).
+SparseMatrix boundary_area_form(const Topology& t, const std::vector<Index>& slot, Index n) {
     Triplets triplets;
     for (Index loop = 0; loop < t.num_boundary_loops(); ++loop) {
         const std::span<const Index> b = t.boundary_loop(loop);
         for (std::size_t k = 0; k < b.size(); ++k) {
-            const Index i = b[k];
-            const Index j = b[(k + 1) % b.size()];
+            const Index i = slot[static_cast<std::size_t>(b[k])];
+            const Index j = slot[static_cast<std::size_t>(b[(k + 1) % b.size()])];
             triplets.emplace_back(i, n + j, 0.5);
             triplets.emplace_back(n + j, i, 0.5);
             triplets.emplace_back(j, n + i, -0.5);
@@ -69,21 +70,37 @@ SparseMatrix boundary_area_form(const Topology& t) {
     return A;
 }
 
+/// A_s over all vertices, in their order.
+SparseMatrix boundary_area_form(const Topology& t) {
+    std::vector<Index> slot(static_cast<std::size_t>(t.num_vertices()));
+    std::iota(slot.begin(), slot.end(), Index{0});
+    return boundary_area_form(t, slot, t.num_vertices());
+}
+
+/// diag(M, M), written row by row.
 SparseMatrix block_diagonal(const SparseMatrix& M) {
-    Triplets triplets;
-    triplets.reserve(static_cast<std::size_t>(2 * M.nonZeros()));
-    for (Index r = 0; r < M.outerSize(); ++r) {
-        for (SparseMatrix::InnerIterator it(M, r); it; ++it) {
-            triplets.emplace_back(it.row(), it.col(), it.value());
-            triplets.emplace_back(it.row() + M.rows(), it.col() + M.cols(), it.value());
+    SparseMatrix out(2 * M.rows(), 2 * M.cols());
+    const Eigen::Index nnz = M.nonZeros();
+    out.resizeNonZeros(2 * nnz);
+    Eigen::Index written = 0;
+    out.outerIndexPtr()[0] = 0;
+    for (int copy = 0; copy < 2; ++copy) {
+        const auto shift = static_cast<Index>(copy * M.cols());
+        for (Eigen::Index r = 0; r < M.rows(); ++r) {
+            for (SparseMatrix::InnerIterator it(M, r); it; ++it) {
+                out.innerIndexPtr()[written] = static_cast<Index>(it.col()) + shift;
+                out.valuePtr()[written] = it.value();
+                ++written;
+            }
+            out.outerIndexPtr()[copy * M.rows() + r + 1] = static_cast<Index>(written);
         }
     }
-    SparseMatrix out(2 * M.rows(), 2 * M.cols());
-    out.setFromTriplets(triplets.begin(), triplets.end());
     return out;
 }
 
 /// The area form of sec and secsnap: the level-L boundary's, pulled back by A^L (SEC Eq. 12's pattern).
+/// Only the level-L boundary vertices' rows of A^L enter it, carried from the left through each S0
+/// (a few thousand rows where A^L itself has millions of non-zeros).
 SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const ParameterizationOptions& options) {
     RefineOptions refine;
     refine.scheme = scheme;
@@ -91,9 +108,23 @@ SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const P
     refine.scheme_options = options.scheme_options;
     refine.num_threads = options.num_threads;
     const Hierarchy h(t, refine);
-    const SparseMatrix A2 = block_diagonal(h.accumulated(options.level));
-    const SparseMatrix AL = boundary_area_form(h.topology(options.level));
-    const SparseMatrix half = AL * A2;
+    const Topology& fine = h.topology(options.level);
+    std::vector<Index> slot(static_cast<std::size_t>(fine.num_vertices()), invalid_index);
+    Triplets selection;
+    for (Index loop = 0; loop < fine.num_boundary_loops(); ++loop) {
+        for (const Index v : fine.boundary_loop(loop)) {
+            slot[static_cast<std::size_t>(v)] = static_cast<Index>(selection.size());
+            selection.emplace_back(static_cast<Index>(selection.size()), v, 1.0);
+        }
+    }
+    const auto n = static_cast<Index>(selection.size());
+    SparseMatrix rows(n, fine.num_vertices());  // rows of A^l for the level-L boundary, l = L..0
+    rows.setFromTriplets(selection.begin(), selection.end());
+    for (int l = options.level; l >= 1; --l) {
+        rows = SparseMatrix(rows * h.step(l).S0);
+    }
+    const SparseMatrix A2 = block_diagonal(rows);
+    const SparseMatrix half = boundary_area_form(fine, slot, n) * A2;
     return SparseMatrix(A2.transpose() * half);
 }
 
