@@ -17,11 +17,9 @@
 #include "commands/commands.h"
 #include "commands/limit_options.h"
 #include "commands/threads_option.h"
-#include "limsurf/core/memory.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/mesh/local_size.h"
 #include "limsurf/quadrature/integrals.h"
-#include "limsurf/refine/hierarchy.h"
 #include "limsurf/volume/enclosed_volume.h"
 #include "output.h"
 
@@ -41,30 +39,6 @@ struct VolumeCommandOptions {
 
 /// Polyhedral volumes are computed only up to this many faces.
 constexpr Index max_polyhedral_faces = Index{1} << 22;
-
-struct PolyhedralLevel {
-    int level = 0;
-    Index faces = 0;
-    double volume = 0.0;
-};
-
-std::vector<PolyhedralLevel> polyhedral_levels(const ControlMesh& mesh, SchemeKind scheme, int levels) {
-    std::vector<PolyhedralLevel> out{{0, mesh.num_faces(), polyhedral_volume(mesh.topology(), mesh.positions())}};
-    Topology t = mesh.topology();
-    Points X = mesh.positions();
-    for (int l = 1; l <= levels; ++l) {
-        // Only the last level is kept: the next step's own estimate decides.
-        const std::vector<LevelSize> next = predict_sizes(t, scheme, 1);
-        if (next.back().faces > max_polyhedral_faces || estimated_peak_bytes(next) > default_memory_budget()) {
-            break;
-        }
-        Level level = refine(t, scheme);
-        X = level.S0 * X;
-        t = std::move(level.topology);
-        out.push_back({l, t.num_faces(), polyhedral_volume(t, X)});
-    }
-    return out;
-}
 
 /// Types beyond the shipped tables the mesh will need (valences and face degrees above 12); none
 /// when the mesh will be refused anyway (a type above the generated limit, a valence below 3).
@@ -100,12 +74,12 @@ nlohmann::json matrix_json(const Eigen::Matrix3d& m) {
 }
 
 void print_volume_text(const VolumeCommandOptions& options, const nlohmann::json& out,
-                       const std::vector<PolyhedralLevel>& levels, const std::optional<MeasureReport>& moments,
+                       const std::vector<PolyhedralVolume>& levels, const std::optional<MeasureReport>& moments,
                        double volume, bool zero) {
     std::cout << std::setprecision(16) << "volume      " << volume << "  (exact: trilinear forms, "
               << options.scheme.scheme << "; " << out["facets"]["direct"] << " facets direct, "
               << out["facets"]["subdivided"] << " from locally subdivided faces)\n";
-    for (const PolyhedralLevel& l : levels) {
+    for (const PolyhedralVolume& l : levels) {
         std::cout << std::setprecision(16) << "polyhedral  level " << l.level << "  " << std::setw(18) << std::left
                   << l.volume << std::right << std::setprecision(2);
         if (zero) {
@@ -148,9 +122,9 @@ bool is_zero_volume(double volume, const Points& X) {
 
 /// The polyhedral levels as JSON: volume, difference to the exact volume, and the relative
 /// difference where the exact volume is not zero.
-nlohmann::json polyhedral_json(const std::vector<PolyhedralLevel>& levels, double volume, bool zero) {
+nlohmann::json polyhedral_json(const std::vector<PolyhedralVolume>& levels, double volume, bool zero) {
     nlohmann::json out = nlohmann::json::array();
-    for (const PolyhedralLevel& l : levels) {
+    for (const PolyhedralVolume& l : levels) {
         out.push_back(
             {{"level", l.level},
              {"faces", l.faces},
@@ -180,7 +154,8 @@ int run_volume(const VolumeCommandOptions& options) {
         const EnclosedVolume forms(mesh.topology(), scheme, scheme_rules(mesh, options.scheme), volume_options);
         const double volume = forms.volume(mesh.positions());
         const bool zero = is_zero_volume(volume, mesh.positions());
-        const auto levels = polyhedral_levels(mesh, scheme, options.levels);
+        const auto levels =
+            polyhedral_volumes(mesh.topology(), mesh.positions(), scheme, options.levels, max_polyhedral_faces);
         std::optional<MeasureReport> moments;
         if (options.moments) {
             const LimitBasis basis = make_limit_basis(mesh, options.scheme);

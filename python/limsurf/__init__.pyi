@@ -148,6 +148,15 @@ def volume(mesh: Mesh, scheme: LimitScheme, *, gradient: Literal[True], X: Array
            boundary: Boundary | None = None, creasing: Creasing | None = None,
            triangles: Triangles | None = None) -> tuple[float, FloatArray]: ...
 
+class PolyhedralVolume(TypedDict):
+    level: int
+    faces: int
+    volume: float
+
+def polyhedral_volumes(mesh: Mesh, scheme: Scheme, *, levels: int = 3, max_faces: int = 4194304,
+                       boundary: Boundary | None = None, creasing: Creasing | None = None,
+                       triangles: Triangles | None = None) -> list[PolyhedralVolume]: ...
+
 def exterior_derivatives(mesh: Mesh) -> tuple[scipy.sparse.csr_matrix, scipy.sparse.csr_matrix]: ...
 def inner_products(mesh: Mesh, scheme: LimitScheme, *, method: Method = "sec", level: int | None = None,
                    lumped: bool = False, boundary: Boundary | None = None, creasing: Creasing | None = None,

@@ -1,4 +1,4 @@
-"""limsurf.measure and limsurf.volume equal `limsurf measure` / `limsurf volume`; the volume gradient
+"""limsurf.measure, limsurf.volume and limsurf.polyhedral_volumes equal `limsurf measure` / `limsurf volume`; the volume gradient
 is exact (finite differences, homogeneity)."""
 import numpy as np
 import pytest
@@ -27,6 +27,21 @@ def test_measure_equals_the_cli(mesh_path, cli, name, scheme):
 def test_volume_equals_the_cli(mesh_path, cli, name, scheme):
     theirs = cli("volume", mesh_path(name), "--scheme", scheme, "--json")
     assert limsurf.volume(limsurf.read_mesh(mesh_path(name)), scheme) == theirs["volume"]
+
+
+@pytest.mark.parametrize("name, scheme", [("genus2", "catmull-clark"), ("icosahedron", "loop"), ("cube", "doo-sabin")])
+def test_polyhedral_volumes_equal_the_cli_and_approach_the_exact_volume(mesh_path, cli, name, scheme):
+    theirs = cli("volume", mesh_path(name), "--scheme", scheme, "--levels", "4", "--json")
+    mesh = limsurf.read_mesh(mesh_path(name))
+    ours = limsurf.polyhedral_volumes(mesh, scheme, levels=4)
+    assert [(l["level"], l["faces"], l["volume"]) for l in ours] == [
+        (l["level"], l["faces"], l["volume"]) for l in theirs["polyhedral"]]
+    errors = [abs(l["volume"] - theirs["volume"]) for l in ours]
+    assert all(b < a for a, b in zip(errors, errors[1:]))  # closer at every level
+    # A face budget ends the list early; a negative level count is refused.
+    assert len(limsurf.polyhedral_volumes(mesh, scheme, levels=4, max_faces=4 * mesh.num_faces)) <= 2
+    with pytest.raises(limsurf.InputError):
+        limsurf.polyhedral_volumes(mesh, scheme, levels=-1)
 
 
 def test_volume_gradient_is_exact(mesh_path):

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <opensubdiv/far/primvarRefiner.h>
 
+#include "limsurf/core/error.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/integrals.h"
@@ -33,7 +34,7 @@ std::vector<double> opensubdiv_volumes(const ControlMesh& mesh, SchemeKind schem
         }
     }
     std::vector<double> out;
-    Far::PrimvarRefiner primvar(*refiner);
+    Far::PrimvarRefinerReal<double> primvar(*refiner);  // Far::PrimvarRefiner's weights are floats
     test::OsdPoint* src = points.data();
     for (int level = 0; level <= levels; ++level) {
         const Far::TopologyLevel& l = refiner->GetLevel(level);
@@ -47,7 +48,7 @@ std::vector<double> opensubdiv_volumes(const ControlMesh& mesh, SchemeKind schem
     return out;
 }
 
-/// Polyhedral volumes of levels 0..levels refined by limsurf (Doo–Sabin).
+/// Polyhedral volumes of levels 0..levels refined by limsurf step by step (refine, then S0 · X).
 std::vector<double> limsurf_volumes(const ControlMesh& mesh, SchemeKind scheme, int levels) {
     Topology t = mesh.topology();
     Points X = mesh.positions();
@@ -112,6 +113,43 @@ INSTANTIATE_TEST_SUITE_P(Volume, DeepSubdivision,
                              }
                              return name;
                          });
+
+TEST(VolumeIndependent, PolyhedralVolumesAreTheStepByStepRefinementsBitForBit) {
+    // polyhedral_volumes (each step through refine_finest, carrying the points) equals refine() and
+    // S0 · X step by step bit for bit, and OpenSubdiv's polyhedra for Loop. (Not level by level for
+    // quads: OpenSubdiv's child quads start at another corner, so their fans take other diagonals.)
+    for (const auto& [name, scheme] :
+         {std::pair{"cube", SchemeKind::CatmullClark}, std::pair{"icosahedron", SchemeKind::Loop},
+          std::pair{"cube", SchemeKind::DooSabin}, std::pair{"quad_torus", SchemeKind::CatmullClark}}) {
+        const ControlMesh mesh = read_mesh(test::find_bundled(name).path).mesh;
+        const std::vector<PolyhedralVolume> v =
+            polyhedral_volumes(mesh.topology(), mesh.positions(), scheme, 4, Index{1} << 22);
+        ASSERT_EQ(v.size(), 5U) << name;
+        const std::vector<double> own = limsurf_volumes(mesh, scheme, 4);
+        for (std::size_t l = 0; l < v.size(); ++l) {
+            EXPECT_EQ(v[l].level, static_cast<int>(l));
+            EXPECT_EQ(v[l].volume, own[l]) << name << " level " << l;
+        }
+        if (scheme != SchemeKind::DooSabin) {
+            EXPECT_EQ(v[4].faces, 256 * mesh.num_faces()) << name;  // four children per face and step
+        }
+        if (scheme == SchemeKind::Loop) {  // triangles: the same polyhedra as OpenSubdiv's, level by level
+            const std::vector<double> osd = opensubdiv_volumes(mesh, scheme, 4);
+            for (std::size_t l = 0; l < v.size(); ++l) {
+                EXPECT_NEAR(v[l].volume, osd[l], 1e-14 * std::abs(osd[l])) << name << " level " << l;
+            }
+        }
+    }
+    // It stops before a level of more faces than asked: the cube's 6, 24, 96, then 384.
+    const ControlMesh cube = read_mesh(test::find_bundled("cube").path).mesh;
+    EXPECT_EQ(polyhedral_volumes(cube.topology(), cube.positions(), SchemeKind::CatmullClark, 4, 96).size(), 3U);
+    EXPECT_THROW((void)polyhedral_volumes(cube.topology(), cube.positions(), SchemeKind::CatmullClark, 17, 96),
+                 InputError);
+    EXPECT_THROW((void)polyhedral_volumes(cube.topology(), cube.positions(), SchemeKind::CatmullClark, -1, 96),
+                 InputError);
+    EXPECT_THROW((void)polyhedral_volumes(cube.topology(), Points::Zero(7, 3), SchemeKind::CatmullClark, 1, 96),
+                 InputError);
+}
 
 // Quadrature with 8 tile levels towards extraordinary vertices: measured differences 6.8e-11 (cube,
 // Catmull–Clark; estimate 6.7e-11), 3.6e-12 (octahedron, Loop), 9.8e-9 (cube, Doo–Sabin; estimate 9.5e-9).

@@ -108,4 +108,21 @@ class EnclosedVolume {
 /// @throws InputError when X has the wrong number of rows
 [[nodiscard]] double polyhedral_volume(const Topology& topology, const Points& X);
 
+/// The polyhedral volume of one subdivision level (polyhedral_volumes()).
+struct PolyhedralVolume {
+    int level = 0;
+    Index faces = 0;
+    double volume = 0.0;
+};
+
+/// @brief The polyhedral volumes of levels 0..@p levels of @p scheme's refinement of (@p topology,
+///   @p X): they approach the limit surface's volume (like 4^-l for the smooth schemes), the
+///   comparison `limsurf volume` prints. Stops before a level of more than @p max_faces faces or
+///   beyond the memory budget (default_memory_budget()): the result then has fewer entries. Each
+///   step carries the points as it builds its rows (refine_finest), keeping no S0.
+/// @throws InputError when levels is not 0..16 or X has the wrong number of rows; as refine()
+[[nodiscard]] std::vector<PolyhedralVolume> polyhedral_volumes(const Topology& topology, const Points& X,
+                                                               SchemeKind scheme, int levels, Index max_faces,
+                                                               const SchemeOptions& options = {});
+
 }  // namespace limsurf

@@ -22,7 +22,9 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/magnitude.h"
+#include "limsurf/core/memory.h"
 #include "limsurf/mesh/local_size.h"
+#include "limsurf/refine/hierarchy.h"
 #include "limsurf/refine/refine.h"
 #include "limsurf/volume/facet_ring.h"
 #include "limsurf/volume/facet_seed.h"
@@ -673,6 +675,27 @@ double polyhedral_volume(const Topology& topology, const Points& X) {
         }
     }
     return scale_back(sum / 6.0, 3 * e, "polyhedral volume");
+}
+
+std::vector<PolyhedralVolume> polyhedral_volumes(const Topology& topology, const Points& X, SchemeKind scheme,
+                                                 int levels, Index max_faces, const SchemeOptions& options) {
+    LIMSURF_CHECK(levels >= 0 && levels <= 16, InputError, "polyhedral volumes: levels must be 0..16 (got ", levels,
+                  ")");
+    std::vector<PolyhedralVolume> out{{0, topology.num_faces(), polyhedral_volume(topology, X)}};
+    RefineOptions step;
+    step.scheme = scheme;
+    step.levels = 1;
+    step.scheme_options = options;
+    FinestLevel level{topology, X, {}};
+    for (int l = 1; l <= levels; ++l) {
+        const std::vector<LevelSize> next = predict_sizes(level.topology, scheme, 1);
+        if (next.back().faces > max_faces || estimated_finest_peak_bytes(next, false) > default_memory_budget()) {
+            break;
+        }
+        level = refine_finest(level.topology, level.positions, step);
+        out.push_back({l, level.topology.num_faces(), polyhedral_volume(level.topology, level.positions)});
+    }
+    return out;
 }
 
 }  // namespace limsurf
