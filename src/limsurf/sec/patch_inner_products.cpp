@@ -19,6 +19,7 @@
 #include "limsurf/core/error.h"
 #include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/core/parallel.h"
+#include "limsurf/detail/element_gather.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/refine/hierarchy.h"
@@ -413,119 +414,11 @@ void face_elements(const FaceEntry& e, const Points& X0, Index f, int level, Wor
 
 // --- global gather ----------------------------------------------------------------------------
 
-/// For every global row: the (face, local index) pairs whose element rows add into it, faces
-/// ascending (so that entries (i, j) and (j, i) are summed in the same order: exact symmetry).
-struct Incidence {
-    std::vector<Index> offsets;  ///< #rows + 1
-    std::vector<Index> face;
-    std::vector<Index> local;
-};
-
-Incidence incidence(Index rows, const std::vector<FaceEntry>& entries, const std::vector<Index> FaceEntry::*ids) {
-    Incidence inc;
-    inc.offsets.assign(static_cast<std::size_t>(rows) + 1, 0);
-    for (const FaceEntry& e : entries) {
-        for (const Index id : e.*ids) {
-            ++inc.offsets[static_cast<std::size_t>(id) + 1];
-        }
-    }
-    for (std::size_t r = 0; r < static_cast<std::size_t>(rows); ++r) {
-        inc.offsets[r + 1] += inc.offsets[r];
-    }
-    inc.face.resize(static_cast<std::size_t>(inc.offsets.back()));
-    inc.local.resize(inc.face.size());
-    std::vector<Index> cursor(inc.offsets.begin(), inc.offsets.end() - 1);
-    for (std::size_t f = 0; f < entries.size(); ++f) {
-        const auto& list = entries[f].*ids;
-        for (std::size_t li = 0; li < list.size(); ++li) {
-            const auto slot = static_cast<std::size_t>(cursor[static_cast<std::size_t>(list[li])]++);
-            inc.face[slot] = static_cast<Index>(f);
-            inc.local[slot] = static_cast<Index>(li);
-        }
-    }
-    return inc;
-}
-
-/// The rows [begin, end) of one assembled matrix.
-struct RowBlock {
-    Index begin = 0;
-    std::vector<Index> counts;
-    std::vector<Index> columns;
-    std::vector<double> values;
-};
-
-/// Sums the element rows into global rows [begin, end) (a dense accumulator per thread).
-RowBlock gather_rows(Index rows, Index begin, Index end, const Incidence& inc, const std::vector<FaceEntry>& entries,
-                     const std::vector<Index> FaceEntry::*ids, const double* values,
-                     const std::vector<std::size_t>& offsets) {
-    RowBlock block;
-    block.begin = begin;
-    std::vector<Index> stamp(static_cast<std::size_t>(rows), invalid_index);
-    std::vector<double> sum(static_cast<std::size_t>(rows), 0.0);
-    std::vector<Index> touched;
-    for (Index r = begin; r < end; ++r) {
-        touched.clear();
-        for (auto p = static_cast<std::size_t>(inc.offsets[static_cast<std::size_t>(r)]);
-             p < static_cast<std::size_t>(inc.offsets[static_cast<std::size_t>(r) + 1]); ++p) {
-            const auto f = static_cast<std::size_t>(inc.face[p]);
-            const auto& list = entries[f].*ids;
-            const double* row = values + offsets[f] + static_cast<std::size_t>(inc.local[p]) * list.size();
-            for (std::size_t lj = 0; lj < list.size(); ++lj) {
-                const auto c = static_cast<std::size_t>(list[lj]);
-                if (stamp[c] != r) {
-                    stamp[c] = r;
-                    sum[c] = 0.0;
-                    touched.push_back(list[lj]);
-                }
-                sum[c] += row[lj];
-            }
-        }
-        std::sort(touched.begin(), touched.end());
-        if (r == begin) {  // rows of a mesh have about as many entries: room for all, not doubling copies
-            const auto room = static_cast<std::size_t>(end - begin) * (touched.size() + touched.size() / 4 + 1);
-            block.counts.reserve(static_cast<std::size_t>(end - begin));
-            block.columns.reserve(room);
-            block.values.reserve(room);
-        }
-        block.counts.push_back(static_cast<Index>(touched.size()));
-        for (const Index c : touched) {
-            block.columns.push_back(c);
-            block.values.push_back(sum[static_cast<std::size_t>(c)]);
-        }
-    }
-    return block;
-}
-
-/// The rows × rows matrix Σ_f R_fᵀ C_f R_f.
+/// The rows × rows matrix Σ_f R_fᵀ C_f R_f over the ids @p ids of each face entry (element_gather.h).
 SparseMatrix assemble(Index rows, const std::vector<FaceEntry>& entries, const std::vector<Index> FaceEntry::*ids,
                       const double* values, const std::vector<std::size_t>& offsets, int num_threads) {
-    const Incidence inc = incidence(rows, entries, ids);
-    std::vector<RowBlock> blocks;
-    std::mutex blocks_mutex;
-    parallel_ranges(rows, num_threads, [&](Index begin, Index end) {
-        RowBlock block = gather_rows(rows, begin, end, inc, entries, ids, values, offsets);
-        const std::lock_guard lock(blocks_mutex);
-        blocks.push_back(std::move(block));
-    });
-    std::sort(blocks.begin(), blocks.end(), [](const RowBlock& a, const RowBlock& b) { return a.begin < b.begin; });
-    SparseMatrix M(rows, rows);
-    std::size_t nonzeros = 0;
-    for (const RowBlock& b : blocks) {
-        nonzeros += b.values.size();
-    }
-    M.resizeNonZeros(static_cast<Eigen::Index>(nonzeros));
-    std::size_t written = 0;
-    Index row = 0;
-    M.outerIndexPtr()[0] = 0;
-    for (const RowBlock& b : blocks) {
-        std::copy(b.columns.begin(), b.columns.end(), M.innerIndexPtr() + written);
-        std::copy(b.values.begin(), b.values.end(), M.valuePtr() + written);
-        for (const Index count : b.counts) {
-            written += static_cast<std::size_t>(count);
-            M.outerIndexPtr()[++row] = static_cast<Index>(written);
-        }
-    }
-    return M;
+    const auto ids_of = [&](Index f) -> const std::vector<Index>& { return entries[static_cast<std::size_t>(f)].*ids; };
+    return gather_elements(rows, static_cast<Index>(entries.size()), ids_of, values, offsets, num_threads);
 }
 
 }  // namespace
