@@ -269,6 +269,12 @@ std::vector<PointFrame> evaluate_grid(const LimitBasis& basis, const Points& X, 
                                                                  options.curvature, weights, position, entries);
             t.positions.row(q) = position.transpose();
             merge_entries(entries);
+            if (q == begin) {  // points have about as many weights: room for the range, not doubling copies
+                const auto room = static_cast<std::size_t>(end - begin) * (entries.size() + entries.size() / 4 + 1);
+                rows.counts.reserve(static_cast<std::size_t>(end - begin));
+                rows.vertices.reserve(room);
+                rows.weights.reserve(room);
+            }
             rows.counts.push_back(static_cast<Index>(entries.size()));
             for (const auto& [vertex, weight] : entries) {
                 rows.vertices.push_back(vertex);
