@@ -17,6 +17,7 @@
 
 #include "limsurf/core/parallel.h"
 #include "limsurf/core/types.h"
+#include "limsurf/detail/row_accumulator.h"
 
 namespace limsurf::detail {
 
@@ -72,37 +73,18 @@ GatheredRows gather_element_rows(Index rows, Index begin, Index end, const Eleme
     const auto at = [](Index i) { return static_cast<std::size_t>(i); };
     GatheredRows block;
     block.begin = begin;
-    std::vector<Index> stamp(at(rows), invalid_index);
-    std::vector<double> sum(at(rows), 0.0);
-    std::vector<Index> touched;
+    block.counts.reserve(at(end - begin));
+    RowAccumulator row_sum(rows);
     for (Index r = begin; r < end; ++r) {
-        touched.clear();
         for (auto p = at(inc.offsets[at(r)]); p < at(inc.offsets[at(r) + 1]); ++p) {
             const Index e = inc.element[p];
             const auto& ids = ids_of(e);
             const double* row = values + offsets[at(e)] + at(inc.local[p]) * ids.size();
             for (std::size_t lj = 0; lj < ids.size(); ++lj) {
-                const auto c = at(ids[lj]);
-                if (stamp[c] != r) {
-                    stamp[c] = r;
-                    sum[c] = 0.0;
-                    touched.push_back(ids[lj]);
-                }
-                sum[c] += row[lj];
+                row_sum.add(ids[lj], row[lj]);
             }
         }
-        std::sort(touched.begin(), touched.end());
-        if (r == begin) {  // rows of a mesh have about as many entries: room for all, not doubling copies
-            const auto room = at(end - begin) * (touched.size() + touched.size() / 4 + 1);
-            block.counts.reserve(at(end - begin));
-            block.columns.reserve(room);
-            block.values.reserve(room);
-        }
-        block.counts.push_back(static_cast<Index>(touched.size()));
-        for (const Index c : touched) {
-            block.columns.push_back(c);
-            block.values.push_back(sum[at(c)]);
-        }
+        block.counts.push_back(row_sum.flush(block.columns, block.values, at(end - begin)));
     }
     return block;
 }
