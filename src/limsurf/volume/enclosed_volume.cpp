@@ -686,14 +686,18 @@ std::vector<PolyhedralVolume> polyhedral_volumes(const Topology& topology, const
     step.scheme = scheme;
     step.levels = 1;
     step.scheme_options = options;
-    FinestLevel level{topology, X, {}};
+    FinestLevel level;  // the last level refined; the first step reads the caller's mesh, not a copy
+    const Topology* t = &topology;
+    const Points* P = &X;
     for (int l = 1; l <= levels; ++l) {
-        const std::vector<LevelSize> next = predict_sizes(level.topology, scheme, 1);
+        const std::vector<LevelSize> next = predict_sizes(*t, scheme, 1);
         if (next.back().faces > max_faces || estimated_finest_peak_bytes(next, false) > default_memory_budget()) {
             break;
         }
-        level = refine_finest(level.topology, level.positions, step);
-        out.push_back({l, level.topology.num_faces(), polyhedral_volume(level.topology, level.positions)});
+        level = refine_finest(*t, *P, step);
+        t = &level.topology;
+        P = &level.positions;
+        out.push_back({l, t->num_faces(), polyhedral_volume(*t, *P)});
     }
     return out;
 }
