@@ -121,6 +121,25 @@ void BM_SecLevel3Hierarchy(benchmark::State& state) {
     sec_level3(state, limsurf::SecAssembly::Hierarchy, 0);
 }
 
+/// load_vector at L = 3 of f = sin x + yz (what `limsurf poisson --rhs` integrates), by the ring
+/// stencils (range 1 = 0) or through the whole hierarchy (1).
+void BM_LoadVector(benchmark::State& state) {
+    const Mesh& m = mesh(static_cast<int>(state.range(0)));
+    limsurf::InnerProductOptions options;
+    options.level = 3;
+    options.assembly = state.range(1) == 0 ? limsurf::SecAssembly::Patches : limsurf::SecAssembly::Hierarchy;
+    const auto f = [](const limsurf::Points& P) {
+        return (P.col(0).array().sin() + P.col(1).array() * P.col(2).array()).matrix().eval();
+    };
+    Eigen::VectorXd b;
+    for (auto _ : state) {
+        b = limsurf::load_vector(m.topology, m.X, m.scheme, options, f);
+        benchmark::DoNotOptimize(b.data());
+    }
+    state.counters["peak_MiB"] = peak_mib();
+    label(state, m);
+}
+
 void BM_PoissonSec(benchmark::State& state) {
     const Mesh& m = mesh(static_cast<int>(state.range(0)));
     limsurf::InnerProductOptions options;
@@ -145,6 +164,13 @@ BENCHMARK(BM_SecLevel3)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_SecLevel3Hierarchy)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LoadVector)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_PoissonSec)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

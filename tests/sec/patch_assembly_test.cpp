@@ -3,8 +3,10 @@
 // hierarchy (SecAssembly::Hierarchy: Eq. 10 level by level). Both compute SEC Eq. 12 / 16 by
 // different routes — different refinements, different summation orders — so they must agree to
 // rounding on every mesh form subdivision supports, closed and open, both boundary rules,
-// Sec and SecSnap, and on random carvings (many boundary configurations).
+// Sec and SecSnap, and on random carvings (many boundary configurations). The load vector
+// (load_vector) is assembled both ways too.
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -13,7 +15,9 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/io/mesh_io.h"
+#include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/inner_products.h"
+#include "limsurf/sec/operators.h"
 #include "support/mesh_zoo.h"
 #include "support/shapes.h"
 
@@ -151,6 +155,122 @@ TEST(PatchAssembly, NamesTheControlFaceAroundADegenerateRefinedFace) {
         FAIL() << "no error";
     } catch (const NumericalError& e) {
         EXPECT_NE(std::string(e.what()).find("inside control face "), std::string::npos) << e.what();
+    }
+}
+
+// --- the load vector ----------------------------------------------------------------------------
+
+/// A smooth right-hand side that is no polynomial of the position (a sum of its samples would
+/// not hide a wrong point or weight).
+Eigen::VectorXd smooth_rhs(const Points& P) {
+    Eigen::VectorXd v(P.rows());
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+        v(i) = std::sin(2.0 * P(i, 0)) + P(i, 1) * P(i, 2) + std::exp(0.3 * P(i, 2));
+    }
+    return v;
+}
+
+Eigen::VectorXd load(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
+                     SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0, int* calls = nullptr) {
+    InnerProductOptions options;
+    options.method = method;
+    options.level = level;
+    options.assembly = assembly;
+    options.num_threads = threads;
+    SchemeOptions scheme_options;
+    scheme_options.boundary = boundary;
+    return load_vector(
+        t, X, scheme, options,
+        [calls](const Points& P) {
+            if (calls != nullptr) {
+                ++*calls;
+            }
+            return smooth_rhs(P);
+        },
+        scheme_options);
+}
+
+double relative_difference(const Eigen::VectorXd& p, const Eigen::VectorXd& h) {
+    return (p - h).cwiseAbs().maxCoeff() / h.cwiseAbs().maxCoeff();
+}
+
+class PatchLoad : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PatchLoad, EqualsTheHierarchyLoad) {
+    // The hierarchy route samples f once per level-L vertex of the whole refined mesh and carries
+    // the weighted values back by S0ᵀ; the patch route samples it per control face (a vertex on a
+    // control edge or corner once per face around it) and pulls back through the ring stencils.
+    const BuildResult built = read_mesh(test::find_bundled(GetParam().name).path);
+    const Topology& t = built.mesh.topology();
+    const Points& X = built.mesh.positions();
+    for (const auto boundary : {BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly}) {
+        for (const auto method : {InnerProductMethod::Sec, InnerProductMethod::SecSnap}) {
+            for (const int level : {1, 2}) {
+                const auto patches = load(t, X, GetParam().scheme, method, level, SecAssembly::Patches, boundary);
+                const auto reference = load(t, X, GetParam().scheme, method, level, SecAssembly::Hierarchy, boundary);
+                EXPECT_LE(relative_difference(patches, reference), 1e-13)
+                    << to_string(method) << " L=" << level << " boundary " << static_cast<int>(boundary);
+            }
+        }
+        if (t.is_closed()) {
+            break;  // the boundary rule changes nothing
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Sec, PatchLoad, ::testing::ValuesIn(test::form_subdivision_cases()),
+                         [](const ::testing::TestParamInfo<Case>& param) { return param.param.name; });
+
+TEST(PatchLoadAtLevel3, EqualsTheHierarchyLoad) {
+    for (const Case& c : {Case{"genus2", SchemeKind::CatmullClark}, Case{"icosahedron", SchemeKind::Loop},
+                          Case{"disk_ev5_quads", SchemeKind::CatmullClark}}) {
+        const BuildResult built = read_mesh(test::find_bundled(c.name).path);
+        const auto& t = built.mesh.topology();
+        const auto& X = built.mesh.positions();
+        const auto patches = load(t, X, c.scheme, InnerProductMethod::SecSnap, 3, SecAssembly::Patches,
+                                  BoundaryInterpolation::EdgeAndCorner);
+        const auto reference = load(t, X, c.scheme, InnerProductMethod::SecSnap, 3, SecAssembly::Hierarchy,
+                                    BoundaryInterpolation::EdgeAndCorner);
+        EXPECT_LE(relative_difference(patches, reference), 1e-13) << c.name;
+    }
+}
+
+TEST(PatchLoad, CallsTheRightHandSideInBlocksAndIsTheSameOnAnyNumberOfThreads) {
+    // genus2 refined four times (12 800 quads): more control faces than one block of points holds.
+    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
+    RefineOptions refine;
+    refine.scheme = SchemeKind::CatmullClark;
+    refine.levels = 4;
+    const FinestLevel fine = refine_finest(built.mesh.topology(), built.mesh.positions(), refine);
+    ASSERT_GT(fine.topology.num_faces(), 8192);
+    int calls = 0;
+    const auto one = load(fine.topology, fine.positions, SchemeKind::CatmullClark, InnerProductMethod::Sec, 1,
+                          SecAssembly::Patches, BoundaryInterpolation::EdgeAndCorner, 1, &calls);
+    EXPECT_GE(calls, 2);
+    const auto three = load(fine.topology, fine.positions, SchemeKind::CatmullClark, InnerProductMethod::Sec, 1,
+                            SecAssembly::Patches, BoundaryInterpolation::EdgeAndCorner, 3);
+    EXPECT_EQ((one - three).cwiseAbs().maxCoeff(), 0.0) << "the same bits";
+    const auto reference = load(fine.topology, fine.positions, SchemeKind::CatmullClark, InnerProductMethod::Sec, 1,
+                                SecAssembly::Hierarchy, BoundaryInterpolation::EdgeAndCorner);
+    EXPECT_LE(relative_difference(one, reference), 1e-13);
+}
+
+TEST(PatchLoad, MeshesWithoutFormRulesTakeTheHierarchy) {
+    // Catmull–Clark on a mesh with n-gons and on one with creases: no form rules, so no ring
+    // stencils; the load still integrates f at level L (Σ_i b_i = Σ f m over level L).
+    for (const char* name : {"cube_ngons", "cube_creases"}) {
+        const BuildResult built = read_mesh(test::find_bundled(name).path);
+        const auto& t = built.mesh.topology();
+        const auto& X = built.mesh.positions();
+        InnerProductOptions options;
+        options.level = 2;
+        const auto ones = [](const Points& P) { return Eigen::VectorXd::Ones(P.rows()).eval(); };
+        const Eigen::VectorXd b = load_vector(t, X, SchemeKind::CatmullClark, options, ones);
+        RefineOptions refine;
+        refine.scheme = SchemeKind::CatmullClark;
+        refine.levels = 2;
+        const FinestLevel fine = refine_finest(t, X, refine);
+        EXPECT_NEAR(b.sum(), polygonal_vertex_masses(fine.topology, fine.positions).sum(), 1e-12) << name;
     }
 }
 

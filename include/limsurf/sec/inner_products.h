@@ -33,6 +33,30 @@ struct InnerProducts {
     SparseMatrix M0;
     SparseMatrix M1;
     SparseMatrix M2;
+
+    InnerProducts() = default;
+    /// Takes the three matrices over without copying them.
+    InnerProducts(SparseMatrix&& m0, SparseMatrix&& m1, SparseMatrix&& m2) {
+        M0.swap(m0);
+        M1.swap(m1);
+        M2.swap(m2);
+    }
+    // Eigen 3.4's SparseMatrix has no move constructor: moving InnerProducts swaps the matrices
+    // instead of copying them (M1 at level 3 holds millions of non-zeros).
+    InnerProducts(InnerProducts&& other) noexcept { swap(other); }
+    InnerProducts& operator=(InnerProducts&& other) noexcept {
+        swap(other);
+        return *this;
+    }
+    InnerProducts(const InnerProducts&) = default;
+    InnerProducts& operator=(const InnerProducts&) = default;
+    ~InnerProducts() = default;
+
+    void swap(InnerProducts& other) noexcept {
+        M0.swap(other.M0);
+        M1.swap(other.M1);
+        M2.swap(other.M2);
+    }
 };
 
 /// @brief Polygonal inner products of the mesh (@p topology, @p X) (#V × 3).

@@ -98,9 +98,14 @@ struct PoissonSolution {
 ///   inner products of @p options: DEC and DECsnap use M0 f at the control (or limit) positions;
 ///   SEC and SECsnap integrate at level L, b = (A_0^L)ᵀ lumped(M_0^L) f(X^L), which represents f
 ///   to O(h_L²) instead of the O(h_0²) of sampling it at the control vertices (SEC Eq. 11 applied to
-///   the right-hand side).
-/// @param f called with the #V_L × 3 positions where f is needed; returns one value per row
-/// @throws as control_inner_products; InputError when f returns the wrong size or a non-finite value
+///   the right-hand side). SEC and SECsnap are assembled as M0 is (options.assembly): per control
+///   face from its ring stencil, with no level-L mesh of the whole surface, wherever the ring
+///   stencils apply (Loop and Catmull–Clark meshes with form rules); else, and for
+///   SecAssembly::Hierarchy, through the whole hierarchy. The two agree up to rounding.
+/// @param f called with positions (n × 3) where f is needed, returns one value per row; it may be
+///   called several times (blocks of points) and must be a function of the point alone
+/// @throws as control_inner_products; InputError when f returns the wrong size or a non-finite
+///   value, or @p X0 does not have #V rows; NumericalError when the load overflows a double
 [[nodiscard]] Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
                                           const InnerProductOptions& options,
                                           const std::function<Eigen::VectorXd(const Points&)>& f,

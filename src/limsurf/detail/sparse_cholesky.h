@@ -1,6 +1,11 @@
 // One sparse symmetric positive-definite solver for the sec and fem layers: CHOLMOD (SuiteSparse,
 // supernodal) when limsurf is built with it, Eigen's SimplicialLDLT otherwise. Both are used
 // through Eigen's wrappers, on column-major copies.
+//
+// Factor one matrix at a time: two CHOLMOD factorisations on two threads at once (tried
+// 2026-12-07 for the heat method's two factors) intermittently failed as "not positive definite"
+// on matrices that factor alone. The likely cause, not confirmed: the BLAS Debian links by
+// default, openblas-serial, is not safe for concurrent callers unless built with locking.
 #pragma once
 
 #include <Eigen/SparseCholesky>

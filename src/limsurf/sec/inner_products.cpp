@@ -250,12 +250,7 @@ InnerProducts control_inner_products(const Topology& topology, const Points& X0,
                                                    uses_limit_positions(options.method), options.num_threads,
                                                    options.assembly == SecAssembly::Patches);
         }
-        if (!patched) {
-            patched = hierarchy_inner_products(topology, X0, scheme, options, scheme_options);
-        }
-        m.M0.swap(patched->M0);  // Eigen 3.4's SparseMatrix does not move: swap instead of copying
-        m.M1.swap(patched->M1);
-        m.M2.swap(patched->M2);
+        m = patched ? std::move(*patched) : hierarchy_inner_products(topology, X0, scheme, options, scheme_options);
     } else {
         m = polygonal_inner_products(topology,
                                      evaluation_positions(topology, X0, options.method, scheme, scheme_options));

@@ -5,14 +5,19 @@
 #include <array>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/magnitude.h"
 #include "limsurf/detail/sparse_cholesky.h"
+#include "limsurf/limit/limit_basis.h"
+#include "limsurf/mesh/local_size.h"
+#include "limsurf/refine/form_subdivision.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
+#include "limsurf/sec/patch_inner_products.h"
 
 namespace limsurf {
 
@@ -87,9 +92,26 @@ Eigen::VectorXd Operators::dual_hodge_laplacian_1(const Eigen::VectorXd& w) cons
     return curl_part + d0_ * solve_inner_product(0, d0_.transpose() * w);
 }
 
-Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
-                            const InnerProductOptions& options, const std::function<Eigen::VectorXd(const Points&)>& f,
-                            const SchemeOptions& scheme_options) {
+namespace {
+
+/// True when Sec's ring stencils can assemble on @p topology: the conditions under which
+/// control_inner_products assembles its M0 from them (form rules, bounded local size).
+bool ring_stencils_apply(const Topology& topology, SchemeKind scheme, const SchemeOptions& scheme_options) {
+    try {
+        require_form_rules(topology, scheme, scheme_options);
+        require_local_size(topology, max_limit_size, "SEC's ring stencils");
+    } catch (const UnsupportedError&) {
+        return false;  // the whole-mesh path below takes every scheme and mesh
+    }
+    return true;
+}
+
+/// The load of Sec and SecSnap through the whole hierarchy: f at every level-L vertex, times its
+/// polygonal mass, carried back by S0ᵀ step by step (A_0^L is never formed).
+Eigen::VectorXd hierarchy_load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                      const InnerProductOptions& options,
+                                      const std::function<Eigen::VectorXd(const Points&)>& f,
+                                      const SchemeOptions& scheme_options) {
     const int level = uses_subdivision(options.method) ? options.level : 0;
     RefineOptions refine;
     refine.scheme = scheme;
@@ -102,16 +124,34 @@ Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKi
     const Eigen::VectorXd values = f(XL);
     LIMSURF_CHECK(values.size() == XL.rows() && values.allFinite(), InputError,
                   "the right-hand side must give one finite value per point (", XL.rows(), ")");
-    // The polygonal M0 is diagonal (already lumped): the load on level L, carried back by S0ᵀ
-    // step by step (A_0^L is never formed).
     Eigen::VectorXd load = polygonal_vertex_masses(h.topology(level), XL).cwiseProduct(values);
     for (int l = level; l >= 1; --l) {
         load = h.step(l).S0.transpose() * load;
     }
-    LIMSURF_CHECK(load.allFinite(), NumericalError,
-                  "the load vector (the right-hand side integrated over the surface) ",
-                  "overflows a double: the right-hand side reaches ", values.cwiseAbs().maxCoeff(), "; rescale it");
     return load;
+}
+
+}  // namespace
+
+Eigen::VectorXd load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
+                            const InnerProductOptions& options, const std::function<Eigen::VectorXd(const Points&)>& f,
+                            const SchemeOptions& scheme_options) {
+    LIMSURF_CHECK(X0.rows() == topology.num_vertices(), InputError, "positions have ", X0.rows(),
+                  " rows but the mesh has ", topology.num_vertices(), " vertices");
+    std::optional<Eigen::VectorXd> load;
+    if (uses_subdivision(options.method) && options.level >= 1 && options.assembly != SecAssembly::Hierarchy &&
+        ring_stencils_apply(topology, scheme, scheme_options)) {
+        load = detail::patch_load_vector(topology, X0, scheme, scheme_options, options.level,
+                                         uses_limit_positions(options.method), options.num_threads,
+                                         options.assembly == SecAssembly::Patches, f);
+    }
+    if (!load) {
+        load = hierarchy_load_vector(topology, X0, scheme, options, f, scheme_options);
+    }
+    LIMSURF_CHECK(load->allFinite(), NumericalError,
+                  "the load vector (the right-hand side integrated over the surface) ",
+                  "overflows a double; rescale the right-hand side");
+    return std::move(*load);
 }
 
 const char* sparse_cholesky_name() noexcept {

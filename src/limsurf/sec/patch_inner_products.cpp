@@ -337,11 +337,12 @@ struct Workspace {
     RowMatrix scaled;
 };
 
-/// Adds fine face g's polygonal inner products to the workspace (the level-L M_k|_f).
+/// The corners of fine face g (N × 3) and their vector area.
+/// @throws NumericalError naming the control face when the face is degenerate
 template <int N>
-void add_fine_face(const PatchStencil& s, Index g, Index control_face, int level, Workspace& w) {
+Eigen::Vector3d fine_face_corners(const PatchStencil& s, Index g, Index control_face, int level, const Workspace& w,
+                                  Eigen::Matrix<double, N, 3>& P) {
     const auto base = static_cast<std::size_t>(g) * N;
-    Eigen::Matrix<double, N, 3> P;
     for (int i = 0; i < N; ++i) {
         P.row(i) = w.fine_points.row(s.corner_vertex[base + static_cast<std::size_t>(i)]);
     }
@@ -349,6 +350,15 @@ void add_fine_face(const PatchStencil& s, Index g, Index control_face, int level
     LIMSURF_CHECK(!polygon_is_degenerate<N>(P, vector_area.norm()), NumericalError, "a level-", level,
                   " face inside control face ", control_face,
                   " has zero area (or a non-finite vertex): the inner products need non-degenerate faces");
+    return vector_area;
+}
+
+/// Adds fine face g's polygonal inner products to the workspace (the level-L M_k|_f).
+template <int N>
+void add_fine_face(const PatchStencil& s, Index g, Index control_face, int level, Workspace& w) {
+    const auto base = static_cast<std::size_t>(g) * N;
+    Eigen::Matrix<double, N, 3> P;
+    const Eigen::Vector3d vector_area = fine_face_corners<N>(s, g, control_face, level, w, P);
     const PolygonElement<N> element = polygon_element<N>(P, vector_area);
     for (int i = 0; i < N; ++i) {
         w.vertex_mass(s.corner_vertex[base + static_cast<std::size_t>(i)]) += element.area / N;
@@ -363,6 +373,28 @@ void add_fine_face(const PatchStencil& s, Index g, Index control_face, int level
         }
     }
     w.face_mass(g) = 1.0 / element.area;
+}
+
+/// Adds fine face g's share of the level-L vertex masses (|a_g| / N at each corner) to the workspace.
+template <int N>
+void add_fine_mass(const PatchStencil& s, Index g, Index control_face, int level, Workspace& w) {
+    Eigen::Matrix<double, N, 3> P;
+    const double area = fine_face_corners<N>(s, g, control_face, level, w, P).norm();
+    const auto base = static_cast<std::size_t>(g) * N;
+    for (int i = 0; i < N; ++i) {
+        w.vertex_mass(s.corner_vertex[base + static_cast<std::size_t>(i)]) += area / N;
+    }
+}
+
+/// The level-L positions inside a control face (w.fine_points, #fine vertices × 3) from the
+/// control points of its ring: subdivided (Sec) or at their limit (SecSnap).
+void fine_positions(const PatchStencil& s, const std::vector<Index>& ring_vertices, const Points& X0, Workspace& w) {
+    const auto n0 = static_cast<Eigen::Index>(ring_vertices.size());
+    w.ring_points.resize(n0, 3);
+    for (Eigen::Index i = 0; i < n0; ++i) {
+        w.ring_points.row(i) = X0.row(ring_vertices[static_cast<std::size_t>(i)]);
+    }
+    w.fine_points.noalias() = (s.position_rows.size() != 0 ? s.position_rows : s.vertex_rows) * w.ring_points;
 }
 
 /// out (n × n, column-major) = Aᵀ B for a symmetric product, computed on its lower triangle and
@@ -382,12 +414,7 @@ void symmetric_product(const RowMatrix& A, const RowMatrix& B, double* out) {
 /// The three element matrices of control face @p f.
 void face_elements(const FaceEntry& e, const Points& X0, Index f, int level, Workspace& w, ElementBlocks& out) {
     const PatchStencil& s = *e.stencil;
-    const auto n0 = static_cast<Eigen::Index>(e.vertices.size());
-    w.ring_points.resize(n0, 3);
-    for (Eigen::Index i = 0; i < n0; ++i) {
-        w.ring_points.row(i) = X0.row(e.vertices[static_cast<std::size_t>(i)]);
-    }
-    w.fine_points.noalias() = (s.position_rows.size() != 0 ? s.position_rows : s.vertex_rows) * w.ring_points;
+    fine_positions(s, e.vertices, X0, w);
     w.vertex_mass.setZero(s.vertex_rows.rows());
     w.edge_products.setZero(s.edge_rows.rows(), s.edge_rows.cols());
     w.face_mass.resize(s.face_rows.rows());
@@ -421,27 +448,35 @@ SparseMatrix assemble(Index rows, const std::vector<FaceEntry>& entries, const s
     return gather_elements(rows, static_cast<Index>(entries.size()), ids_of, values, offsets, num_threads);
 }
 
-}  // namespace
+/// A stencil cached per ring connectivity.
+struct CachedStencil {
+    std::unique_ptr<PatchStencil> stencil;
+    bool pinched = false;  ///< the ring touches itself: use the split ring
+};
 
-std::optional<InnerProducts> patch_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
-                                                  const SchemeOptions& options, int level, bool snap, int num_threads,
-                                                  bool required) {
+/// Every control face's ring and its stencil, shared by the faces with one ring connectivity.
+struct Patches {
+    std::unordered_map<std::vector<Index>, CachedStencil, KeyHash> cache;  ///< owns the stencils
+    std::vector<FaceRing> rings;                                           ///< per control face
+    std::vector<const PatchStencil*> stencils;                             ///< per control face
+};
+
+/// The rings and stencils of every control face of @p topology, or nullopt (UnsupportedError
+/// when @p required) when some face's ring cannot be refined on its own.
+std::optional<Patches> gather_patches(const Topology& topology, SchemeKind scheme, const SchemeOptions& options,
+                                      int level, bool snap, int num_threads, bool required) {
     const Index num_faces = topology.num_faces();
-    std::vector<FaceRing> rings(static_cast<std::size_t>(num_faces));
+    Patches patches;
+    patches.rings.resize(static_cast<std::size_t>(num_faces));
     parallel_ranges(num_faces, num_threads, [&](Index begin, Index end) {
         RingGatherer gatherer(topology);
         for (Index f = begin; f < end; ++f) {
-            rings[static_cast<std::size_t>(f)] = gatherer.gather(f, false);
+            patches.rings[static_cast<std::size_t>(f)] = gatherer.gather(f, false);
         }
     });
     // One stencil per distinct ring connectivity (a handful on a refined mesh).
-    struct Cached {
-        std::unique_ptr<PatchStencil> stencil;
-        bool pinched = false;  ///< the ring touches itself: use the split ring
-    };
-    std::unordered_map<std::vector<Index>, Cached, KeyHash> stencils;
-    const auto stencil_of = [&](const FaceRing& ring) -> Cached& {
-        Cached& cached = stencils[ring.key];
+    const auto stencil_of = [&](const FaceRing& ring) -> CachedStencil& {
+        CachedStencil& cached = patches.cache[ring.key];
         if (!cached.stencil && !cached.pinched) {
             try {
                 cached.stencil = std::make_unique<PatchStencil>(build_stencil(ring, scheme, options, level, snap));
@@ -451,13 +486,13 @@ std::optional<InnerProducts> patch_inner_products(const Topology& topology, cons
         }
         return cached;
     };
-    std::vector<FaceEntry> entries(static_cast<std::size_t>(num_faces));
+    patches.stencils.resize(patches.rings.size());
     RingGatherer gatherer(topology);
-    for (std::size_t f = 0; f < rings.size(); ++f) {
-        const Cached* cached = &stencil_of(rings[f]);
+    for (std::size_t f = 0; f < patches.rings.size(); ++f) {
+        const CachedStencil* cached = &stencil_of(patches.rings[f]);
         if (cached->pinched) {
-            rings[f] = gatherer.gather(static_cast<Index>(f), true);
-            cached = &stencil_of(rings[f]);
+            patches.rings[f] = gatherer.gather(static_cast<Index>(f), true);
+            cached = &stencil_of(patches.rings[f]);
         }
         if (!cached->stencil) {
             LIMSURF_CHECK(!required, UnsupportedError, "the ring of face ", f,
@@ -465,7 +500,65 @@ std::optional<InnerProducts> patch_inner_products(const Topology& topology, cons
                           "SecAssembly::Auto or Hierarchy");
             return std::nullopt;
         }
-        entries[f].stencil = cached->stencil.get();
+        patches.stencils[f] = cached->stencil.get();
+    }
+    return patches;
+}
+
+/// The level-L masses and positions of one block of control faces, each face's fine vertices
+/// after the previous face's (a vertex on a control edge or corner appears once per face).
+struct FineBlock {
+    std::vector<Eigen::Index> offsets;  ///< per face of the block, + 1
+    Points points;
+    Eigen::VectorXd masses;  ///< the face's share of each fine vertex's polygonal mass
+};
+
+/// Fills @p block with control faces [begin, end) of @p patches.
+void fine_block(const Patches& patches, const Points& X0, Index begin, Index end, int level, int num_threads,
+                FineBlock& block) {
+    block.offsets.assign(1, 0);
+    for (Index f = begin; f < end; ++f) {
+        block.offsets.push_back(block.offsets.back() +
+                                patches.stencils[static_cast<std::size_t>(f)]->vertex_rows.rows());
+    }
+    block.points.resize(block.offsets.back(), 3);
+    block.masses.resize(block.offsets.back());
+    parallel_ranges(end - begin, num_threads, [&](Index first, Index last) {
+        Workspace w;
+        for (Index i = first; i < last; ++i) {
+            const Index f = begin + i;
+            const PatchStencil& s = *patches.stencils[static_cast<std::size_t>(f)];
+            fine_positions(s, patches.rings[static_cast<std::size_t>(f)].vertices, X0, w);
+            w.vertex_mass.setZero(s.vertex_rows.rows());
+            const auto fine_faces = static_cast<Index>(s.corner_vertex.size()) / s.fine_degree;
+            for (Index g = 0; g < fine_faces; ++g) {
+                if (s.fine_degree == 4) {
+                    add_fine_mass<4>(s, g, f, level, w);
+                } else {
+                    add_fine_mass<3>(s, g, f, level, w);
+                }
+            }
+            const Eigen::Index at = block.offsets[static_cast<std::size_t>(i)];
+            block.points.middleRows(at, w.fine_points.rows()) = w.fine_points;
+            block.masses.segment(at, w.vertex_mass.size()) = w.vertex_mass;
+        }
+    });
+}
+
+}  // namespace
+
+std::optional<InnerProducts> patch_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                                  const SchemeOptions& options, int level, bool snap, int num_threads,
+                                                  bool required) {
+    std::optional<Patches> patches = gather_patches(topology, scheme, options, level, snap, num_threads, required);
+    if (!patches) {
+        return std::nullopt;
+    }
+    const Index num_faces = topology.num_faces();
+    std::vector<FaceRing>& rings = patches->rings;
+    std::vector<FaceEntry> entries(static_cast<std::size_t>(num_faces));
+    for (std::size_t f = 0; f < rings.size(); ++f) {
+        entries[f].stencil = patches->stencils[f];
     }
     ElementBlocks blocks;
     for (std::size_t k = 0; k < 3; ++k) {
@@ -497,13 +590,49 @@ std::optional<InnerProducts> patch_inner_products(const Topology& topology, cons
             face_elements(e, X0, f, level, w, blocks);
         }
     });
-    InnerProducts m;
-    m.M0 = assemble(topology.num_vertices(), entries, &FaceEntry::vertices, blocks.values[0].get(), blocks.offsets[0],
-                    num_threads);
-    m.M1 = assemble(topology.num_edges(), entries, &FaceEntry::edges, blocks.values[1].get(), blocks.offsets[1],
-                    num_threads);
-    m.M2 = assemble(num_faces, entries, &FaceEntry::faces, blocks.values[2].get(), blocks.offsets[2], num_threads);
-    return m;
+    return InnerProducts(
+        assemble(topology.num_vertices(), entries, &FaceEntry::vertices, blocks.values[0].get(), blocks.offsets[0],
+                 num_threads),
+        assemble(topology.num_edges(), entries, &FaceEntry::edges, blocks.values[1].get(), blocks.offsets[1],
+                 num_threads),
+        assemble(num_faces, entries, &FaceEntry::faces, blocks.values[2].get(), blocks.offsets[2], num_threads));
+}
+
+std::optional<Eigen::VectorXd> patch_load_vector(const Topology& topology, const Points& X0, SchemeKind scheme,
+                                                 const SchemeOptions& options, int level, bool snap, int num_threads,
+                                                 bool required,
+                                                 const std::function<Eigen::VectorXd(const Points&)>& f) {
+    const std::optional<Patches> patches =
+        gather_patches(topology, scheme, options, level, snap, num_threads, required);
+    if (!patches) {
+        return std::nullopt;
+    }
+    // Blocks of control faces keep the fine points small (about 20 MB at level 3 on quads) while
+    // f sees many points per call.
+    constexpr Index block_faces = 8192;
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(topology.num_vertices());
+    FineBlock block;
+    Eigen::VectorXd ring_load;
+    for (Index begin = 0; begin < topology.num_faces(); begin += block_faces) {
+        const Index end = std::min(topology.num_faces(), begin + block_faces);
+        fine_block(*patches, X0, begin, end, level, num_threads, block);
+        const Eigen::VectorXd values = f(block.points);
+        LIMSURF_CHECK(values.size() == block.points.rows() && values.allFinite(), InputError,
+                      "the right-hand side must give one finite value per point (", block.points.rows(), ")");
+        // Face by face in order, so the sums do not depend on the thread count.
+        for (Index face = begin; face < end; ++face) {
+            const PatchStencil& s = *patches->stencils[static_cast<std::size_t>(face)];
+            const Eigen::Index at = block.offsets[static_cast<std::size_t>(face - begin)];
+            const Eigen::Index n = s.vertex_rows.rows();
+            ring_load.noalias() =
+                s.vertex_rows.transpose() * block.masses.segment(at, n).cwiseProduct(values.segment(at, n));
+            const std::vector<Index>& ring = patches->rings[static_cast<std::size_t>(face)].vertices;
+            for (std::size_t i = 0; i < ring.size(); ++i) {
+                load(ring[i]) += ring_load(static_cast<Eigen::Index>(i));
+            }
+        }
+    }
+    return load;
 }
 
 }  // namespace limsurf::detail

@@ -15,6 +15,7 @@
 // (tests/sec/inner_products_test.cpp checks it on every bundled mesh).
 #pragma once
 
+#include <functional>
 #include <optional>
 
 #include "limsurf/core/types.h"
@@ -36,5 +37,19 @@ namespace limsurf::detail {
 [[nodiscard]] std::optional<InnerProducts> patch_inner_products(const Topology& topology, const Points& X0,
                                                                 SchemeKind scheme, const SchemeOptions& options,
                                                                 int level, bool snap, int num_threads, bool required);
+
+/// @brief The load vector b = (A_0^L)ᵀ M_0^L f(X^L) of Sec (SecSnap when @p snap) by the same
+///   ring stencils: b = Σ_f R_fᵀ (A_0^L|_f)ᵀ (m_f ⊙ f(X^L|_f)), with m_f the level-L vertex masses'
+///   shares from the level-L faces inside f (the polygonal M_0^L is diagonal). No level-L mesh is
+///   built; f is called with blocks of points (a level-L vertex on a control edge or corner once
+///   per control face around it), faces are summed in order (the same bits on any thread count).
+/// @pre as patch_inner_products
+/// @return nullopt when some face's ring cannot be refined on its own
+/// @throws as patch_inner_products; InputError when f returns the wrong number of values or a
+///   non-finite one
+[[nodiscard]] std::optional<Eigen::VectorXd> patch_load_vector(const Topology& topology, const Points& X0,
+                                                               SchemeKind scheme, const SchemeOptions& options,
+                                                               int level, bool snap, int num_threads, bool required,
+                                                               const std::function<Eigen::VectorXd(const Points&)>& f);
 
 }  // namespace limsurf::detail
