@@ -60,6 +60,19 @@ class SparseCholesky {
         Eigen::MatrixXd X = solver_.solve(B);
         return X;
     }
+    /// min |D_k| / max |D_k| over the factor's pivots (D_k = L_kk² for an LLᵀ factor; 1 for an empty
+    /// matrix): at rounding level for a matrix with a (numerical) kernel.
+    [[nodiscard]] double pivot_ratio() const {
+        if (A_.rows() == 0) {
+            return 1.0;
+        }
+#ifdef LIMSURF_HAVE_CHOLMOD
+        const Eigen::VectorXd d = solver_.pivots().cwiseAbs();
+#else
+        const Eigen::VectorXd d = solver_.vectorD().cwiseAbs();
+#endif
+        return d.minCoeff() / d.maxCoeff();
+    }
     static const char* name() noexcept {
 #ifdef LIMSURF_HAVE_CHOLMOD
         return "cholmod";
@@ -96,15 +109,40 @@ class SparseCholesky {
         [[nodiscard]] double smallest_relative_pivot() const {
             const cholmod_factor* f = this->m_cholmodFactor;
             if (f == nullptr || f->is_super != 0 || f->is_ll != 0 || f->n == 0) {
-                return 1.0;
+                return 1.0;  // LLᵀ: CHOLMOD itself refuses a non-positive pivot
+            }
+            return relative_minimum(pivots());
+        }
+        /// The pivots D_k of the factor: the diagonal of D for LDLᵀ, L_kk² for LLᵀ (simplicial or
+        /// supernodal), in the factor's (permuted) order.
+        [[nodiscard]] Eigen::VectorXd pivots() const {
+            const cholmod_factor* f = this->m_cholmodFactor;
+            Eigen::VectorXd d(f == nullptr ? 0 : static_cast<Eigen::Index>(f->n));
+            if (d.size() == 0) {
+                return d;
+            }
+            const auto* values = static_cast<const double*>(f->x);
+            if (f->is_super != 0) {
+                // Supernode s holds columns super[s] .. super[s+1] − 1 as a dense column-major block of
+                // pi[s+1] − pi[s] rows at px[s], its diagonal block on top.
+                const auto* super = static_cast<const ColMatrix::StorageIndex*>(f->super);
+                const auto* pi = static_cast<const ColMatrix::StorageIndex*>(f->pi);
+                const auto* px = static_cast<const ColMatrix::StorageIndex*>(f->px);
+                for (std::size_t s = 0; s < f->nsuper; ++s) {
+                    const Eigen::Index rows = pi[s + 1] - pi[s];
+                    for (Eigen::Index j = super[s]; j < super[s + 1]; ++j) {
+                        const double l = values[px[s] + (j - super[s]) * rows + (j - super[s])];
+                        d[j] = l * l;
+                    }
+                }
+                return d;
             }
             const auto* starts = static_cast<const ColMatrix::StorageIndex*>(f->p);
-            const auto* values = static_cast<const double*>(f->x);
-            Eigen::VectorXd d(static_cast<Eigen::Index>(f->n));
             for (Eigen::Index k = 0; k < d.size(); ++k) {
-                d[k] = values[starts[k]];  // the diagonal comes first in each column of an LDLᵀ factor
+                const double diagonal = values[starts[k]];  // first in each column of a simplicial factor
+                d[k] = f->is_ll != 0 ? diagonal * diagonal : diagonal;
             }
-            return relative_minimum(d);
+            return d;
         }
     };
 #endif

@@ -12,9 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include "limsurf/core/error.h"
+#include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/refine/refine.h"
 #include "limsurf/refine/reverse.h"
 
@@ -327,48 +328,53 @@ std::pair<std::vector<Index>, SparseMatrix> check_refines_to(const ControlMesh& 
     return out;
 }
 
-/// min ‖S0 X − P‖ by iterated Tikhonov on the normal equations, started at (and, in the kernel of
-/// S0 if any, staying at) X0: each step solves (N + λI) X_{k+1} = S0ᵀP + λ X_k, N = S0ᵀ S0, which
-/// converges to the least-squares solution closest to X0 (exactly the solution when N is regular).
+/// min ‖S0 X − P‖ through the normal equations N X = S0ᵀP, N = S0ᵀ S0. N is factored once (CHOLMOD's
+/// supernodal Cholesky where built with it): when its pivots show no kernel, the fit is the unique
+/// solution, with one step of iterative refinement. Otherwise (or should N not factor) by iterated
+/// Tikhonov, started at (and, in the kernel of S0, staying at) X0: each step solves
+/// (N + λI) X_{k+1} = S0ᵀP + λ X_k, which converges to the least-squares solution closest to X0.
 Points least_squares(const SparseMatrix& S0, const Points& P, const Points& X0, bool& unique) {
-    using ColMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
-    const ColMatrix S = S0;
-    ColMatrix N = S.transpose() * S;
+    const SparseMatrix N = SparseMatrix(S0.transpose()) * S0;
+    const Eigen::MatrixXd rhs = S0.transpose() * P;
+    const auto finite = [](const Points& X) {
+        LIMSURF_CHECK(X.allFinite(), NumericalError, "the least-squares fit of the coarse positions is not finite");
+        return X;
+    };
+    // Uniqueness: the pivots of N itself (a pivot at rounding level: a kernel).
+    std::optional<detail::SparseCholesky> plain;
+    try {
+        plain.emplace(N, "the normal equations of the fit");
+    } catch (const NumericalError&) {
+        // not positive definite: a kernel (handled below)
+    }
+    unique = plain && plain->pivot_ratio() > 1e-10;
+    if (unique) {
+        Points X = plain->solve_columns(rhs);
+        X += plain->solve_columns(rhs - N * X);
+        return finite(X);
+    }
     double largest = 0.0;
-    for (Index i = 0; i < N.cols(); ++i) {
+    for (Index i = 0; i < N.rows(); ++i) {
         largest = std::max(largest, N.coeff(i, i));
     }
-    // Uniqueness: the LDLᵀ pivots of N itself (a pivot at rounding level: a kernel).
-    {
-        Eigen::SimplicialLDLT<ColMatrix> plain(N);
-        unique = plain.info() == Eigen::Success;
-        if (unique) {
-            const Eigen::VectorXd d = plain.vectorD();
-            unique = d.size() == 0 || d.cwiseAbs().minCoeff() > 1e-10 * d.cwiseAbs().maxCoeff();
-        }
-    }
     const double lambda = 1e-8 * largest;
-    ColMatrix A = N;
+    SparseMatrix A = N;
     for (Index i = 0; i < A.cols(); ++i) {
         A.coeffRef(i, i) += lambda;
     }
-    Eigen::SimplicialLDLT<ColMatrix> solver(A);
-    LIMSURF_CHECK(solver.info() == Eigen::Success, NumericalError,
-                  "the least-squares fit of the coarse positions failed");
-    const Eigen::MatrixXd rhs = S.transpose() * P;
+    const detail::SparseCholesky solver(A, "the regularised normal equations of the fit");
     const double scale = std::max(1.0, P.cwiseAbs().maxCoeff());
     Points X = X0;
     for (int k = 0; k < 60; ++k) {
         const Eigen::MatrixXd b = rhs + lambda * Eigen::MatrixXd(X);
-        const Points next = solver.solve(b);
+        const Points next = solver.solve_columns(b);
         const double change = (next - X).cwiseAbs().maxCoeff();
         X = next;
         if (!(change > 1e-17 * scale)) {
             break;
         }
     }
-    LIMSURF_CHECK(X.allFinite(), NumericalError, "the least-squares fit of the coarse positions is not finite");
-    return X;
+    return finite(X);
 }
 
 /// Builds the candidate for @p role: topology, check, fit.
