@@ -129,6 +129,46 @@ TEST(ReverseCatmullClark, RecoversEveryBundledMeshExactly) {
     }
 }
 
+/// The disjoint union of two meshes (b's vertices after a's).
+ControlMesh disjoint_union(const ControlMesh& a, const ControlMesh& b) {
+    std::vector<Index> offsets{0};
+    std::vector<Index> corners;
+    for (const ControlMesh* m : {&a, &b}) {
+        const Index shift = m == &b ? a.num_vertices() : 0;
+        for (Index f = 0; f < m->topology().num_faces(); ++f) {
+            for (const Index v : m->topology().face_vertices(f)) {
+                corners.push_back(v + shift);
+            }
+            offsets.push_back(static_cast<Index>(corners.size()));
+        }
+    }
+    Points X(a.num_vertices() + b.num_vertices(), 3);
+    X << a.positions(), b.positions();
+    return ControlMesh(Topology(X.rows(), offsets, corners), X);
+}
+
+TEST(ReverseCatmullClark, SeesAKernelInALargeSystem) {
+    // genus 2 refined three times (3 198 vertices) next to a cube, refined once more and reversed:
+    // the normal equations are large enough for a supernodal factor, and the cube's valence-3,
+    // bipartite part gives them a kernel that the pivots must reveal. Without the cube, none.
+    const SchemeOptions options;
+    const ControlMesh genus2 = refined(read_mesh(test::find_bundled("genus2").path).mesh, 3, options);
+    const ControlMesh cube = read_mesh(test::find_bundled("cube").path).mesh;
+    const ControlMesh both = disjoint_union(genus2, cube);
+    for (const ControlMesh* coarse : {&both, &genus2}) {
+        const ControlMesh fine = refined(*coarse, 1, options);
+        const ReverseResult r = reverse_catmull_clark(fine, 1, options);
+        ASSERT_EQ(r.levels_reversed, 1);
+        EXPECT_EQ(r.steps[0].unique, coarse == &genus2);
+        const double tol = 1e-12 * scale_of(fine.positions());
+        EXPECT_LE(r.steps[0].residual_max, tol);
+        EXPECT_LE((refined(r.coarse, 1, options).positions() - fine.positions()).cwiseAbs().maxCoeff(), tol);
+        if (coarse == &genus2) {
+            EXPECT_LE((r.coarse.positions() - genus2.positions()).cwiseAbs().maxCoeff(), tol);
+        }
+    }
+}
+
 TEST(ReverseCatmullClark, AsManyAsPossibleStopsAtTheOriginal) {
     // quad_torus refined twice: its topology could be reversed further (it is a torus of 8 × 8 quads)
     // but its geometry is not a refinement, so as many levels as possible is 2.
