@@ -247,18 +247,28 @@ void check_time_step_keeps_the_mass(const SparseMatrix& mass, const SparseMatrix
 
 std::pair<SparseMatrix, SparseMatrix> mass_and_laplacian(const Topology& t, const Points& X, SchemeKind scheme,
                                                          const HeatGeodesicsOptions& options, const LimitBasis* basis) {
+    // The matrices are swapped into the pair: Eigen 3.4's SparseMatrix has no move constructor, so
+    // constructing the pair from them would copy them.
+    std::pair<SparseMatrix, SparseMatrix> out;
     if (options.method == LaplacianMethod::Iga) {
         SamplerOptions quadrature = options.iga_quadrature;
         quadrature.num_threads = options.num_threads;
         GalerkinMatrices galerkin = assemble_laplace_beltrami(LimitSampler(*basis, quadrature), X);
-        return {lumped(galerkin.mass), std::move(galerkin.stiffness)};
+        SparseMatrix mass = lumped(galerkin.mass);
+        out.first.swap(mass);
+        out.second.swap(galerkin.stiffness);
+        return out;
     }
     InnerProductOptions ip;
     ip.method = inner_product_method(options.method);
     ip.level = options.level;
     ip.num_threads = options.num_threads;
     const Operators ops(t, control_inner_products(t, X, scheme, ip, options.scheme_options));
-    return {lumped(ops.inner_products().M0), ops.laplacian()};
+    SparseMatrix mass = lumped(ops.inner_products().M0);
+    SparseMatrix laplacian = ops.laplacian();
+    out.first.swap(mass);
+    out.second.swap(laplacian);
+    return out;
 }
 
 void check_sources(const std::vector<Index>& sources, Index num_vertices) {

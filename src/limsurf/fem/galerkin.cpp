@@ -67,8 +67,8 @@ GalerkinMatrices assemble_laplace_beltrami(const LimitSampler& sampler, const Po
             }
         });
     GalerkinMatrices out;
-    out.mass = std::move(mass);
-    out.stiffness = std::move(stiffness);
+    out.mass.swap(mass);  // swapped: Eigen 3.4's SparseMatrix has no move assignment (std::move copied)
+    out.stiffness.swap(stiffness);
     return out;
 }
 

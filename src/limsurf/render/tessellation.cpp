@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "limsurf/core/error.h"
+#include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/core/parallel.h"
 #include "limsurf/limit/surface_frame.h"
 #include "limsurf/quadrature/sampler.h"
@@ -175,6 +176,8 @@ SparseMatrix assemble_weights(const std::map<Index, WeightRows>& ranges, Index n
     auto* outer = W.outerIndexPtr();
     auto* inner = W.innerIndexPtr();
     double* values = W.valuePtr();
+    detail::advise_huge_pages(inner, total * sizeof(*inner));  // before the first write (docs/BENCHMARKS.md)
+    detail::advise_huge_pages(values, total * sizeof(double));
     Index row = 0;
     std::size_t written = 0;
     outer[0] = 0;
@@ -284,7 +287,9 @@ std::vector<PointFrame> evaluate_grid(const LimitBasis& basis, const Points& X, 
         const std::lock_guard lock(ranges_mutex);
         ranges.emplace(begin, std::move(rows));
     });
-    t.value_weights = assemble_weights(ranges, num_points, static_cast<Index>(X.rows()));
+    // Swapped in: Eigen 3.4's SparseMatrix has no move assignment, and a copy was a tenth of a render.
+    SparseMatrix weights = assemble_weights(ranges, num_points, static_cast<Index>(X.rows()));
+    t.value_weights.swap(weights);
     return frames;
 }
 
