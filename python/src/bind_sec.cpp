@@ -166,7 +166,8 @@ divergence d0ᵀ M1 (#V × #E). The strong Laplacian is M0⁻¹ L.)");
         R"(Solves −Δu = f on the limit surface with every unknown on the control mesh: `limsurf poisson`.
 
 rhs: a function f(P) of an (n, 3) position array returning n values (integrated where the method
-integrates: level L for sec, the quadrature points for iga), or #V values at the control vertices.
+integrates: level L for sec, the quadrature points for iga; it may be called several times, on
+blocks of points, so it must depend on the point alone), or #V values at the control vertices.
 method: 'dec', 'decsnap', 'sec', 'secsnap' (SEC §3 inner products; level L, lumped) or 'iga'
 (Galerkin with the limit basis; quadrature `degree` per tile and `tiles` levels towards extraordinary
 vertices, None: 8 and 6; other methods refuse them). Closed meshes: the mean of f is removed
