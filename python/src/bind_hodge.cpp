@@ -115,7 +115,8 @@ Returns the keys of `--json`, with the arrays 'w', 'exact', 'coexact', 'harmonic
                 {
                     const py::gil_scoped_release release;
                     const HodgeDecomposer dec(
-                        t, control_inner_products(t, mesh.mesh.positions(), kind, o.inner_products, o.scheme_options));
+                        t, control_inner_products(t, mesh.mesh.positions(), kind, o.inner_products, o.scheme_options),
+                        o.inner_products.num_threads);
                     b = harmonic_basis(dec, static_cast<std::uint64_t>(seed));
                 }
                 return py::dict("forms"_a = to_numpy(b.forms), "dimension"_a = b.dimension, "expected"_a = b.expected,

@@ -53,7 +53,9 @@ class HodgeDecomposer {
     /// @throws InputError when the matrices do not fit the topology, the mesh is not connected (naming
     ///   the component count) or a face meets one edge twice; NumericalError when a factorisation fails
     ///   (degenerate geometry)
-    HodgeDecomposer(const Topology& topology, InnerProducts inner_products);
+    /// @param num_threads threads for assembling d0ᵀ M1 d0 (0: hardware concurrency; the result does
+    ///   not depend on it)
+    HodgeDecomposer(const Topology& topology, InnerProducts inner_products, int num_threads = 0);
     ~HodgeDecomposer();
     HodgeDecomposer(HodgeDecomposer&&) noexcept;
     HodgeDecomposer& operator=(HodgeDecomposer&&) noexcept;

@@ -27,8 +27,10 @@ namespace limsurf {
 
 class Operators {
   public:
+    /// @param num_threads threads for assembling laplacian() (0: hardware concurrency; the result
+    ///   does not depend on it)
     /// @throws InputError when the matrices' sizes do not match the topology
-    Operators(const Topology& topology, InnerProducts inner_products);
+    Operators(const Topology& topology, InnerProducts inner_products, int num_threads = 0);
     ~Operators();
     Operators(Operators&&) noexcept;
     Operators& operator=(Operators&&) noexcept;
@@ -42,7 +44,8 @@ class Operators {
     [[nodiscard]] const SparseMatrix& curl() const noexcept { return d1_; }
     /// d0ᵀ M1 (#V × #E).
     [[nodiscard]] SparseMatrix divergence() const;
-    /// d0ᵀ M1 d0 (#V × #V), symmetric positive semi-definite, constants in its kernel.
+    /// d0ᵀ M1 d0 (#V × #V), symmetric positive semi-definite, constants in its kernel; assembled row
+    /// by row in one pass (each entry summed over the edges e at its row's vertex, then M1's row e).
     [[nodiscard]] SparseMatrix laplacian() const;
     /// (M1 d0 M0⁻¹ d0ᵀ M1 + d1ᵀ M2 d1) w for a 1-form w (#E).
     [[nodiscard]] Eigen::VectorXd hodge_laplacian_1(const Eigen::VectorXd& w) const;
@@ -66,6 +69,7 @@ class Operators {
     SparseMatrix d0_, d1_;
     InnerProducts m_;
     std::unique_ptr<Factors> factors_;
+    int num_threads_ = 0;
 };
 
 /// A Poisson problem −Δu = f on the surface: f as values at the vertices (integrated with M0),

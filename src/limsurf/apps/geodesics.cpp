@@ -263,7 +263,7 @@ std::pair<SparseMatrix, SparseMatrix> mass_and_laplacian(const Topology& t, cons
     ip.method = inner_product_method(options.method);
     ip.level = options.level;
     ip.num_threads = options.num_threads;
-    const Operators ops(t, control_inner_products(t, X, scheme, ip, options.scheme_options));
+    const Operators ops(t, control_inner_products(t, X, scheme, ip, options.scheme_options), options.num_threads);
     SparseMatrix mass = lumped(ops.inner_products().M0);
     SparseMatrix laplacian = ops.laplacian();
     out.first.swap(mass);

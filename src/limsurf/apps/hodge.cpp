@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "limsurf/core/error.h"
+#include "limsurf/detail/congruence.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
@@ -205,7 +206,7 @@ struct HodgeDecomposer::Impl {
     Eigen::VectorXd solve_alpha(const Eigen::VectorXd& b) const { return solve_pinned(laplacian, *poisson, b); }
 };
 
-HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_products)
+HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_products, int num_threads)
     : impl_(std::make_unique<Impl>()) {
     LIMSURF_CHECK(topology.num_components() == 1, InputError,
                   "the Hodge decomposition needs a connected mesh (this one has ", topology.num_components(),
@@ -217,7 +218,8 @@ HodgeDecomposer::HodgeDecomposer(const Topology& topology, InnerProducts inner_p
     LIMSURF_CHECK(m.ip.M1.rows() == topology.num_edges() && m.ip.M1.cols() == topology.num_edges(), InputError,
                   "M1 is ", m.ip.M1.rows(), " x ", m.ip.M1.cols(), " for ", topology.num_edges(), " edges");
     m.divergence = SparseMatrix(m.d0.transpose()) * m.ip.M1;
-    m.laplacian = m.divergence * m.d0;
+    SparseMatrix laplacian = detail::congruence(m.d0, m.ip.M1, num_threads);
+    m.laplacian.swap(laplacian);  // swapped: Eigen 3.4's SparseMatrix has no move assignment
     m.poisson = std::make_unique<detail::SparseCholesky>(pinned_laplacian(m.laplacian), "the Laplacian d0ᵀ M1 d0");
     m.pinned_faces = topology.is_closed() ? 1 : 0;
     Eigen::MatrixXd Z = cohomology_generators(topology, m.d1);
@@ -409,7 +411,8 @@ HodgeResult hodge_decomposition(const Topology& topology, const Points& X0, Sche
                       "the reference level must be 1..6 (got ", *options.reference_level, ")");
     }
     const HodgeDecomposer dec(
-        topology, control_inner_products(topology, X0, scheme, options.inner_products, options.scheme_options));
+        topology, control_inner_products(topology, X0, scheme, options.inner_products, options.scheme_options),
+        options.inner_products.num_threads);
     HodgeResult r;
     r.parts = dec.decompose(w);
     r.solver = std::string(detail::SparseCholesky::name()) + " (h on a tree–cotree basis, no saddle point)";

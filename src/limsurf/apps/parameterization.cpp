@@ -135,7 +135,8 @@ Operators inner_product_operators(const ControlMesh& mesh, SchemeKind scheme, co
     ip.level = options.level;
     ip.num_threads = options.num_threads;
     const Topology& t = mesh.topology();
-    return Operators(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
+    return Operators(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options),
+                     options.num_threads);
 }
 
 /// iga's quadrature of the limit surface.

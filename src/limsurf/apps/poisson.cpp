@@ -39,7 +39,8 @@ PoissonSolution solve_with_inner_products(const ControlMesh& mesh, SchemeKind sc
     ip.lumped = options.lumped;
     ip.num_threads = options.num_threads;
     const Topology& t = mesh.topology();
-    const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options));
+    const Operators ops(t, control_inner_products(t, mesh.positions(), scheme, ip, options.scheme_options),
+                        options.num_threads);
     if (data.f_values) {
         problem.f = *data.f_values;
     } else {

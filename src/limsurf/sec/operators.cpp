@@ -11,6 +11,7 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/core/magnitude.h"
+#include "limsurf/detail/congruence.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/limit/limit_basis.h"
 #include "limsurf/mesh/local_size.h"
@@ -27,9 +28,9 @@ struct Operators::Factors {
     std::array<std::unique_ptr<detail::SparseCholesky>, 3> of;
 };
 
-Operators::Operators(const Topology& topology, InnerProducts inner_products)
+Operators::Operators(const Topology& topology, InnerProducts inner_products, int num_threads)
     : d0_(exterior_derivative_0(topology)), d1_(exterior_derivative_1(topology)), m_(std::move(inner_products)),
-      factors_(std::make_unique<Factors>()) {
+      factors_(std::make_unique<Factors>()), num_threads_(num_threads) {
     const std::array<Index, 3> sizes{topology.num_vertices(), topology.num_edges(), topology.num_faces()};
     const std::array<const SparseMatrix*, 3> ms{&m_.M0, &m_.M1, &m_.M2};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -50,7 +51,7 @@ SparseMatrix Operators::divergence() const {
 }
 
 SparseMatrix Operators::laplacian() const {
-    return SparseMatrix(divergence() * d0_);
+    return detail::congruence(d0_, m_.M1, num_threads_);
 }
 
 Eigen::VectorXd Operators::solve_inner_product(int k, const Eigen::VectorXd& b) const {
