@@ -60,7 +60,7 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
     }
     std::vector<std::size_t> value_offsets(at(num_elements) + 1, 0);
     for (std::size_t e = 0; e < ids.size(); ++e) {
-        value_offsets[e + 1] = value_offsets[e] + ids[e].size() * ids[e].size();
+        value_offsets[e + 1] = value_offsets[e] + packed_size(ids[e].size());
     }
     // Every entry is written below: left uninitialised, advised for huge pages.
     std::array<std::unique_ptr<double[]>, N> values;
@@ -90,8 +90,9 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
                 add_sample(s, std::span<const Index>(local), Ke);
             }
             for (std::size_t m = 0; m < N; ++m) {
-                Eigen::Map<Eigen::MatrixXd> out(values[m].get() + value_offsets[at(e)], k, k);
-                out = 0.5 * (Ke[m] + Ke[m].transpose());
+                const Eigen::MatrixXd& K = Ke[m];
+                pack_lower([&K](Eigen::Index r, Eigen::Index c) { return 0.5 * (K(r, c) + K(c, r)); }, at(k),
+                           values[m].get() + value_offsets[at(e)]);
             }
             for (Index j = 0; j < k; j += Block) {
                 element_slot[at(element[at(j)] / Block)] = invalid_index;
@@ -101,8 +102,9 @@ std::array<SparseMatrix, N> assemble_elements(const LimitSampler& sampler, const
     const auto ids_of = [&](Index e) -> const std::vector<Index>& { return ids[at(e)]; };
     std::array<SparseMatrix, N> out;
     for (std::size_t m = 0; m < N; ++m) {
-        out[m] = gather_elements(Block * sampler.num_vertices(), num_elements, ids_of, values[m].get(), value_offsets,
-                                 sampler.options().num_threads);
+        SparseMatrix gathered = gather_elements(Block * sampler.num_vertices(), num_elements, ids_of, values[m].get(),
+                                                value_offsets, sampler.options().num_threads);
+        out[m].swap(gathered);  // swapped: Eigen 3.4's SparseMatrix has no move assignment
     }
     return out;
 }

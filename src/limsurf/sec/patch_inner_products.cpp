@@ -319,7 +319,8 @@ void map_ring_edges(const Topology& t, const FaceRing& ring, FaceEntry& e) {
     }
 }
 
-/// The element matrices of one control face, n_k × n_k for k = 0, 1, 2, column-major.
+/// The element matrices of one control face, n_k × n_k for k = 0, 1, 2, their lower triangles packed
+/// (element_gather.h).
 struct ElementBlocks {
     /// Left uninitialised: every entry is written by face_elements (zeroing 200 MiB at 20 k triangles
     /// first cost a fifth of the assembly).
@@ -335,6 +336,7 @@ struct Workspace {
     RowMatrix edge_products;  ///< M_1^L|_f · A_1^L|_f
     Eigen::VectorXd face_mass;
     RowMatrix scaled;
+    Eigen::MatrixXd square;  ///< an element matrix's lower triangle before it is packed
 };
 
 /// The corners of fine face g (N × 3) and their vector area.
@@ -397,18 +399,13 @@ void fine_positions(const PatchStencil& s, const std::vector<Index>& ring_vertic
     w.fine_points.noalias() = (s.position_rows.size() != 0 ? s.position_rows : s.vertex_rows) * w.ring_points;
 }
 
-/// out (n × n, column-major) = Aᵀ B for a symmetric product, computed on its lower triangle and
-/// mirrored so that it is exactly symmetric.
-void symmetric_product(const RowMatrix& A, const RowMatrix& B, double* out) {
+/// Aᵀ B (n × n) for a symmetric product, computed on its lower triangle (in @p scratch) and
+/// written to @p out packed (element_gather.h's pack_lower).
+void symmetric_product(const RowMatrix& A, const RowMatrix& B, Eigen::MatrixXd& scratch, double* out) {
     const Eigen::Index n = A.cols();
-    Eigen::Map<Eigen::MatrixXd> C(out, n, n);
-    C.setZero();
-    C.triangularView<Eigen::Lower>() += A.transpose() * B;
-    for (Eigen::Index j = 0; j < n; ++j) {
-        for (Eigen::Index i = 0; i < j; ++i) {
-            C(i, j) = C(j, i);
-        }
-    }
+    scratch.setZero(n, n);
+    scratch.triangularView<Eigen::Lower>() += A.transpose() * B;
+    pack_lower(scratch, static_cast<std::size_t>(n), out);
 }
 
 /// The three element matrices of control face @p f.
@@ -427,16 +424,19 @@ void face_elements(const FaceEntry& e, const Points& X0, Index f, int level, Wor
     }
     const auto at = static_cast<std::size_t>(f);
     w.scaled = w.vertex_mass.asDiagonal() * s.vertex_rows;
-    symmetric_product(s.vertex_rows, w.scaled, out.values[0].get() + out.offsets[0][at]);
+    symmetric_product(s.vertex_rows, w.scaled, w.square, out.values[0].get() + out.offsets[0][at]);
     w.scaled = w.face_mass.asDiagonal() * s.face_rows;
-    symmetric_product(s.face_rows, w.scaled, out.values[2].get() + out.offsets[2][at]);
+    symmetric_product(s.face_rows, w.scaled, w.square, out.values[2].get() + out.offsets[2][at]);
     // M_1: A_1ᵀ (M_1^L A_1), then D C D with D the signs from the ring's edge orientation to the
-    // global one (products of ±1: C stays exactly symmetric).
+    // global one (products of ±1: exact).
     double* one_forms = out.values[1].get() + out.offsets[1][at];
-    symmetric_product(s.edge_rows, w.edge_products, one_forms);
-    const Eigen::Map<const Eigen::VectorXd> signs(e.edge_signs.data(), s.edge_rows.cols());
-    Eigen::Map<Eigen::MatrixXd> C(one_forms, signs.size(), signs.size());
-    C = signs.asDiagonal() * C * signs.asDiagonal();
+    symmetric_product(s.edge_rows, w.edge_products, w.square, one_forms);
+    const std::size_t n = e.edge_signs.size();
+    for (std::size_t c = 0; c < n; ++c) {
+        for (std::size_t r = c; r < n; ++r) {
+            *one_forms++ *= e.edge_signs[r] * e.edge_signs[c];
+        }
+    }
 }
 
 // --- global gather ----------------------------------------------------------------------------
@@ -570,8 +570,7 @@ std::optional<InnerProducts> patch_inner_products(const Topology& topology, cons
                                                   static_cast<std::size_t>(s.edge_rows.cols()),
                                                   static_cast<std::size_t>(s.face_rows.cols())};
         for (std::size_t k = 0; k < 3; ++k) {
-            const auto n = sizes[k];
-            blocks.offsets[k][f + 1] = blocks.offsets[k][f] + n * n;
+            blocks.offsets[k][f + 1] = blocks.offsets[k][f] + packed_size(sizes[k]);
         }
     }
     for (std::size_t k = 0; k < 3; ++k) {
