@@ -48,26 +48,71 @@ double relative_difference(const InnerProducts& p, const InnerProducts& h) {
     return worst;
 }
 
+/// A smooth right-hand side that is no polynomial of the position (a sum of its samples would
+/// not hide a wrong point or weight).
+Eigen::VectorXd smooth_rhs(const Points& P) {
+    Eigen::VectorXd v(P.rows());
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+        v(i) = std::sin(2.0 * P(i, 0)) + P(i, 1) * P(i, 2) + std::exp(0.3 * P(i, 2));
+    }
+    return v;
+}
+
+Eigen::VectorXd load(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
+                     SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0, int* calls = nullptr) {
+    InnerProductOptions options;
+    options.method = method;
+    options.level = level;
+    options.assembly = assembly;
+    options.num_threads = threads;
+    SchemeOptions scheme_options;
+    scheme_options.boundary = boundary;
+    return load_vector(
+        t, X, scheme, options,
+        [calls](const Points& P) {
+            if (calls != nullptr) {
+                ++*calls;
+            }
+            return smooth_rhs(P);
+        },
+        scheme_options);
+}
+
+double relative_difference(const Eigen::VectorXd& p, const Eigen::VectorXd& h) {
+    return (p - h).cwiseAbs().maxCoeff() / h.cwiseAbs().maxCoeff();
+}
+
 using Case = test::SchemeCase;
 
 class PatchAssembly : public ::testing::TestWithParam<Case> {};
 
 TEST_P(PatchAssembly, EqualsTheHierarchyAssembly) {
+    // The inner products, and the load vector: the hierarchy route samples f once per level-L vertex
+    // of the whole refined mesh and carries the weighted values back by S0ᵀ; the patch route samples
+    // it per control face (a vertex on a control edge or corner once per face around it) and pulls
+    // back through the ring stencils.
     const BuildResult built = read_mesh(test::find_bundled(GetParam().name).path);
     const Topology& t = built.mesh.topology();
     const Points& X = built.mesh.positions();
+    const SchemeKind scheme = GetParam().scheme;
     for (const auto boundary : {BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly}) {
         for (const auto method : {InnerProductMethod::Sec, InnerProductMethod::SecSnap}) {
             for (const int level : {1, 2}) {
-                const auto patches = assembled(t, X, GetParam().scheme, method, level, SecAssembly::Patches, boundary);
-                const auto reference =
-                    assembled(t, X, GetParam().scheme, method, level, SecAssembly::Hierarchy, boundary);
-                EXPECT_LE(relative_difference(patches, reference), 1e-13)
-                    << to_string(method) << " L=" << level << " boundary " << static_cast<int>(boundary);
-                if (t.is_closed()) {
-                    break;  // the boundary rule changes nothing
-                }
+                SCOPED_TRACE(std::string(to_string(method)) + " L=" + std::to_string(level) + " boundary " +
+                             std::to_string(static_cast<int>(boundary)));
+                // 1e-12, not 1e-13: on tetra_4 at L = 2, M2 (sums of 1/|a| over level-2 faces, up to 123
+                // here) differs by 5.0e-13 of its largest entry between the two routes; M0 and M1 by at
+                // most 5e-15. (Until 2026-12-07 a misplaced break checked closed meshes at L = 1 only.)
+                EXPECT_LE(relative_difference(assembled(t, X, scheme, method, level, SecAssembly::Patches, boundary),
+                                              assembled(t, X, scheme, method, level, SecAssembly::Hierarchy, boundary)),
+                          1e-12);
+                EXPECT_LE(relative_difference(load(t, X, scheme, method, level, SecAssembly::Patches, boundary),
+                                              load(t, X, scheme, method, level, SecAssembly::Hierarchy, boundary)),
+                          1e-13);
             }
+        }
+        if (t.is_closed()) {
+            break;  // the boundary rule changes nothing
         }
     }
 }
@@ -86,11 +131,20 @@ TEST(PatchAssemblyAtLevel3, EqualsTheHierarchyAssembly) {
         const auto reference = assembled(t, X, c.scheme, InnerProductMethod::Sec, 3, SecAssembly::Hierarchy,
                                          BoundaryInterpolation::EdgeAndCorner);
         EXPECT_LE(relative_difference(patches, reference), 1e-13) << c.name;
+        for (const auto method : {InnerProductMethod::Sec, InnerProductMethod::SecSnap}) {
+            EXPECT_LE(
+                relative_difference(
+                    load(t, X, c.scheme, method, 3, SecAssembly::Patches, BoundaryInterpolation::EdgeAndCorner),
+                    load(t, X, c.scheme, method, 3, SecAssembly::Hierarchy, BoundaryInterpolation::EdgeAndCorner)),
+                1e-13)
+                << c.name << " " << to_string(method) << " load";
+        }
     }
 }
 
 TEST(PatchAssemblyOnCarvings, EqualsTheHierarchyAssembly) {
-    // Random sub-meshes: boundary vertices with every fan size, ears, several loops.
+    // Random sub-meshes: boundary vertices with every fan size, ears, several loops (inner products
+    // and load vector).
     std::mt19937 rng(7);
     int checked = 0;
     for (const Case& c : {Case{"quad_valence_8", SchemeKind::CatmullClark}, Case{"tri_valence_7", SchemeKind::Loop},
@@ -115,6 +169,12 @@ TEST(PatchAssemblyOnCarvings, EqualsTheHierarchyAssembly) {
                 const auto patches = assembled(carved->topology, X, c.scheme, InnerProductMethod::Sec, 2,
                                                SecAssembly::Patches, boundary);
                 EXPECT_LE(relative_difference(patches, reference), 1e-13) << c.name << " carving " << attempt;
+                EXPECT_LE(relative_difference(load(carved->topology, X, c.scheme, InnerProductMethod::Sec, 2,
+                                                   SecAssembly::Patches, boundary),
+                                              load(carved->topology, X, c.scheme, InnerProductMethod::Sec, 2,
+                                                   SecAssembly::Hierarchy, boundary)),
+                          1e-13)
+                    << c.name << " carving " << attempt << " load";
                 ++checked;
             }
         }
@@ -155,83 +215,6 @@ TEST(PatchAssembly, NamesTheControlFaceAroundADegenerateRefinedFace) {
         FAIL() << "no error";
     } catch (const NumericalError& e) {
         EXPECT_NE(std::string(e.what()).find("inside control face "), std::string::npos) << e.what();
-    }
-}
-
-// --- the load vector ----------------------------------------------------------------------------
-
-/// A smooth right-hand side that is no polynomial of the position (a sum of its samples would
-/// not hide a wrong point or weight).
-Eigen::VectorXd smooth_rhs(const Points& P) {
-    Eigen::VectorXd v(P.rows());
-    for (Eigen::Index i = 0; i < P.rows(); ++i) {
-        v(i) = std::sin(2.0 * P(i, 0)) + P(i, 1) * P(i, 2) + std::exp(0.3 * P(i, 2));
-    }
-    return v;
-}
-
-Eigen::VectorXd load(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
-                     SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0, int* calls = nullptr) {
-    InnerProductOptions options;
-    options.method = method;
-    options.level = level;
-    options.assembly = assembly;
-    options.num_threads = threads;
-    SchemeOptions scheme_options;
-    scheme_options.boundary = boundary;
-    return load_vector(
-        t, X, scheme, options,
-        [calls](const Points& P) {
-            if (calls != nullptr) {
-                ++*calls;
-            }
-            return smooth_rhs(P);
-        },
-        scheme_options);
-}
-
-double relative_difference(const Eigen::VectorXd& p, const Eigen::VectorXd& h) {
-    return (p - h).cwiseAbs().maxCoeff() / h.cwiseAbs().maxCoeff();
-}
-
-class PatchLoad : public ::testing::TestWithParam<Case> {};
-
-TEST_P(PatchLoad, EqualsTheHierarchyLoad) {
-    // The hierarchy route samples f once per level-L vertex of the whole refined mesh and carries
-    // the weighted values back by S0ᵀ; the patch route samples it per control face (a vertex on a
-    // control edge or corner once per face around it) and pulls back through the ring stencils.
-    const BuildResult built = read_mesh(test::find_bundled(GetParam().name).path);
-    const Topology& t = built.mesh.topology();
-    const Points& X = built.mesh.positions();
-    for (const auto boundary : {BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly}) {
-        for (const auto method : {InnerProductMethod::Sec, InnerProductMethod::SecSnap}) {
-            for (const int level : {1, 2}) {
-                const auto patches = load(t, X, GetParam().scheme, method, level, SecAssembly::Patches, boundary);
-                const auto reference = load(t, X, GetParam().scheme, method, level, SecAssembly::Hierarchy, boundary);
-                EXPECT_LE(relative_difference(patches, reference), 1e-13)
-                    << to_string(method) << " L=" << level << " boundary " << static_cast<int>(boundary);
-            }
-        }
-        if (t.is_closed()) {
-            break;  // the boundary rule changes nothing
-        }
-    }
-}
-
-INSTANTIATE_TEST_SUITE_P(Sec, PatchLoad, ::testing::ValuesIn(test::form_subdivision_cases()),
-                         [](const ::testing::TestParamInfo<Case>& param) { return param.param.name; });
-
-TEST(PatchLoadAtLevel3, EqualsTheHierarchyLoad) {
-    for (const Case& c : {Case{"genus2", SchemeKind::CatmullClark}, Case{"icosahedron", SchemeKind::Loop},
-                          Case{"disk_ev5_quads", SchemeKind::CatmullClark}}) {
-        const BuildResult built = read_mesh(test::find_bundled(c.name).path);
-        const auto& t = built.mesh.topology();
-        const auto& X = built.mesh.positions();
-        const auto patches = load(t, X, c.scheme, InnerProductMethod::SecSnap, 3, SecAssembly::Patches,
-                                  BoundaryInterpolation::EdgeAndCorner);
-        const auto reference = load(t, X, c.scheme, InnerProductMethod::SecSnap, 3, SecAssembly::Hierarchy,
-                                    BoundaryInterpolation::EdgeAndCorner);
-        EXPECT_LE(relative_difference(patches, reference), 1e-13) << c.name;
     }
 }
 
