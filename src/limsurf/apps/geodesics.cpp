@@ -366,8 +366,11 @@ struct HeatGeodesics::Impl {
     std::optional<detail::SparseCholesky> heat_interior;  ///< open meshes: its interior block
     std::vector<Index> interior_index;                    ///< vertex → row of heat_interior, or −1
     Index num_interior = 0;
-    std::optional<detail::SparseCholesky> poisson;  ///< L without the pinned vertex 0
-    std::vector<Index> free_index;                  ///< vertex → row of poisson, or −1
+    /// L + c e0 e0ᵀ (c: L's mean diagonal), nonsingular: for b with Σ b = 0 it solves L φ = b with
+    /// φ_0 = 0 (1ᵀ(L + c e0 e0ᵀ) φ = c φ_0 = 1ᵀ b), and any rounding left in Σ b only shifts φ by a
+    /// constant, which the distances subtract. Unlike L with row and column 0 removed, it has the
+    /// heat operator's pattern, so it reuses that factorisation's ordering and symbolic analysis.
+    std::optional<detail::SparseCholesky> poisson;
 
     /// The heat solutions u (#V × sets), one column per source set, solved together.
     [[nodiscard]] Eigen::MatrixXd heat_solutions(const std::vector<std::vector<Index>>& sets) const {
@@ -406,23 +409,8 @@ struct HeatGeodesics::Impl {
         return u;
     }
 
-    /// L φ = b for every column of @p b (#V × sets), vertex 0 pinned to 0.
-    [[nodiscard]] Eigen::MatrixXd integrate(const Eigen::MatrixXd& b) const {
-        Eigen::MatrixXd reduced(num_vertices - 1, b.cols());
-        for (Index v = 0; v < num_vertices; ++v) {
-            if (free_index[v] >= 0) {
-                reduced.row(free_index[v]) = b.row(v);
-            }
-        }
-        const Eigen::MatrixXd solved = poisson->solve_columns(reduced);
-        Eigen::MatrixXd phi = Eigen::MatrixXd::Zero(num_vertices, b.cols());
-        for (Index v = 0; v < num_vertices; ++v) {
-            if (free_index[v] >= 0) {
-                phi.row(v) = solved.row(free_index[v]);
-            }
-        }
-        return phi;
-    }
+    /// L φ = b for every column of @p b (#V × sets), up to a constant per column (see poisson).
+    [[nodiscard]] Eigen::MatrixXd integrate(const Eigen::MatrixXd& b) const { return poisson->solve_columns(b); }
 
     [[nodiscard]] Eigen::MatrixXd divergence_of_normalised_gradient(const Eigen::MatrixXd& U) const {
         if (limit_gradient) {
@@ -505,9 +493,8 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
             m.neighbours[b].push_back(a);
         }
     }
-    auto [free_index, num_free] = renumber(n, [](Index v) { return v != 0; });
-    m.free_index = std::move(free_index);
-    const SparseMatrix pinned = submatrix(L, m.free_index, num_free);
+    SparseMatrix pinned = L;
+    pinned.coeffRef(0, 0) += L.diagonal().mean();
     std::optional<SparseMatrix> interior;
     if (topology.has_boundary()) {
         auto [interior_index, num_interior] = renumber(n, [&](Index v) { return !topology.is_boundary_vertex(v); });
@@ -521,7 +508,7 @@ HeatGeodesics::HeatGeodesics(const Topology& topology, const Points& X, SchemeKi
     if (interior) {
         m.heat_interior.emplace(*interior, "the heat operator on the interior vertices");
     }
-    m.poisson.emplace(pinned, "the Laplacian L with one vertex pinned");
+    m.poisson.emplace(pinned, *m.heat, "the Laplacian L with one vertex pinned");
     m.factorisation_seconds = seconds_since(factor_start);
 }
 

@@ -8,6 +8,10 @@
 // default, openblas-serial, is not safe for concurrent callers unless built with locking.
 #pragma once
 
+#include <algorithm>
+#include <new>
+#include <stdexcept>
+
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #ifdef LIMSURF_HAVE_CHOLMOD
@@ -26,24 +30,33 @@ class SparseCholesky {
     /// @throws NumericalError (naming @p what) when @p A has an entry that is not finite or is not
     ///   positive definite
     SparseCholesky(const SparseMatrix& A, const char* what) : A_(A) {
-        if (A_.rows() == 0) {  // nothing to solve (CHOLMOD crashes on an empty matrix)
+        if (!prepare(what)) {
             return;
         }
-        // An overflowed entry (a material constant or weight near the largest double) would be
-        // reported by the factorisation as "not positive definite": name the cause instead.
-        LIMSURF_CHECK(Eigen::Map<const Eigen::VectorXd>(A_.valuePtr(), A_.nonZeros()).allFinite(), NumericalError,
-                      "the matrix of ", what,
-                      " has an entry that is not finite: its data overflowed (a material constant, weight or "
-                      "coordinate too large?)");
-#ifdef LIMSURF_HAVE_CHOLMOD
-        // CHOLMOD prints its warnings ("matrix not positive definite") to stdout by itself; the library
-        // prints nothing: the failure is reported by the exception below.
-        solver_.cholmod().print = 0;
-#endif
         solver_.compute(A_);
-        LIMSURF_CHECK(solver_.info() == Eigen::Success && smallest_relative_pivot() >= min_relative_pivot,
-                      NumericalError, "the Cholesky factorisation of ", what,
-                      " failed: the matrix is not positive definite (degenerate geometry?)");
+        check_factorised(what);
+    }
+    /// @brief Factorises @p A with the fill-reducing ordering and symbolic analysis of
+    ///   @p same_pattern, which must have been built from a matrix of exactly A's pattern: CHOLMOD's
+    ///   analysis (its METIS ordering) is a third or more of a factorisation on a mesh's Laplacian.
+    ///   (Without CHOLMOD: a factorisation of its own.)
+    /// @throws std::logic_error when the patterns differ; as the other constructor
+    SparseCholesky(const SparseMatrix& A, const SparseCholesky& same_pattern, const char* what) : A_(A) {
+        const ColMatrix& B = same_pattern.A_;
+        if (A_.rows() != B.rows() || A_.nonZeros() != B.nonZeros() ||
+            !std::equal(A_.outerIndexPtr(), A_.outerIndexPtr() + A_.outerSize() + 1, B.outerIndexPtr()) ||
+            !std::equal(A_.innerIndexPtr(), A_.innerIndexPtr() + A_.nonZeros(), B.innerIndexPtr())) {
+            throw std::logic_error("limsurf bug: SparseCholesky reused the analysis of a matrix of another pattern");
+        }
+        if (!prepare(what)) {
+            return;
+        }
+#ifdef LIMSURF_HAVE_CHOLMOD
+        solver_.factorize_like(same_pattern.solver_, A_);
+#else
+        solver_.compute(A_);
+#endif
+        check_factorised(what);
     }
     [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
         if (A_.rows() == 0) {
@@ -82,6 +95,31 @@ class SparseCholesky {
     }
 
   private:
+    /// Checks A_'s entries and quiets CHOLMOD. @return false for an empty matrix (nothing to factor:
+    /// CHOLMOD crashes on one)
+    bool prepare(const char* what) {
+        if (A_.rows() == 0) {
+            return false;
+        }
+        // An overflowed entry (a material constant or weight near the largest double) would be
+        // reported by the factorisation as "not positive definite": name the cause instead.
+        LIMSURF_CHECK(Eigen::Map<const Eigen::VectorXd>(A_.valuePtr(), A_.nonZeros()).allFinite(), NumericalError,
+                      "the matrix of ", what,
+                      " has an entry that is not finite: its data overflowed (a material constant, weight or "
+                      "coordinate too large?)");
+#ifdef LIMSURF_HAVE_CHOLMOD
+        // CHOLMOD prints its warnings ("matrix not positive definite") to stdout by itself; the library
+        // prints nothing: the failure is reported by the exception below.
+        solver_.cholmod().print = 0;
+#endif
+        return true;
+    }
+    void check_factorised(const char* what) const {
+        LIMSURF_CHECK(solver_.info() == Eigen::Success && smallest_relative_pivot() >= min_relative_pivot,
+                      NumericalError, "the Cholesky factorisation of ", what,
+                      " failed: the matrix is not positive definite (degenerate geometry?)");
+    }
+
     // The simplicial LDLᵀ factorisations (CHOLMOD's for small or very sparse systems, and Eigen's) flag
     // only a zero pivot: an indefinite matrix was solved without a word. A negative pivot of rounding
     // size is not refused: singular but consistent systems (the Galerkin stiffness of the cube, whose
@@ -106,6 +144,18 @@ class SparseCholesky {
     // Eigen's wrapper, with the factor's pivots read (Eigen keeps the factor protected).
     class Cholmod : public Eigen::CholmodDecomposition<ColMatrix, Eigen::Lower> {
       public:
+        /// Factorises @p A (of @p other's pattern) from a copy of @p other's factor: its ordering and
+        /// symbolic analysis are kept, its numbers recomputed.
+        void factorize_like(const Cholmod& other, const ColMatrix& A) {
+            this->m_cholmodFactor = cholmod_copy_factor(other.m_cholmodFactor, &this->cholmod());
+            if (this->m_cholmodFactor == nullptr) {
+                throw std::bad_alloc();
+            }
+            this->m_isInitialized = true;
+            this->m_analysisIsOk = true;
+            this->m_factorizationIsOk = false;
+            this->factorize(A);
+        }
         [[nodiscard]] double smallest_relative_pivot() const {
             const cholmod_factor* f = this->m_cholmodFactor;
             if (f == nullptr || f->is_super != 0 || f->is_ll != 0 || f->n == 0) {
