@@ -24,16 +24,24 @@
 namespace limsurf {
 namespace {
 
-InnerProducts assembled(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
-                        SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0) {
+InnerProductOptions options_of(InnerProductMethod method, int level, SecAssembly assembly, int threads) {
     InnerProductOptions options;
     options.method = method;
     options.level = level;
     options.assembly = assembly;
     options.num_threads = threads;
+    return options;
+}
+
+SchemeOptions rules_of(BoundaryInterpolation boundary) {
     SchemeOptions scheme_options;
     scheme_options.boundary = boundary;
-    return control_inner_products(t, X, scheme, options, scheme_options);
+    return scheme_options;
+}
+
+InnerProducts assembled(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
+                        SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0) {
+    return control_inner_products(t, X, scheme, options_of(method, level, assembly, threads), rules_of(boundary));
 }
 
 /// max |P − H| / max |H| over the three matrices (and the same sparsity is not required: an
@@ -60,22 +68,13 @@ Eigen::VectorXd smooth_rhs(const Points& P) {
 
 Eigen::VectorXd load(const Topology& t, const Points& X, SchemeKind scheme, InnerProductMethod method, int level,
                      SecAssembly assembly, BoundaryInterpolation boundary, int threads = 0, int* calls = nullptr) {
-    InnerProductOptions options;
-    options.method = method;
-    options.level = level;
-    options.assembly = assembly;
-    options.num_threads = threads;
-    SchemeOptions scheme_options;
-    scheme_options.boundary = boundary;
-    return load_vector(
-        t, X, scheme, options,
-        [calls](const Points& P) {
-            if (calls != nullptr) {
-                ++*calls;
-            }
-            return smooth_rhs(P);
-        },
-        scheme_options);
+    const auto f = [calls](const Points& P) {
+        if (calls != nullptr) {
+            ++*calls;
+        }
+        return smooth_rhs(P);
+    };
+    return load_vector(t, X, scheme, options_of(method, level, assembly, threads), f, rules_of(boundary));
 }
 
 double relative_difference(const Eigen::VectorXd& p, const Eigen::VectorXd& h) {
