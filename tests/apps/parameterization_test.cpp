@@ -438,6 +438,31 @@ TEST(QuasiConformalDistortion, AffineMapsHaveClosedFormSingularValues) {
                  NumericalError);
 }
 
+TEST(QuasiConformalDistortion, WithoutASamplerIsTheSameAsThroughOne) {
+    // parameterize() computes the distortion sample by sample, keeping no weights: the same samples,
+    // the same weights, so the same numbers as through a LimitSampler, on a curved surface with
+    // extraordinary vertices (tiles towards them) and on any number of threads.
+    const ControlMesh mesh = sphere_cap("disk_ev5_quads", 1.2);
+    const ParameterizationResult r = parameterize(mesh, SchemeKind::CatmullClark, options_for(IPM::Sec, 2, Free));
+    const LimitBasis basis(mesh.topology(), SchemeKind::CatmullClark);
+    for (const int threads : {1, 3}) {
+        const SamplerOptions quadrature{6, 3, threads};
+        const QuasiConformalDistortion a =
+            quasi_conformal_distortion(LimitSampler(basis, quadrature), mesh.positions(), r.uv, threads);
+        const QuasiConformalDistortion b = quasi_conformal_distortion(basis, quadrature, mesh.positions(), r.uv);
+        EXPECT_EQ(a.samples, b.samples);
+        EXPECT_EQ(a.mean, b.mean);
+        EXPECT_EQ(a.max, b.max);
+        EXPECT_EQ(a.area, b.area);
+        EXPECT_EQ(a.flipped, b.flipped);
+        EXPECT_EQ(a.degenerate, b.degenerate);
+        EXPECT_GT(a.mean, 1.0);  // a curved cap: not conformal everywhere
+    }
+    EXPECT_THROW((void)quasi_conformal_distortion(basis, SamplerOptions{6, 3, 0}, mesh.positions(),
+                                                  Eigen::MatrixXd::Ones(mesh.num_vertices(), 1)),
+                 InputError);
+}
+
 TEST(QuasiConformalDistortion, MatchesFiniteDifferencesOnACurvedSurface) {
     // Independent: at one sample, σ1/σ2 from central differences of the limit positions and of the
     // limit map along the ptex directions (the metric uses the exact basis derivatives).

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -572,72 +573,112 @@ std::pair<Eigen::MatrixXd, double> circle_boundary_values(const ControlMesh& mes
     return {uv, length};
 }
 
-QuasiConformalDistortion quasi_conformal_distortion(const LimitSampler& sampler, const Points& X,
-                                                    const Eigen::MatrixXd& uv, int num_threads) {
-    LIMSURF_CHECK(uv.rows() == sampler.num_vertices() && uv.cols() == 2, InputError, "the map has ", uv.rows(), " × ",
-                  uv.cols(), " values, expected ", sampler.num_vertices(), " × 2");
+namespace {
+
+/// One sample of the distortion: σ1/σ2 (−1 where degenerate), its area weight and det D.
+struct DistortionSample {
+    double ratio = 0.0;
+    double area = 0.0;
+    double det = 0.0;
+};
+
+/// The distortion at one sample: limit weights @p w over @p verts, derivatives @p d (6 × 3), the
+/// quadrature weight @p weight.
+template <class Weights>
+DistortionSample distortion_at(const Weights& w, std::span<const Index> verts, const Eigen::Matrix<double, 6, 3>& d,
+                               double weight, const Eigen::MatrixXd& uv) {
+    Eigen::Matrix2d J = Eigen::Matrix2d::Zero();  // rows u, v; columns ∂s, ∂t of the ptex domain
+    for (std::size_t j = 0; j < verts.size(); ++j) {
+        const auto col = static_cast<Eigen::Index>(j);
+        J(0, 0) += w(Du, col) * uv(verts[j], 0);
+        J(0, 1) += w(Dv, col) * uv(verts[j], 0);
+        J(1, 0) += w(Du, col) * uv(verts[j], 1);
+        J(1, 1) += w(Dv, col) * uv(verts[j], 1);
+    }
+    const Eigen::Vector3d xs = d.row(Du).transpose();
+    const Eigen::Vector3d xt = d.row(Dv).transpose();
+    // Orthonormal tangent frame: X' = Q R with R upper triangular (Gram–Schmidt), so the
+    // differential on the tangent plane is D = J R⁻¹.
+    const double r11 = xs.norm();
+    const double r12 = xs.dot(xt) / r11;
+    const double r22 = std::sqrt(std::max(0.0, xt.squaredNorm() - r12 * r12));
+    Eigen::Matrix2d Rinv;
+    Rinv << 1.0 / r11, -r12 / (r11 * r22), 0.0, 1.0 / r22;
+    const Eigen::Matrix2d D = J * Rinv;
+    const double f2 = D.squaredNorm();
+    const double dd = D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0);
+    const double plus = std::sqrt(std::max(0.0, f2 + 2.0 * std::abs(dd)));
+    const double minus = std::sqrt(std::max(0.0, f2 - 2.0 * std::abs(dd)));
+    const double s1 = 0.5 * (plus + minus);
+    const double s2 = 0.5 * (plus - minus);
+    return {s2 > 1e-12 * s1 ? s1 / s2 : -1.0, weight * r11 * r22, dd};
+}
+
+void check_map(Index rows, const Eigen::MatrixXd& uv) {
+    LIMSURF_CHECK(uv.rows() == rows && uv.cols() == 2, InputError, "the map has ", uv.rows(), " × ", uv.cols(),
+                  " values, expected ", rows, " × 2");
     LIMSURF_CHECK(uv.allFinite(), InputError, "the map has a value that is not finite");
-    const std::vector<Eigen::Matrix<double, 6, 3>> d = sampler.evaluate(X);
-    const Index ns = sampler.num_samples();
-    Eigen::VectorXd ratio(ns);
-    Eigen::VectorXd area(ns);
-    Eigen::VectorXd det(ns);
-    parallel_ranges(ns, num_threads, [&](Index begin, Index end) {
-        for (Index s = begin; s < end; ++s) {
-            const auto w = sampler.limit_weights(s);
-            const std::span<const Index> verts = sampler.vertices(s);
-            Eigen::Matrix2d J = Eigen::Matrix2d::Zero();  // rows u, v; columns ∂s, ∂t of the ptex domain
-            for (std::size_t j = 0; j < verts.size(); ++j) {
-                const auto col = static_cast<Eigen::Index>(j);
-                J(0, 0) += w(Du, col) * uv(verts[j], 0);
-                J(0, 1) += w(Dv, col) * uv(verts[j], 0);
-                J(1, 0) += w(Du, col) * uv(verts[j], 1);
-                J(1, 1) += w(Dv, col) * uv(verts[j], 1);
-            }
-            const Eigen::Vector3d xs = d[static_cast<std::size_t>(s)].row(Du).transpose();
-            const Eigen::Vector3d xt = d[static_cast<std::size_t>(s)].row(Dv).transpose();
-            // Orthonormal tangent frame: X' = Q R with R upper triangular (Gram–Schmidt), so the
-            // differential on the tangent plane is D = J R⁻¹.
-            const double r11 = xs.norm();
-            const double r12 = xs.dot(xt) / r11;
-            const double r22 = std::sqrt(std::max(0.0, xt.squaredNorm() - r12 * r12));
-            Eigen::Matrix2d Rinv;
-            Rinv << 1.0 / r11, -r12 / (r11 * r22), 0.0, 1.0 / r22;
-            const Eigen::Matrix2d D = J * Rinv;
-            const double f2 = D.squaredNorm();
-            const double dd = D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0);
-            const double plus = std::sqrt(std::max(0.0, f2 + 2.0 * std::abs(dd)));
-            const double minus = std::sqrt(std::max(0.0, f2 - 2.0 * std::abs(dd)));
-            const double s1 = 0.5 * (plus + minus);
-            const double s2 = 0.5 * (plus - minus);
-            ratio(s) = s2 > 1e-12 * s1 ? s1 / s2 : -1.0;  // −1: degenerate
-            area(s) = sampler.weight(s) * r11 * r22;
-            det(s) = dd;
-        }
-    });
+}
+
+/// The summary of the samples' distortions, in sample order.
+QuasiConformalDistortion summarise(const std::vector<DistortionSample>& samples) {
     QuasiConformalDistortion out;
-    out.samples = ns;
+    out.samples = static_cast<Index>(samples.size());
     double weighted = 0.0;
     double counted_area = 0.0;
     double flipped_area = 0.0;
-    for (Index s = 0; s < ns; ++s) {
-        out.area += area(s);
-        if (det(s) < 0.0) {
+    for (const DistortionSample& s : samples) {
+        out.area += s.area;
+        if (s.det < 0.0) {
             ++out.flipped;
-            flipped_area += area(s);
+            flipped_area += s.area;
         }
-        if (ratio(s) < 0.0 || !std::isfinite(ratio(s))) {
+        if (s.ratio < 0.0 || !std::isfinite(s.ratio)) {
             ++out.degenerate;
             continue;
         }
-        weighted += area(s) * ratio(s);
-        counted_area += area(s);
-        out.max = std::max(out.max, ratio(s));
+        weighted += s.area * s.ratio;
+        counted_area += s.area;
+        out.max = std::max(out.max, s.ratio);
     }
     LIMSURF_CHECK(counted_area > 0.0, NumericalError, "the map is degenerate everywhere on the limit surface");
     out.mean = weighted / counted_area;
     out.flipped_area = flipped_area / out.area;
     return out;
+}
+
+}  // namespace
+
+QuasiConformalDistortion quasi_conformal_distortion(const LimitSampler& sampler, const Points& X,
+                                                    const Eigen::MatrixXd& uv, int num_threads) {
+    check_map(sampler.num_vertices(), uv);
+    const std::vector<Eigen::Matrix<double, 6, 3>> d = sampler.evaluate(X);
+    std::vector<DistortionSample> samples(static_cast<std::size_t>(sampler.num_samples()));
+    parallel_ranges(sampler.num_samples(), num_threads, [&](Index begin, Index end) {
+        for (Index s = begin; s < end; ++s) {
+            const auto at = static_cast<std::size_t>(s);
+            samples[at] = distortion_at(sampler.limit_weights(s), sampler.vertices(s), d[at], sampler.weight(s), uv);
+        }
+    });
+    return summarise(samples);
+}
+
+QuasiConformalDistortion quasi_conformal_distortion(const LimitBasis& basis, const SamplerOptions& quadrature,
+                                                    const Points& X, const Eigen::MatrixXd& uv) {
+    check_map(basis.topology().num_vertices(), uv);
+    LIMSURF_CHECK(X.rows() == basis.topology().num_vertices(), InputError, "control points have ", X.rows(),
+                  " rows, the surface ", basis.topology().num_vertices(), " vertices");
+    const QuadratureSamples points = quadrature_samples(basis, quadrature, 0, basis.num_ptex_faces());
+    std::vector<DistortionSample> samples(points.points.size());
+    parallel_ranges(static_cast<Index>(samples.size()), quadrature.num_threads, [&](Index begin, Index end) {
+        LimitWeights w;
+        for (Index s = begin; s < end; ++s) {
+            const auto at = static_cast<std::size_t>(s);
+            basis.evaluate(points.points[at], w, DerivativeOrder::Second);  // as LimitSampler stores them
+            samples[at] = distortion_at(w.w, w.vertices, w.apply(X), points.weights[at], uv);
+        }
+    });
+    return summarise(samples);
 }
 
 ParameterizationResult parameterize(const ControlMesh& mesh, SchemeKind scheme,
@@ -678,10 +719,9 @@ ParameterizationResult parameterize(const ControlMesh& mesh, SchemeKind scheme,
     }
     start = Clock::now();
     const LimitBasis basis(t, scheme, options.scheme_options);
-    const LimitSampler sampler(
-        basis, SamplerOptions{options.distortion.degree, options.distortion.tiles, options.distortion.num_threads});
-    result.distortion =
-        quasi_conformal_distortion(sampler, mesh.positions(), result.uv, options.distortion.num_threads);
+    result.distortion = quasi_conformal_distortion(
+        basis, SamplerOptions{options.distortion.degree, options.distortion.tiles, options.distortion.num_threads},
+        mesh.positions(), result.uv);
     result.times.distortion = seconds_since(start);
     if (options.reference_level) {
         start = Clock::now();
