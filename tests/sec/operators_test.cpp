@@ -63,11 +63,7 @@ TEST(Operators, DualOperatorsAreThePrimalOnesConjugatedByM1) {
 
 TEST(Operators, TheLaplacianIsTheSameOnAnyNumberOfThreadsAndEqualsEigensProduct) {
     // genus 2 refined three times (3 198 vertices): enough rows for three threads' ranges.
-    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
-    RefineOptions refine;
-    refine.scheme = SchemeKind::CatmullClark;
-    refine.levels = 3;
-    const FinestLevel fine = refine_finest(built.mesh.topology(), built.mesh.positions(), refine);
+    const FinestLevel fine = test::refined_bundled("genus2", SchemeKind::CatmullClark, 3);
     const InnerProducts ip = control_inner_products(fine.topology, fine.positions, SchemeKind::CatmullClark,
                                                     method(InnerProductMethod::Sec, 1));
     const SparseMatrix one = Operators(fine.topology, ip, 1).laplacian();

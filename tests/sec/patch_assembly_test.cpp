@@ -219,11 +219,7 @@ TEST(PatchAssembly, NamesTheControlFaceAroundADegenerateRefinedFace) {
 
 TEST(PatchLoad, CallsTheRightHandSideInBlocksAndIsTheSameOnAnyNumberOfThreads) {
     // genus2 refined four times (12 800 quads): more control faces than one block of points holds.
-    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
-    RefineOptions refine;
-    refine.scheme = SchemeKind::CatmullClark;
-    refine.levels = 4;
-    const FinestLevel fine = refine_finest(built.mesh.topology(), built.mesh.positions(), refine);
+    const FinestLevel fine = test::refined_bundled("genus2", SchemeKind::CatmullClark, 4);
     ASSERT_GT(fine.topology.num_faces(), 8192);
     int calls = 0;
     const auto one = load(fine.topology, fine.positions, SchemeKind::CatmullClark, InnerProductMethod::Sec, 1,
@@ -248,10 +244,7 @@ TEST(PatchLoad, MeshesWithoutFormRulesTakeTheHierarchy) {
         options.level = 2;
         const auto ones = [](const Points& P) { return Eigen::VectorXd::Ones(P.rows()).eval(); };
         const Eigen::VectorXd b = load_vector(t, X, SchemeKind::CatmullClark, options, ones);
-        RefineOptions refine;
-        refine.scheme = SchemeKind::CatmullClark;
-        refine.levels = 2;
-        const FinestLevel fine = refine_finest(t, X, refine);
+        const FinestLevel fine = test::refined_bundled(name, SchemeKind::CatmullClark, 2);
         EXPECT_NEAR(b.sum(), polygonal_vertex_masses(fine.topology, fine.positions).sum(), 1e-12) << name;
     }
 }

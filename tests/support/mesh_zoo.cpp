@@ -176,6 +176,14 @@ const BundledMesh& find_bundled(std::string_view name) {
     return *it;
 }
 
+FinestLevel refined_bundled(std::string_view name, SchemeKind scheme, int levels) {
+    const BuildResult built = read_mesh(find_bundled(name).path);
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = levels;
+    return refine_finest(built.mesh.topology(), built.mesh.positions(), refine);
+}
+
 void PrintTo(const BundledMesh& mesh, std::ostream* os) {
     *os << mesh.name;
 }

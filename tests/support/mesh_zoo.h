@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "limsurf/refine/hierarchy.h"
 #include "limsurf/scheme/scheme.h"
 
 namespace limsurf::test {
@@ -52,6 +53,10 @@ struct BundledMesh {
 /// The bundled mesh called @p name.
 /// @throws std::runtime_error when there is none
 [[nodiscard]] const BundledMesh& find_bundled(std::string_view name);
+
+/// The bundled mesh called @p name refined @p levels times by @p scheme (its finest level only).
+/// @throws as find_bundled and refine_finest
+[[nodiscard]] FinestLevel refined_bundled(std::string_view name, SchemeKind scheme, int levels);
 
 /// A bundled mesh with the scheme that refines it with form subdivision (SEC).
 struct SchemeCase {

@@ -336,9 +336,8 @@ std::pair<std::vector<Index>, SparseMatrix> check_refines_to(const ControlMesh& 
 Points least_squares(const SparseMatrix& S0, const Points& P, const Points& X0, bool& unique) {
     const SparseMatrix N = SparseMatrix(S0.transpose()) * S0;
     const Eigen::MatrixXd rhs = S0.transpose() * P;
-    const auto finite = [](const Points& X) {
+    const auto check_finite = [](const Points& X) {
         LIMSURF_CHECK(X.allFinite(), NumericalError, "the least-squares fit of the coarse positions is not finite");
-        return X;
     };
     // Uniqueness: the pivots of N itself (a pivot at rounding level: a kernel).
     std::optional<detail::SparseCholesky> plain;
@@ -351,7 +350,8 @@ Points least_squares(const SparseMatrix& S0, const Points& P, const Points& X0, 
     if (unique) {
         Points X = plain->solve_columns(rhs);
         X += plain->solve_columns(rhs - N * X);
-        return finite(X);
+        check_finite(X);
+        return X;
     }
     double largest = 0.0;
     for (Index i = 0; i < N.rows(); ++i) {
@@ -374,7 +374,8 @@ Points least_squares(const SparseMatrix& S0, const Points& P, const Points& X0, 
             break;
         }
     }
-    return finite(X);
+    check_finite(X);
+    return X;
 }
 
 /// Builds the candidate for @p role: topology, check, fit.
