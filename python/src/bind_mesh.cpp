@@ -7,6 +7,7 @@
 #include "common.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/mesh/statistics.h"
+#include "limsurf/mesh/submesh.h"
 
 namespace limsurf::python {
 namespace {
@@ -193,6 +194,40 @@ std::string repr(const Mesh& m) {
                           m.source.file.empty() ? std::string() : ", from " + m.source.file, ">");
 }
 
+/// The faces a caller keeps: a boolean or integer array of one entry per face (non-zero keeps).
+std::vector<char> selection_from(const py::handle& keep, Index num_faces) {
+    const py::array a = py::array::ensure(keep);
+    LIMSURF_CHECK(a && (a.dtype().kind() == 'b' || a.dtype().kind() == 'i' || a.dtype().kind() == 'u'), InputError,
+                  "keep: expected booleans or integers, one per face");
+    LIMSURF_CHECK(a.ndim() == 1 && a.shape(0) == num_faces, InputError, "keep: expected shape (", num_faces,
+                  ",), one entry per face, got ",
+                  a.ndim() == 1 ? std::to_string(a.shape(0)) + " entries" : std::to_string(a.ndim()) + " dimensions");
+    const auto b = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(a);
+    const auto view = b.unchecked<1>();
+    std::vector<char> selection(static_cast<std::size_t>(num_faces));
+    for (py::ssize_t f = 0; f < view.shape(0); ++f) {
+        selection[static_cast<std::size_t>(f)] = view(f) ? 1 : 0;
+    }
+    return selection;
+}
+
+py::array_t<Index> index_array(const std::vector<Index>& values) {
+    py::array_t<Index> out(static_cast<py::ssize_t>(values.size()));
+    std::copy(values.begin(), values.end(), out.mutable_data());
+    return out;
+}
+
+py::tuple submesh(const Mesh& mesh, const py::handle& keep) {
+    const Topology& t = mesh.mesh.topology();
+    Submesh sub = face_submesh(t, selection_from(keep, t.num_faces()));
+    Points X(sub.topology.num_vertices(), 3);
+    for (Index v = 0; v < sub.topology.num_vertices(); ++v) {
+        X.row(v) = mesh.mesh.positions().row(sub.vertex_origin[static_cast<std::size_t>(v)]);
+    }
+    py::object part = py::cast(Mesh{ControlMesh(std::move(sub.topology), std::move(X)), {}, {}});
+    return py::make_tuple(part, index_array(sub.vertex_origin), index_array(sub.face_origin));
+}
+
 }  // namespace
 
 void bind_mesh(py::module_& m) {
@@ -326,6 +361,11 @@ Raises InputError naming the array, row and problem; TopologyError for unusable 
         "path"_a, "mesh"_a, py::kw_only(), "ply_encoding"_a = "ascii",
         "Writes the mesh atomically as .obj, .off or .ply (by extension) with its tags; ply_encoding is\n"
         "'ascii', 'binary-le' or 'binary-be'.");
+    m.def("submesh", &submesh, "mesh"_a, "keep"_a,
+          "The faces with keep[f] true (a bool or integer array, one entry per face) as a mesh of their own:\n"
+          "(part, vertex_origin, face_origin), the origins int32 arrays into the mesh's vertices and faces.\n"
+          "A vertex where kept faces meet without sharing an edge becomes one vertex per fan, so the part is\n"
+          "always a manifold; kept faces keep their order and orientation; tags are not carried.");
     m.def("info", &info, "mesh"_a,
           "Counts, histograms, boundary, genus, bounding box, sharpness and validation warnings: the numbers of\n"
           "`limsurf info --json` under the same keys.");

@@ -5,6 +5,7 @@
 // the limit boundary length against a finely subdivided boundary), analytic numbers (a developable
 // patch) and the paper's comparison (SEC far closer to conformal than DEC; circle: SEC's L2 error vs
 // the reference at least 5× below DEC's).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -18,6 +19,7 @@
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/io/mesh_io.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/mesh/submesh.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/refine/hierarchy.h"
 #include "support/mesh_zoo.h"
@@ -153,47 +155,121 @@ TEST(SpectralConformal, NormalisationIsDocumented) {
     EXPECT_NEAR(r.uv(first, 1), 0.0, 1e-12 * r.uv(first, 0));
 }
 
-TEST(SpectralConformal, PulledBackAreaFormIsTheFineBoundarysFormThroughTheWholeOperator) {
-    // A_s = diag(A^L, A^L)ᵀ A_s^L diag(A^L, A^L) with the whole accumulated operator, as written: the
-    // library carries only the level-L boundary rows of A^L, from the left.
-    for (const auto& [name, scheme] :
-         {std::pair{"shell_hemisphere", SchemeKind::CatmullClark}, std::pair{"annulus", SchemeKind::CatmullClark},
-          std::pair{"disk_ev7_tris", SchemeKind::Loop}}) {
-        const ControlMesh mesh = bundled(name);
-        const int level = 2;
-        const ConformalSystem system = conformal_system(mesh, scheme, options_for(IPM::Sec, level, Free));
-        RefineOptions refine;
-        refine.scheme = scheme;
-        refine.levels = level;
-        const Hierarchy h(mesh.topology(), refine);
-        const Topology& fine = h.topology(level);
-        const Index n = fine.num_vertices();
-        std::vector<Eigen::Triplet<double>> form;  // ½ Σ (u_i v_j − u_j v_i) over boundary edges i → j
-        for (Index loop = 0; loop < fine.num_boundary_loops(); ++loop) {
-            const auto b = fine.boundary_loop(loop);
-            for (std::size_t k = 0; k < b.size(); ++k) {
-                const Index i = b[k];
-                const Index j = b[(k + 1) % b.size()];
-                form.insert(form.end(), {{i, n + j, 0.5}, {n + j, i, 0.5}, {j, n + i, -0.5}, {n + i, j, -0.5}});
-            }
+/// A_s = diag(A^L, A^L)ᵀ A_s^L diag(A^L, A^L) with the whole accumulated operator of the whole
+/// mesh's hierarchy, as written.
+SparseMatrix area_form_through_the_whole_operator(const Topology& t, SchemeKind scheme, int level) {
+    RefineOptions refine;
+    refine.scheme = scheme;
+    refine.levels = level;
+    const Hierarchy h(t, refine);
+    const Topology& fine = h.topology(level);
+    const Index n = fine.num_vertices();
+    std::vector<Eigen::Triplet<double>> form;  // ½ Σ (u_i v_j − u_j v_i) over boundary edges i → j
+    for (Index loop = 0; loop < fine.num_boundary_loops(); ++loop) {
+        const auto b = fine.boundary_loop(loop);
+        for (std::size_t k = 0; k < b.size(); ++k) {
+            const Index i = b[k];
+            const Index j = b[(k + 1) % b.size()];
+            form.insert(form.end(), {{i, n + j, 0.5}, {n + j, i, 0.5}, {j, n + i, -0.5}, {n + i, j, -0.5}});
         }
-        SparseMatrix AL(2 * n, 2 * n);
-        AL.setFromTriplets(form.begin(), form.end());
-        const SparseMatrix& A = h.accumulated(level);
-        std::vector<Eigen::Triplet<double>> blocks;
-        for (Index r = 0; r < n; ++r) {
-            for (SparseMatrix::InnerIterator it(A, r); it; ++it) {
-                blocks.insert(blocks.end(), {{r, static_cast<Index>(it.col()), it.value()},
-                                             {n + r, static_cast<Index>(A.cols() + it.col()), it.value()}});
-            }
-        }
-        SparseMatrix A2(2 * n, 2 * A.cols());
-        A2.setFromTriplets(blocks.begin(), blocks.end());
-        const Eigen::MatrixXd expected = Eigen::MatrixXd(SparseMatrix(SparseMatrix(A2.transpose()) * (AL * A2)));
-        EXPECT_LT((Eigen::MatrixXd(system.area) - expected).lpNorm<Eigen::Infinity>(),
-                  1e-14 * expected.lpNorm<Eigen::Infinity>())
-            << name;
     }
+    SparseMatrix AL(2 * n, 2 * n);
+    AL.setFromTriplets(form.begin(), form.end());
+    const SparseMatrix& A = h.accumulated(level);
+    std::vector<Eigen::Triplet<double>> blocks;
+    for (Index r = 0; r < n; ++r) {
+        for (SparseMatrix::InnerIterator it(A, r); it; ++it) {
+            blocks.insert(blocks.end(), {{r, static_cast<Index>(it.col()), it.value()},
+                                         {n + r, static_cast<Index>(A.cols() + it.col()), it.value()}});
+        }
+    }
+    SparseMatrix A2(2 * n, 2 * A.cols());
+    A2.setFromTriplets(blocks.begin(), blocks.end());
+    return SparseMatrix(SparseMatrix(A2.transpose()) * (AL * A2));
+}
+
+double largest_entry(const SparseMatrix& M) {
+    double largest = 0.0;
+    for (Eigen::Index k = 0; k < M.outerSize(); ++k) {
+        for (SparseMatrix::InnerIterator it(M, k); it; ++it) {
+            largest = std::max(largest, std::abs(it.value()));
+        }
+    }
+    return largest;
+}
+
+/// A 16×16 quad grid, gently curved, with two one-quad holes whose strips of boundary faces meet at
+/// one interior vertex (8, 8) from two sides: the strip pinches there.
+ControlMesh grid_with_two_holes() {
+    std::vector<std::vector<Index>> faces;
+    const auto vertex = [](Index i, Index j) { return j * 17 + i; };
+    for (Index j = 0; j < 16; ++j) {
+        for (Index i = 0; i < 16; ++i) {
+            if ((i == 6 && j == 6) || (i == 9 && j == 9)) {
+                continue;
+            }
+            faces.push_back({vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)});
+        }
+    }
+    Points X(17 * 17, 3);
+    for (Index j = 0; j <= 16; ++j) {
+        for (Index i = 0; i <= 16; ++i) {
+            const double x = (i - 8) / 8.0;
+            const double y = (j - 8) / 8.0;
+            X.row(vertex(i, j)) << x, y, 0.2 * (x * x - 0.5 * y * y) + 0.05 * x * y;
+        }
+    }
+    return ControlMesh(Topology::from_polygons(17 * 17, faces), X);
+}
+
+/// The faces with a corner on the boundary, the strip the library refines alone when it is small.
+Submesh boundary_strip_of(const Topology& t) {
+    std::vector<char> keep(static_cast<std::size_t>(t.num_faces()), 0);
+    for (Index v = 0; v < t.num_vertices(); ++v) {
+        if (t.is_boundary_vertex(v)) {
+            for (const Index f : t.vertex_faces(v)) {
+                keep[static_cast<std::size_t>(f)] = 1;
+            }
+        }
+    }
+    return face_submesh(t, keep);
+}
+
+TEST(SpectralConformal, PulledBackAreaFormIsTheFineBoundarysFormThroughTheWholeOperator) {
+    // The library carries only the level-L boundary rows of A^L, from the left; on the bundled
+    // meshes it refines the whole mesh, on the refined ones (and the grid) only the strip of faces
+    // around the boundary (under half the faces; on the grid with an interior vertex split in two).
+    struct Case {
+        const char* name;
+        ControlMesh mesh;
+        SchemeKind scheme;
+        int level;
+        bool strip;  // the boundary strip is under half the faces
+    };
+    const auto refined = [](const char* name, SchemeKind scheme, int k) {
+        const FinestLevel fine = test::refined_bundled(name, scheme, k);
+        return ControlMesh(fine.topology, fine.positions);
+    };
+    const std::vector<Case> cases = {
+        {"shell_hemisphere", bundled("shell_hemisphere"), SchemeKind::CatmullClark, 2, true},
+        {"annulus", bundled("annulus"), SchemeKind::CatmullClark, 2, false},
+        {"disk_ev7_tris", bundled("disk_ev7_tris"), SchemeKind::Loop, 2, false},
+        {"shell_hemisphere x2", refined("shell_hemisphere", SchemeKind::CatmullClark, 2), SchemeKind::CatmullClark, 2,
+         true},
+        {"disk_ev7_tris x2", refined("disk_ev7_tris", SchemeKind::Loop, 2), SchemeKind::Loop, 3, true},
+        {"grid with two holes", grid_with_two_holes(), SchemeKind::CatmullClark, 2, true},
+    };
+    for (const Case& c : cases) {
+        const Topology& t = c.mesh.topology();
+        const Submesh strip = boundary_strip_of(t);
+        ASSERT_EQ(2 * strip.topology.num_faces() <= t.num_faces(), c.strip) << c.name;
+        const ConformalSystem system = conformal_system(c.mesh, c.scheme, options_for(IPM::Sec, c.level, Free));
+        const SparseMatrix expected = area_form_through_the_whole_operator(t, c.scheme, c.level);
+        EXPECT_LT(largest_entry(SparseMatrix(system.area - expected)), 1e-14 * largest_entry(expected)) << c.name;
+    }
+    const ControlMesh grid = grid_with_two_holes();
+    const Submesh strip = boundary_strip_of(grid.topology());
+    EXPECT_EQ(std::count(strip.vertex_origin.begin(), strip.vertex_origin.end(), 8 * 17 + 8), 2);
 }
 
 TEST(SpectralConformal, EigenResidualAndRayleighQuotient) {

@@ -162,3 +162,36 @@ def test_converting_a_million_faces_needs_no_python_loop():
     assert fine.num_faces == 4 * mesh.num_faces
     F = fine.F  # ~1M × 4, one copy in C++
     assert F.shape == (fine.num_faces, 4) and F.dtype == np.int32
+
+
+def test_submesh_keeps_faces_and_says_where_they_came_from(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("genus2"))
+    keep = np.arange(mesh.num_faces) % 3 != 0
+    part, vertex_origin, face_origin = limsurf.submesh(mesh, keep)
+    assert vertex_origin.dtype == np.int32 and face_origin.dtype == np.int32
+    assert np.array_equal(face_origin, np.flatnonzero(keep))
+    assert np.array_equal(vertex_origin[part.F], mesh.F[face_origin])
+    assert np.array_equal(part.V, mesh.V[vertex_origin])
+    same, _, _ = limsurf.submesh(mesh, keep.astype(np.int64))  # integers select as booleans do
+    assert np.array_equal(same.F, part.F)
+
+
+def test_submesh_splits_a_vertex_where_kept_faces_only_touch():
+    # a 2×2 grid keeping two diagonal quads: they meet at the centre vertex only
+    V = np.array([[x, y, 0.0] for y in range(3) for x in range(3)])
+    F = np.array([[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]])
+    part, vertex_origin, _ = limsurf.submesh(limsurf.Mesh(V, F), [True, False, False, True])
+    assert part.num_vertices == 8 and np.count_nonzero(vertex_origin == 4) == 2
+    assert limsurf.info(part)["num_components"] == 2
+
+
+@pytest.mark.parametrize("keep, pattern", [
+    ([True, False], r"keep: expected shape \(4,\)"),
+    ([0.5, 1.0, 0.0, 1.0], "keep: expected booleans or integers"),
+    ([False] * 4, "keeps no face"),
+])
+def test_submesh_refuses_a_bad_selection(keep, pattern):
+    V = np.array([[x, y, 0.0] for y in range(3) for x in range(3)])
+    F = np.array([[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]])
+    with pytest.raises(limsurf.InputError, match=pattern):
+        limsurf.submesh(limsurf.Mesh(V, F), keep)

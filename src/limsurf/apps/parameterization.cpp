@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/fem/galerkin.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/mesh/submesh.h"
 #include "limsurf/quadrature/rules.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/render/tessellation.h"
@@ -51,12 +53,21 @@ void check_parameterizable(const Topology& t, const ParameterizationOptions& opt
                   "similarity)");
 }
 
-/// A_s with A(U) = ½ Uᵀ A_s U = ½ Σ_{boundary edges i→j} (u_i v_j − u_j v_i), U = (u; v), over the
-/// vertices numbered by @p slot (vertex → 0..n−1; every boundary vertex must have a number).
-SparseMatrix boundary_area_form(const Topology& t, const std::vector<Index>& slot, Index n) {
-    Triplets triplets;
+using Loops = std::vector<std::span<const Index>>;
+
+Loops boundary_loops(const Topology& t) {
+    Loops loops;
     for (Index loop = 0; loop < t.num_boundary_loops(); ++loop) {
-        const std::span<const Index> b = t.boundary_loop(loop);
+        loops.push_back(t.boundary_loop(loop));
+    }
+    return loops;
+}
+
+/// A_s with A(U) = ½ Uᵀ A_s U = ½ Σ_{boundary edges i→j} (u_i v_j − u_j v_i), U = (u; v), over the
+/// vertices numbered by @p slot (vertex → 0..n−1; every vertex of @p loops must have a number).
+SparseMatrix boundary_area_form(const Loops& loops, const std::vector<Index>& slot, Index n) {
+    Triplets triplets;
+    for (const std::span<const Index> b : loops) {
         for (std::size_t k = 0; k < b.size(); ++k) {
             const Index i = slot[static_cast<std::size_t>(b[k])];
             const Index j = slot[static_cast<std::size_t>(b[(k + 1) % b.size()])];
@@ -75,7 +86,7 @@ SparseMatrix boundary_area_form(const Topology& t, const std::vector<Index>& slo
 SparseMatrix boundary_area_form(const Topology& t) {
     std::vector<Index> slot(static_cast<std::size_t>(t.num_vertices()));
     std::iota(slot.begin(), slot.end(), Index{0});
-    return boundary_area_form(t, slot, t.num_vertices());
+    return boundary_area_form(boundary_loops(t), slot, t.num_vertices());
 }
 
 /// diag(M, M), written row by row.
@@ -99,34 +110,132 @@ SparseMatrix block_diagonal(const SparseMatrix& M) {
     return out;
 }
 
-/// The area form of sec and secsnap: the level-L boundary's, pulled back by A^L (SEC Eq. 12's pattern).
-/// Only the level-L boundary vertices' rows of A^L enter it, carried from the left through each S0
-/// (a few thousand rows where A^L itself has millions of non-zeros).
-SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const ParameterizationOptions& options) {
+/// The vertices of @p loops numbered in their order: slot (vertex → 0..n−1, invalid_index elsewhere)
+/// and the selection matrix (n × num_vertices) that picks them.
+std::pair<std::vector<Index>, SparseMatrix> number_loop_vertices(const Loops& loops, Index num_vertices) {
+    std::vector<Index> slot(static_cast<std::size_t>(num_vertices), invalid_index);
+    Triplets selection;
+    for (const std::span<const Index> loop : loops) {
+        for (const Index v : loop) {
+            slot[static_cast<std::size_t>(v)] = static_cast<Index>(selection.size());
+            selection.emplace_back(static_cast<Index>(selection.size()), v, 1.0);
+        }
+    }
+    SparseMatrix rows(static_cast<Index>(selection.size()), num_vertices);
+    rows.setFromTriplets(selection.begin(), selection.end());
+    return {std::move(slot), std::move(rows)};
+}
+
+/// rows · A^L: rows of level L carried to the control vertices through each S0 from the left.
+SparseMatrix carry_to_control(SparseMatrix rows, const Hierarchy& h, int level) {
+    for (int l = level; l >= 1; --l) {
+        rows = SparseMatrix(rows * h.step(l).S0);
+    }
+    return rows;
+}
+
+/// diag(A, A)ᵀ A_s diag(A, A) for the rows A of A^L at the loops' vertices (slot: their numbering).
+SparseMatrix pull_back(const Loops& loops, const std::vector<Index>& slot, const SparseMatrix& rows) {
+    const SparseMatrix A2 = block_diagonal(rows);
+    const SparseMatrix half = boundary_area_form(loops, slot, rows.rows()) * A2;
+    return SparseMatrix(A2.transpose() * half);
+}
+
+RefineOptions area_form_refinement(SchemeKind scheme, const ParameterizationOptions& options) {
     RefineOptions refine;
     refine.scheme = scheme;
     refine.levels = options.level;
     refine.scheme_options = options.scheme_options;
     refine.num_threads = options.num_threads;
-    const Hierarchy h(t, refine);
-    const Topology& fine = h.topology(options.level);
-    std::vector<Index> slot(static_cast<std::size_t>(fine.num_vertices()), invalid_index);
-    Triplets selection;
-    for (Index loop = 0; loop < fine.num_boundary_loops(); ++loop) {
-        for (const Index v : fine.boundary_loop(loop)) {
-            slot[static_cast<std::size_t>(v)] = static_cast<Index>(selection.size());
-            selection.emplace_back(static_cast<Index>(selection.size()), v, 1.0);
+    return refine;
+}
+
+/// The faces with a corner on the boundary, as a mesh of their own (an interior vertex whose faces
+/// there form separate fans is split, so the strip is a manifold). A boundary vertex keeps its whole
+/// fan, so the boundary's neighbourhood is t's.
+Submesh boundary_strip(const Topology& t) {
+    std::vector<char> in_strip(static_cast<std::size_t>(t.num_faces()), 0);
+    for (Index loop = 0; loop < t.num_boundary_loops(); ++loop) {
+        for (const Index v : t.boundary_loop(loop)) {
+            for (const Index f : t.vertex_faces(v)) {
+                in_strip[static_cast<std::size_t>(f)] = 1;
+            }
         }
     }
-    const auto n = static_cast<Index>(selection.size());
-    SparseMatrix rows(n, fine.num_vertices());  // rows of A^l for the level-L boundary, l = L..0
-    rows.setFromTriplets(selection.begin(), selection.end());
-    for (int l = options.level; l >= 1; --l) {
-        rows = SparseMatrix(rows * h.step(l).S0);
+    return face_submesh(t, in_strip);
+}
+
+/// The area form by refining the boundary strip alone, when that gives the same rows: with boundary
+/// rules (Catmull–Clark, Loop; no tags) a level-l boundary vertex is a combination of level-(l−1)
+/// vertices of its own boundary loop, so only t's boundary vertices enter the rows, and their
+/// neighbourhood in the strip is t's. The strip's other loops (its cut) are told apart by their rows,
+/// which lie on cut vertices only. Empty when the strip saves nothing or does not apply.
+std::optional<SparseMatrix> strip_area_form(const Topology& t, SchemeKind scheme,
+                                            const ParameterizationOptions& options) {
+    const bool boundary_rules = (scheme == SchemeKind::CatmullClark || scheme == SchemeKind::Loop) &&
+                                options.scheme_options.boundary != BoundaryInterpolation::None && !t.has_sharpness();
+    if (!boundary_rules) {
+        return std::nullopt;
     }
-    const SparseMatrix A2 = block_diagonal(rows);
-    const SparseMatrix half = boundary_area_form(fine, slot, n) * A2;
-    return SparseMatrix(A2.transpose() * half);
+    const Submesh strip = boundary_strip(t);
+    if (2 * strip.topology.num_faces() > t.num_faces()) {
+        return std::nullopt;  // a small or thin mesh: the whole refinement costs little more
+    }
+    const Hierarchy h(strip.topology, area_form_refinement(scheme, options));
+    const Topology& fine = h.topology(options.level);
+    const Loops fine_loops = boundary_loops(fine);
+    const auto [fine_slot, selection] = number_loop_vertices(fine_loops, fine.num_vertices());
+    const SparseMatrix strip_rows = carry_to_control(selection, h, options.level);
+    // Keep the loops whose rows lie on t's boundary; remap their columns to t's vertices.
+    Loops kept;
+    std::vector<Index> slot(static_cast<std::size_t>(fine.num_vertices()), invalid_index);
+    Triplets triplets;
+    Index row = 0;
+    for (const std::span<const Index> loop : fine_loops) {
+        std::size_t on_boundary = 0;
+        std::size_t entries = 0;
+        for (const Index v : loop) {
+            for (SparseMatrix::InnerIterator it(strip_rows, fine_slot[static_cast<std::size_t>(v)]); it; ++it) {
+                ++entries;
+                on_boundary += t.is_boundary_vertex(strip.vertex_origin[static_cast<std::size_t>(it.col())]) ? 1 : 0;
+            }
+        }
+        if (on_boundary != entries && on_boundary != 0) {
+            return std::nullopt;  // not expected under boundary rules; the whole refinement decides
+        }
+        if (on_boundary == 0) {
+            continue;  // the strip's cut
+        }
+        kept.push_back(loop);
+        for (const Index v : loop) {
+            slot[static_cast<std::size_t>(v)] = row;
+            for (SparseMatrix::InnerIterator it(strip_rows, fine_slot[static_cast<std::size_t>(v)]); it; ++it) {
+                triplets.emplace_back(row, strip.vertex_origin[static_cast<std::size_t>(it.col())], it.value());
+            }
+            ++row;
+        }
+    }
+    if (static_cast<Index>(kept.size()) != t.num_boundary_loops()) {
+        return std::nullopt;
+    }
+    SparseMatrix rows(row, t.num_vertices());
+    rows.setFromTriplets(triplets.begin(), triplets.end());
+    return pull_back(kept, slot, rows);
+}
+
+/// The area form of sec and secsnap: the level-L boundary's, pulled back by A^L (SEC Eq. 12's pattern).
+/// Only the level-L boundary vertices' rows of A^L enter it, carried from the left through each S0
+/// (a few thousand rows where A^L itself has millions of non-zeros). Where boundary rules make those
+/// rows depend on the boundary alone, only the faces around the boundary are refined.
+SparseMatrix pulled_back_area_form(const Topology& t, SchemeKind scheme, const ParameterizationOptions& options) {
+    if (std::optional<SparseMatrix> strip = strip_area_form(t, scheme, options)) {
+        return std::move(*strip);
+    }
+    const Hierarchy h(t, area_form_refinement(scheme, options));
+    const Topology& fine = h.topology(options.level);
+    const Loops loops = boundary_loops(fine);
+    const auto [slot, selection] = number_loop_vertices(loops, fine.num_vertices());
+    return pull_back(loops, slot, carry_to_control(selection, h, options.level));
 }
 
 /// The operators of the inner products of options.method (dec .. secsnap).
