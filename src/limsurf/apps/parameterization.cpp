@@ -603,13 +603,15 @@ ConformalSystem conformal_system(const ControlMesh& mesh, SchemeKind scheme, con
         GalerkinMatrices galerkin = assemble_laplace_beltrami(sampler, mesh.positions());
         out.surface_area = galerkin.mass.sum();
         out.area = assemble_area_form(sampler);
-        L = std::move(galerkin.stiffness);
+        L.swap(galerkin.stiffness);
     } else {
         const Operators ops = inner_product_operators(mesh, scheme, options);
         out.surface_area = ops.inner_products().M0.sum();
-        out.area = has_level(options.method) && options.level > 0 ? pulled_back_area_form(t, scheme, options)
-                                                                  : boundary_area_form(t);
-        L = ops.laplacian();
+        SparseMatrix area = has_level(options.method) && options.level > 0 ? pulled_back_area_form(t, scheme, options)
+                                                                           : boundary_area_form(t);
+        SparseMatrix laplacian = ops.laplacian();
+        out.area.swap(area);  // swapped: Eigen 3.4's SparseMatrix copies when assigned a temporary
+        L.swap(laplacian);
     }
     out.conformal = block_diagonal(L) - out.area;
     const Index n = t.num_vertices();

@@ -89,6 +89,7 @@ def baselines(mesh_dir, tmp):
     roof_ends = lambda P: np.abs(P[:, 1]) > 24.999
     out = {
         "info": (limsurf.info, (cube,), {}),
+        "submesh": (limsurf.submesh, (cube, [True, False, True, True, False, True]), {}),
         "volume": (limsurf.volume, (cube, "catmull-clark"), {}),
         "measure": (limsurf.measure, (cube, "catmull-clark"), {"degree": 4, "tiles": 2}),
         "subdivide": (limsurf.subdivide, (cube, "catmull-clark", 1), {}),
