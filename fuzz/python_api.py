@@ -157,12 +157,17 @@ def cases(limsurf, np):
         a = mutate(rng, {"w": np.ones(cube.num_edges)})
         return lambda: limsurf.hodge_decomposition(cube, "catmull-clark", a["w"], method="dec", basis=False)
 
+    def submesh(rng):
+        base = cube if rng.random() < 0.5 else ico
+        a = mutate(rng, {"keep": rng.random(base.num_faces) < 0.6})
+        return lambda: limsurf.submesh(base, a["keep"])
+
     return [("LimitBasis.evaluate", evaluate), ("LimitBasis.evaluate(out=)", evaluate_out),
             ("LimitBasis.weights", weights), ("LimitBasis.patch", patch), ("Mesh", mesh),
             ("Mesh.with_positions", with_positions), ("volume", volume), ("LimitBasis.limit_positions", limit_positions),
             ("poisson", poisson), ("geodesic_distance", geodesic), ("plate", plate_load),
             ("rectangle_plate_deflection", rectangle_plate), ("tessellate", tessellate),
-            ("one_form_vectors", one_form), ("hodge_decomposition", hodge)]
+            ("one_form_vectors", one_form), ("hodge_decomposition", hodge), ("submesh", submesh)]
 
 
 def child(seed, first, last, progress):
