@@ -28,7 +28,8 @@ struct Submesh {
 /// consecutive about the vertex, each sharing an edge at it with the next). A vertex whose whole
 /// one-ring is kept, or whose kept faces are consecutive, stays one vertex with the same one-ring;
 /// one where kept faces touch only at the vertex becomes several, so the result never has a
-/// bow-tie. Submesh vertices are numbered in order of first appearance in the kept faces.
+/// bow-tie. Submesh vertices are numbered in the order in which their parent vertices first appear
+/// in the kept faces; a split vertex's copies follow one another, in the order of its fans about it.
 /// @param keep one entry per parent face, non-zero to keep it
 /// @throws InputError when @p keep does not have one entry per face or keeps no face
 [[nodiscard]] Submesh face_submesh(const Topology& parent, std::span<const char> keep);
