@@ -12,8 +12,6 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/limit/limit_basis.h"
-#include "limsurf/mesh/local_size.h"
-#include "limsurf/refine/form_subdivision.h"
 #include "limsurf/sec/patch_inner_products.h"
 #include "limsurf/sec/polygon_element.h"
 
@@ -240,10 +238,7 @@ InnerProducts control_inner_products(const Topology& topology, const Points& X0,
     if (uses_subdivision(options.method)) {
         LIMSURF_CHECK(options.level >= 0 && options.level <= 8, InputError, "the SEC level must be in [0, 8], got ",
                       options.level);
-        require_form_rules(topology, scheme, scheme_options);
-        // A control face's ring stencil holds every level-L element around a valence-n vertex
-        // against its O(n) ring vertices: as the limit basis, bounded.
-        require_local_size(topology, max_limit_size, "SEC's ring stencils");
+        detail::require_ring_stencils(topology, scheme, scheme_options);
         std::optional<InnerProducts> patched;
         if (options.level >= 1 && options.assembly != SecAssembly::Hierarchy) {
             patched = detail::patch_inner_products(topology, X0, scheme, scheme_options, options.level,

@@ -14,8 +14,6 @@
 #include "limsurf/detail/congruence.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/limit/limit_basis.h"
-#include "limsurf/mesh/local_size.h"
-#include "limsurf/refine/form_subdivision.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/exterior_derivative.h"
 #include "limsurf/sec/patch_inner_products.h"
@@ -99,8 +97,7 @@ namespace {
 /// control_inner_products assembles its M0 from them (form rules, bounded local size).
 bool ring_stencils_apply(const Topology& topology, SchemeKind scheme, const SchemeOptions& scheme_options) {
     try {
-        require_form_rules(topology, scheme, scheme_options);
-        require_local_size(topology, max_limit_size, "SEC's ring stencils");
+        detail::require_ring_stencils(topology, scheme, scheme_options);
     } catch (const UnsupportedError&) {
         return false;  // the whole-mesh path below takes every scheme and mesh
     }

@@ -21,7 +21,9 @@
 #include "limsurf/core/parallel.h"
 #include "limsurf/detail/element_gather.h"
 #include "limsurf/limit/limit_basis.h"
+#include "limsurf/mesh/local_size.h"
 #include "limsurf/quadrature/sampler.h"
+#include "limsurf/refine/form_subdivision.h"
 #include "limsurf/refine/hierarchy.h"
 #include "limsurf/sec/polygon_element.h"
 
@@ -546,6 +548,11 @@ void fine_block(const Patches& patches, const Points& X0, Index begin, Index end
 }
 
 }  // namespace
+
+void require_ring_stencils(const Topology& topology, SchemeKind scheme, const SchemeOptions& options) {
+    require_form_rules(topology, scheme, options);
+    require_local_size(topology, max_limit_size, "SEC's ring stencils");
+}
 
 std::optional<InnerProducts> patch_inner_products(const Topology& topology, const Points& X0, SchemeKind scheme,
                                                   const SchemeOptions& options, int level, bool snap, int num_threads,

@@ -25,9 +25,16 @@
 
 namespace limsurf::detail {
 
+/// @brief Refuses a mesh on which the ring stencils cannot assemble Sec: no form rules for
+///   @p scheme there (require_form_rules), or a face or vertex beyond max_limit_size (a ring
+///   stencil holds every level-L element around a valence-n vertex against its O(n) ring vertices,
+///   bounded as the limit basis is).
+/// @throws UnsupportedError as require_form_rules and require_local_size
+void require_ring_stencils(const Topology& topology, SchemeKind scheme, const SchemeOptions& options);
+
 /// @brief M_0^0, M_1^0, M_2^0 of Sec (Eq. 12), or of SecSnap (Eq. 16) when @p snap, at
 ///   @p level >= 1 for the control mesh (@p topology, @p X0) (#V × 3).
-/// @pre require_form_rules(topology, scheme, options) passed; X0.rows() == #V
+/// @pre require_ring_stencils(topology, scheme, options) passed; X0.rows() == #V
 /// @param num_threads threads (0: hardware concurrency)
 /// @param required    throw instead of returning nullopt
 /// @return nullopt when some face's ring cannot be refined on its own (not expected: rings that
