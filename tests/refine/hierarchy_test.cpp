@@ -103,6 +103,36 @@ TEST(Hierarchy, AccumulatedOperatorIsTheProductOfTheSteps) {
     EXPECT_LT((row_sums.array() - 1.0).abs().maxCoeff(), 1e-14);
 }
 
+TEST(Hierarchy, AccumulatedOperatorsAreEigensProductsBitForBitOnAnyNumberOfThreads) {
+    // A_l = S_l A_(l-1), A_0 = I, for the vertex, edge and face operators; the library forms each
+    // product row by row on its own threads, which must give Eigen's product exactly.
+    const BuildResult built = read_mesh(test::find_bundled("genus2").path);
+    for (const int threads : {1, 2}) {
+        RefineOptions options = options_for(SchemeKind::CatmullClark, 3);
+        options.forms = true;
+        options.num_threads = threads;
+        const Hierarchy hierarchy(built.mesh.topology(), options);
+        for (int k = 0; k <= 2; ++k) {
+            const Topology& base = hierarchy.topology(0);
+            const Index n = k == 0 ? base.num_vertices() : k == 1 ? base.num_edges() : base.num_faces();
+            SparseMatrix expected(n, n);
+            expected.setIdentity();
+            for (int l = 1; l <= 3; ++l) {
+                const Level& s = hierarchy.step(l);
+                expected = SparseMatrix(SparseMatrix(k == 0 ? s.S0 : k == 1 ? s.S1 : s.S2) * expected);
+            }
+            const SparseMatrix& a = hierarchy.accumulated_form(k, 3);
+            ASSERT_GE(a.rows(), 2048) << "too few rows to split over threads";
+            ASSERT_EQ(a.nonZeros(), expected.nonZeros()) << k;
+            EXPECT_TRUE(std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.rows() + 1, expected.outerIndexPtr()))
+                << k;
+            EXPECT_TRUE(std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), expected.innerIndexPtr()))
+                << k;
+            EXPECT_TRUE(std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), expected.valuePtr())) << k;
+        }
+    }
+}
+
 TEST(Hierarchy, EveryRefinedLevelPassesFullValidation) {
     // Refinement builds child topologies without validating them in release
     // builds (they are valid by construction); check that claim explicitly.

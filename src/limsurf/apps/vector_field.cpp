@@ -13,8 +13,8 @@
 
 #include "limsurf/apps/hodge.h"
 #include "limsurf/core/error.h"
-#include "limsurf/core/huge_page_allocator.h"
 #include "limsurf/detail/row_accumulator.h"
+#include "limsurf/detail/row_assembly.h"
 #include "limsurf/detail/sparse_cholesky.h"
 #include "limsurf/io/atomic_file.h"
 #include "limsurf/limit/limit_basis.h"
@@ -233,13 +233,7 @@ SparseMatrix sum_of_products(std::initializer_list<SparseProduct> products, std:
                                            : static_cast<Index>(terms.begin()->Z.rows());
     const Index cols = products.size() > 0 ? static_cast<Index>(products.begin()->Q.cols())
                                            : static_cast<Index>(terms.begin()->Z.cols());
-    std::vector<Index> outer(static_cast<std::size_t>(rows) + 1, 0);
-    // Fresh memory faults in by the page, at about 10 µs per 4 KiB on the project's VM: the large
-    // tables take huge pages (half of the time of K's sum before).
-    detail::HugeTable<Index> inner;
-    detail::HugeTable<double> values;
-    detail::RowAccumulator row_sum(cols);
-    for (Index r = 0; r < rows; ++r) {
+    return detail::assemble_rows(rows, cols, 1, [&](Index r, detail::RowAccumulator& row_sum) {
         for (const SparseProduct& product : products) {
             for (SparseMatrix::InnerIterator p(product.P, r); p; ++p) {
                 for (SparseMatrix::InnerIterator q(product.Q, p.index()); q; ++q) {
@@ -252,17 +246,7 @@ SparseMatrix sum_of_products(std::initializer_list<SparseProduct> products, std:
                 row_sum.add(static_cast<Index>(z.index()), term.c * z.value());
             }
         }
-        row_sum.flush(inner, values, static_cast<std::size_t>(rows));
-        outer[static_cast<std::size_t>(r) + 1] = static_cast<Index>(inner.size());
-    }
-    SparseMatrix out(rows, cols);
-    out.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-    detail::advise_huge_pages(out.innerIndexPtr(), sizeof(Index) * inner.size());
-    detail::advise_huge_pages(out.valuePtr(), sizeof(double) * values.size());
-    std::copy(outer.begin(), outer.end(), out.outerIndexPtr());
-    std::copy(inner.begin(), inner.end(), out.innerIndexPtr());
-    std::copy(values.begin(), values.end(), out.valuePtr());
-    return out;
+    });
 }
 
 double mean_diagonal(const SparseMatrix& M) {

@@ -9,6 +9,7 @@
 #include "limsurf/core/memory.h"
 #include "limsurf/detail/huge_pages.h"
 #include "limsurf/detail/refine_face_split.h"
+#include "limsurf/detail/row_assembly.h"
 #include "limsurf/mesh/control_mesh.h"
 #include "limsurf/mesh/local_size.h"
 #include "limsurf/refine/form_subdivision.h"
@@ -363,13 +364,17 @@ const SparseMatrix& Hierarchy::accumulated_form(int k, int level) const {
             continue;
         }
         if (l == 0) {
-            SparseMatrix identity(base_size, base_size);
-            identity.setIdentity();
-            slot = std::move(identity);
+            slot.emplace(base_size, base_size);
+            slot->setIdentity();
         } else {
             const Level& s = step(l);
             const SparseMatrix& S = k == 0 ? s.S0 : k == 1 ? s.S1 : s.S2;
-            slot = SparseMatrix(S * *cache[static_cast<std::size_t>(l) - 1]);
+            // Row by row (the same bits as Eigen's product), swapped into place: Eigen 3.4's
+            // SparseMatrix would copy on the optional's assignment.
+            SparseMatrix product =
+                detail::sparse_product(S, *cache[static_cast<std::size_t>(l) - 1], options_.num_threads);
+            slot.emplace();
+            slot->swap(product);
         }
     }
     return *cache[static_cast<std::size_t>(level)];
