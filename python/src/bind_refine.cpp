@@ -47,6 +47,11 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
         {
             const py::gil_scoped_release release;
             hierarchy.emplace(mesh.mesh.topology(), options, mesh.mesh.positions());  // positions carried
+            (void)hierarchy->accumulated(levels);  // formed (and cached) without the GIL, on the threads
+            if (forms) {
+                (void)hierarchy->accumulated_form(1, levels);
+                (void)hierarchy->accumulated_form(2, levels);
+            }
         }
         py::object finest =
             py::cast(Mesh{ControlMesh(hierarchy->topology(levels), hierarchy->positions(levels), mesh.mesh.hints()),
