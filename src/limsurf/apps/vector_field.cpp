@@ -675,20 +675,22 @@ VectorFieldResult design_vector_field(const Topology& topology, const Points& X0
         W[c] = kappa * rows.weights[static_cast<std::size_t>(c)];
         t[c] = rows.targets[static_cast<std::size_t>(c)];
     }
-    const SparseMatrix L1 = anti_holomorphic_matrix(topology, ip);
-    check_constraints_keep_the_energy(rows, A, W, L1);
     const SparseMatrix At = A.transpose();
-    const SparseMatrix WA = W.asDiagonal() * A;
-    const SparseMatrix K = sum_of_products({{At, WA}}, {{1.0, L1}, {regulariser_scale(L1, ip.M1, 1e-10), ip.M1}});
+    const SparseMatrix K = [&] {
+        const SparseMatrix L1 = anti_holomorphic_matrix(topology, ip);  // as large as K: gone before K's factor
+        check_constraints_keep_the_energy(rows, A, W, L1);
+        const SparseMatrix WA = W.asDiagonal() * A;
+        return sum_of_products({{At, WA}}, {{1.0, L1}, {regulariser_scale(L1, ip.M1, 1e-10), ip.M1}});
+    }();
     const detail::SparseCholesky solver(K, "the vector-field design system");
     VectorFieldResult result;
     result.solver = detail::SparseCholesky::name();
     const Eigen::VectorXd rhs = At * W.cwiseProduct(t);
     const bool exact_mass = options.vertex_mass == VertexMassInverse::Exact && !is_diagonal(ip.M0);
     std::optional<detail::SparseCholesky> M0_factor;
-    Eigen::VectorXd lumped_inverse;  // diag(M0 1)⁻¹, used only to swap the lumped divergence term for the exact one
+    // diag(M0 1)⁻¹: L1's divergence term, which the exact M0⁻¹ replaces
+    const Eigen::VectorXd lumped_inverse = (ip.M0 * Eigen::VectorXd::Ones(ip.M0.cols())).cwiseInverse();
     if (exact_mass) {
-        lumped_inverse = (ip.M0 * Eigen::VectorXd::Ones(ip.M0.cols())).cwiseInverse();
         M0_factor.emplace(ip.M0, "the vertex mass matrix M0");
         result.w =
             solve_with_exact_vertex_mass(K, solver, divergence, *M0_factor, lumped_inverse, rhs, result.solver_steps);
@@ -701,11 +703,12 @@ VectorFieldResult design_vector_field(const Topology& topology, const Points& X0
                                   [&A](const Eigen::MatrixXd& B) { return Eigen::MatrixXd(A * B); });
     }
     LIMSURF_CHECK(result.w.allFinite(), NumericalError, "the designed field is not finite");
-    result.energy = 0.5 * result.w.dot(L1 * result.w);
-    if (exact_mass) {  // L1's divergence term is the lumped one: replace it by the exact one
-        const Eigen::VectorXd b = divergence * result.w;
-        result.energy += 0.5 * (b.dot(M0_factor->solve(b)) - b.dot(lumped_inverse.cwiseProduct(b)));
-    }
+    // ½ wᵀ L1 w by its two terms, ½ (|d1 w|²_M2 + bᵀ M0⁻¹ b) with b = D w, M0⁻¹ exact or lumped.
+    const Eigen::VectorXd curl = d1 * result.w;
+    const Eigen::VectorXd b = divergence * result.w;
+    const Eigen::VectorXd inverse_mass_b =
+        exact_mass ? M0_factor->solve(b) : Eigen::VectorXd(lumped_inverse.cwiseProduct(b));
+    result.energy = 0.5 * (curl.dot(ip.M2 * curl) + b.dot(inverse_mass_b));
     report_constraints(result, rows, A);
     check_balance(result, topology, constraints);
     if (options.reference_level) {

@@ -1,6 +1,7 @@
 // One sparse symmetric positive-definite solver for the sec and fem layers: CHOLMOD (SuiteSparse,
 // supernodal) when limsurf is built with it, Eigen's SimplicialLDLT otherwise. Both are used
-// through Eigen's wrappers, on column-major copies.
+// through Eigen's wrappers, on column-major copies made for the factorisation and freed after it
+// (a solve reads only the factor).
 //
 // Factor one matrix at a time: two CHOLMOD factorisations on two threads at once (tried
 // 2026-12-07 for the heat method's two factors) intermittently failed as "not positive definite"
@@ -8,7 +9,7 @@
 // default, openblas-serial, is not safe for concurrent callers unless built with locking.
 #pragma once
 
-#include <algorithm>
+#include <cstdint>
 #include <new>
 #include <stdexcept>
 
@@ -29,11 +30,12 @@ class SparseCholesky {
 
     /// @throws NumericalError (naming @p what) when @p A has an entry that is not finite or is not
     ///   positive definite
-    SparseCholesky(const SparseMatrix& A, const char* what) : A_(A) {
-        if (!prepare(what)) {
+    SparseCholesky(const SparseMatrix& A, const char* what) {
+        const ColMatrix column_major(A);  // freed once factorised: the factor is all a solve reads
+        if (!prepare(column_major, what)) {
             return;
         }
-        solver_.compute(A_);
+        solver_.compute(column_major);
         check_factorised(what);
     }
     /// @brief Factorises @p A with the fill-reducing ordering and symbolic analysis of
@@ -41,25 +43,23 @@ class SparseCholesky {
     ///   analysis (its METIS ordering) is a third or more of a factorisation on a mesh's Laplacian.
     ///   (Without CHOLMOD: a factorisation of its own.)
     /// @throws std::logic_error when the patterns differ; as the other constructor
-    SparseCholesky(const SparseMatrix& A, const SparseCholesky& same_pattern, const char* what) : A_(A) {
-        const ColMatrix& B = same_pattern.A_;
-        if (A_.rows() != B.rows() || A_.nonZeros() != B.nonZeros() ||
-            !std::equal(A_.outerIndexPtr(), A_.outerIndexPtr() + A_.outerSize() + 1, B.outerIndexPtr()) ||
-            !std::equal(A_.innerIndexPtr(), A_.innerIndexPtr() + A_.nonZeros(), B.innerIndexPtr())) {
+    SparseCholesky(const SparseMatrix& A, const SparseCholesky& same_pattern, const char* what) {
+        const ColMatrix column_major(A);
+        if (Pattern::of(column_major) != same_pattern.pattern_) {
             throw std::logic_error("limsurf bug: SparseCholesky reused the analysis of a matrix of another pattern");
         }
-        if (!prepare(what)) {
+        if (!prepare(column_major, what)) {
             return;
         }
 #ifdef LIMSURF_HAVE_CHOLMOD
-        solver_.factorize_like(same_pattern.solver_, A_);
+        solver_.factorize_like(same_pattern.solver_, column_major);
 #else
-        solver_.compute(A_);
+        solver_.compute(column_major);
 #endif
         check_factorised(what);
     }
     [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
-        if (A_.rows() == 0) {
+        if (pattern_.rows == 0) {
             return Eigen::VectorXd(0);
         }
         Eigen::VectorXd x = solver_.solve(b);
@@ -67,7 +67,7 @@ class SparseCholesky {
     }
     /// One solve per column of @p B, all in one pass through the factor.
     [[nodiscard]] Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B) const {
-        if (A_.rows() == 0) {
+        if (pattern_.rows == 0) {
             return Eigen::MatrixXd(0, B.cols());
         }
         Eigen::MatrixXd X = solver_.solve(B);
@@ -76,7 +76,7 @@ class SparseCholesky {
     /// min |D_k| / max |D_k| over the factor's pivots (D_k = L_kk² for an LLᵀ factor; 1 for an empty
     /// matrix): at rounding level for a matrix with a (numerical) kernel.
     [[nodiscard]] double pivot_ratio() const {
-        if (A_.rows() == 0) {
+        if (pattern_.rows == 0) {
             return 1.0;
         }
 #ifdef LIMSURF_HAVE_CHOLMOD
@@ -95,15 +95,16 @@ class SparseCholesky {
     }
 
   private:
-    /// Checks A_'s entries and quiets CHOLMOD. @return false for an empty matrix (nothing to factor:
-    /// CHOLMOD crashes on one)
-    bool prepare(const char* what) {
-        if (A_.rows() == 0) {
+    /// Records @p A's pattern, checks its entries and quiets CHOLMOD. @return false for an empty matrix
+    /// (nothing to factor: CHOLMOD crashes on one)
+    bool prepare(const ColMatrix& A, const char* what) {
+        pattern_ = Pattern::of(A);
+        if (A.rows() == 0) {
             return false;
         }
         // An overflowed entry (a material constant or weight near the largest double) would be
         // reported by the factorisation as "not positive definite": name the cause instead.
-        LIMSURF_CHECK(Eigen::Map<const Eigen::VectorXd>(A_.valuePtr(), A_.nonZeros()).allFinite(), NumericalError,
+        LIMSURF_CHECK(Eigen::Map<const Eigen::VectorXd>(A.valuePtr(), A.nonZeros()).allFinite(), NumericalError,
                       "the matrix of ", what,
                       " has an entry that is not finite: its data overflowed (a material constant, weight or "
                       "coordinate too large?)");
@@ -197,7 +198,29 @@ class SparseCholesky {
     };
 #endif
 
-    ColMatrix A_;
+    /// What the same-pattern constructor compares, in place of the matrix (which can be a large
+    /// part of a factorisation's memory and is not needed once it is factorised): the size, the
+    /// number of entries and a hash (FNV-1a) of the column-major pattern.
+    struct Pattern {
+        Eigen::Index rows = 0;
+        Eigen::Index nonzeros = 0;
+        std::uint64_t hash = 0;
+
+        static Pattern of(const ColMatrix& A) {
+            std::uint64_t h = 14695981039346656037ULL;
+            const auto mix = [&h](const ColMatrix::StorageIndex* first, const ColMatrix::StorageIndex* last) {
+                for (; first != last; ++first) {
+                    h = (h ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(*first))) * 1099511628211ULL;
+                }
+            };
+            mix(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+            mix(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+            return {A.rows(), A.nonZeros(), h};
+        }
+        bool operator==(const Pattern&) const = default;
+    };
+
+    Pattern pattern_;
 #ifdef LIMSURF_HAVE_CHOLMOD
     Cholmod solver_;
 #else
