@@ -150,10 +150,9 @@ RefineOptions area_form_refinement(SchemeKind scheme, const ParameterizationOpti
     return refine;
 }
 
-/// The faces with a corner on the boundary, as a mesh of their own (an interior vertex whose faces
-/// there form separate fans is split, so the strip is a manifold). A boundary vertex keeps its whole
-/// fan, so the boundary's neighbourhood is t's.
-Submesh boundary_strip(const Topology& t) {
+/// The faces with a corner on the boundary (1: in the strip). A boundary vertex keeps its whole fan
+/// there, so the boundary's neighbourhood in the strip is t's.
+std::vector<char> boundary_strip_faces(const Topology& t) {
     std::vector<char> in_strip(static_cast<std::size_t>(t.num_faces()), 0);
     for (Index loop = 0; loop < t.num_boundary_loops(); ++loop) {
         for (const Index v : t.boundary_loop(loop)) {
@@ -162,7 +161,7 @@ Submesh boundary_strip(const Topology& t) {
             }
         }
     }
-    return face_submesh(t, in_strip);
+    return in_strip;
 }
 
 /// The area form by refining the boundary strip alone, when that gives the same rows: with boundary
@@ -177,10 +176,12 @@ std::optional<SparseMatrix> strip_area_form(const Topology& t, SchemeKind scheme
     if (!boundary_rules) {
         return std::nullopt;
     }
-    const Submesh strip = boundary_strip(t);
-    if (2 * strip.topology.num_faces() > t.num_faces()) {
+    const std::vector<char> in_strip = boundary_strip_faces(t);
+    if (2 * std::count(in_strip.begin(), in_strip.end(), char{1}) > t.num_faces()) {
         return std::nullopt;  // a small or thin mesh: the whole refinement costs little more
     }
+    // A manifold of its own: an interior vertex whose strip faces form separate fans is split.
+    const Submesh strip = face_submesh(t, in_strip);
     const Hierarchy h(strip.topology, area_form_refinement(scheme, options));
     const Topology& fine = h.topology(options.level);
     const Loops fine_loops = boundary_loops(fine);
@@ -602,7 +603,8 @@ ConformalSystem conformal_system(const ControlMesh& mesh, SchemeKind scheme, con
         const LimitSampler sampler = iga_sampler(mesh, scheme, options);
         GalerkinMatrices galerkin = assemble_laplace_beltrami(sampler, mesh.positions());
         out.surface_area = galerkin.mass.sum();
-        out.area = assemble_area_form(sampler);
+        SparseMatrix area = assemble_area_form(sampler);
+        out.area.swap(area);  // swapped: Eigen 3.4's SparseMatrix copies when assigned a temporary
         L.swap(galerkin.stiffness);
     } else {
         const Operators ops = inner_product_operators(mesh, scheme, options);
@@ -610,7 +612,7 @@ ConformalSystem conformal_system(const ControlMesh& mesh, SchemeKind scheme, con
         SparseMatrix area = has_level(options.method) && options.level > 0 ? pulled_back_area_form(t, scheme, options)
                                                                            : boundary_area_form(t);
         SparseMatrix laplacian = ops.laplacian();
-        out.area.swap(area);  // swapped: Eigen 3.4's SparseMatrix copies when assigned a temporary
+        out.area.swap(area);
         L.swap(laplacian);
     }
     out.conformal = block_diagonal(L) - out.area;
