@@ -1,10 +1,12 @@
 // Uniform refinement, 2 levels, topology + positions, on ~100k-face meshes:
 // limsurf (Hierarchy: every level's child topology, S0, provenance, then S0
-// products, or carried as the rows are built (Hierarchy with its control points, "points"); refine_finest: the same,
-// keeping only the finest level; refine_finest_faces: of the finest level only its face list, as `limsurf subdivide`
-// and Far's default rows) against OpenSubdiv Far (TopologyRefiner::RefineUniform + PrimvarRefiner::Interpolate), CGAL
-// Subdivision_method_3 and OpenMesh's uniform subdividers, each in the same binary and run. CGAL and OpenMesh refine in
-// place, so each iteration starts from a copy made outside the timer. limsurf's rows take the thread count as argument
+// products, or carried as the rows are built (Hierarchy with its control points, "points"; "operators": the same
+// keeping of the level topologies only the finest level's face list, KeptTopologies::FinestFaces); refine_finest: the
+// same, keeping only the finest level; refine_finest_faces: of the finest level only its face list, as `limsurf
+// subdivide` and Far's default rows) against OpenSubdiv Far (TopologyRefiner::RefineUniform +
+// PrimvarRefiner::Interpolate), CGAL Subdivision_method_3 and OpenMesh's uniform subdividers, each in the same binary
+// and run. CGAL and OpenMesh refine in place, so each iteration starts from a copy made outside the timer. limsurf's
+// rows take the thread count as argument
 // (/1: single-threaded, as the peers; /2: two threads).
 #include <vector>
 
@@ -124,6 +126,18 @@ void limsurf_refine_points(benchmark::State& state, const Mesh& mesh, limsurf::S
     });
 }
 
+/// The Hierarchy built with the control points, keeping of the level topologies only the finest level's
+/// face list (KeptTopologies::FinestFaces): every S0, provenance and positions, as above; the finest
+/// level as Far's default rows have it (its faces, no edges or one-rings).
+void limsurf_refine_operators(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
+    limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, limsurf::RefineOptions options) {
+        options.kept_topologies = limsurf::KeptTopologies::FinestFaces;
+        const limsurf::Hierarchy hierarchy(base, options, mesh.positions);
+        benchmark::DoNotOptimize(hierarchy.positions(levels).data());
+        return hierarchy.finest_faces().num_faces();
+    });
+}
+
 /// refine_finest: the same topology and positions, only the finest level kept.
 void limsurf_refine_finest(benchmark::State& state, const Mesh& mesh, limsurf::SchemeKind scheme) {
     limsurf_run(state, mesh, scheme, [&](const limsurf::Topology& base, const limsurf::RefineOptions& options) {
@@ -157,6 +171,15 @@ void BM_limsurf_points_Loop(benchmark::State& state) {
 }
 void BM_limsurf_points_DooSabin(benchmark::State& state) {
     limsurf_refine_points(state, quads(), limsurf::SchemeKind::DooSabin);
+}
+void BM_limsurf_operators_CatmullClark(benchmark::State& state) {
+    limsurf_refine_operators(state, quads(), limsurf::SchemeKind::CatmullClark);
+}
+void BM_limsurf_operators_Loop(benchmark::State& state) {
+    limsurf_refine_operators(state, triangles(), limsurf::SchemeKind::Loop);
+}
+void BM_limsurf_operators_DooSabin(benchmark::State& state) {
+    limsurf_refine_operators(state, quads(), limsurf::SchemeKind::DooSabin);
 }
 void BM_limsurf_finest_CatmullClark(benchmark::State& state) {
     limsurf_refine_finest(state, quads(), limsurf::SchemeKind::CatmullClark);
@@ -349,6 +372,7 @@ void BM_OpenMesh_Loop(benchmark::State& state) {
 
 BENCHMARK(BM_limsurf_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_points_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_operators_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_faces_CatmullClark)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -357,6 +381,7 @@ BENCHMARK(BM_CGAL_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_CatmullClark)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_points_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_operators_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_faces_Loop)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenSubdiv_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -365,6 +390,7 @@ BENCHMARK(BM_CGAL_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenMesh_Loop)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_points_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_limsurf_operators_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_finest_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_limsurf_faces_DooSabin)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CGAL_DooSabin)->Unit(benchmark::kMillisecond)->UseRealTime();

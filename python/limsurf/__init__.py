@@ -127,8 +127,9 @@ def subdivide(*args, **kwargs):
 
     Returns the finest :class:`Mesh`; with ``operators=True`` (or ``forms=True``) a pair
     ``(mesh, ops)`` with the scipy CSR operators ``ops["S0"]`` (and ``"S1"``, ``"S2"``,
-    ``"steps"``); with ``topology=False`` the finest ``(V, F)`` arrays only (its face list,
-    without a Mesh's edge and one-ring tables). See ``limsurf._limsurf.subdivide`` for every keyword.
+    ``"steps"``); with ``topology=False`` the finest ``(V, F)`` arrays instead of the Mesh (its face
+    list, without a Mesh's edge and one-ring tables; with operators, ``((V, F), ops)``, and no level's
+    tables are kept past the control mesh). See ``limsurf._limsurf.subdivide`` for every keyword.
     """
     if args and not isinstance(args[0], Mesh):
         if len(args) < 2:

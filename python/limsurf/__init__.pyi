@@ -91,12 +91,22 @@ def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: Literal
 def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: bool = False, forms: bool = False,
               boundary: Boundary | None = None, creasing: Creasing | None = None,
               triangles: Triangles | None = None, threads: int = 0,
-              topology: bool = True) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
+              topology: Literal[False]) -> tuple[FloatArray, IndexArray | list[IndexArray]] | tuple[
+                  tuple[FloatArray, IndexArray | list[IndexArray]], SubdivisionOperators]: ...
+@overload
+def subdivide(mesh: Mesh, scheme: Scheme, levels: int = 1, *, operators: bool = False, forms: bool = False,
+              boundary: Boundary | None = None, creasing: Creasing | None = None,
+              triangles: Triangles | None = None, threads: int = 0,
+              topology: bool = True) -> Mesh | tuple[Mesh, SubdivisionOperators] | tuple[
+                  FloatArray, IndexArray | list[IndexArray]] | tuple[
+                  tuple[FloatArray, IndexArray | list[IndexArray]], SubdivisionOperators]: ...
 @overload
 def subdivide(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Scheme, levels: int = 1, *,
               operators: bool = False, forms: bool = False, boundary: Boundary | None = None,
               creasing: Creasing | None = None, triangles: Triangles | None = None,
-              threads: int = 0, topology: bool = True) -> Mesh | tuple[Mesh, SubdivisionOperators]: ...
+              threads: int = 0, topology: bool = True) -> Mesh | tuple[Mesh, SubdivisionOperators] | tuple[
+                  FloatArray, IndexArray | list[IndexArray]] | tuple[
+                  tuple[FloatArray, IndexArray | list[IndexArray]], SubdivisionOperators]: ...
 
 class LimitEvaluation(TypedDict, total=False):
     position: FloatArray

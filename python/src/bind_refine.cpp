@@ -22,9 +22,7 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
     options.scheme_options = rules_for(mesh.mesh, rules);
     options.forms = forms;
     return naming_source(mesh, [&]() -> py::object {
-        if (!topology) {  // (V, F) of the finest level: its face list only (refine_finest_faces)
-            LIMSURF_CHECK(!operators && !forms, InputError,
-                          "topology=False returns the finest (V, F) only: operators and forms need the levels");
+        if (!topology && !operators && !forms) {  // (V, F) of the finest level: its face list only
             FinestFaces refined;
             {
                 const py::gil_scoped_release release;
@@ -43,6 +41,11 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
                 Mesh{ControlMesh(std::move(refined.topology), std::move(refined.positions), mesh.mesh.hints()),
                      SourceMap{}, ValidationReport{}});
         }
+        // The operators: every step's S0 (S1, S2) kept; with topology=False no level's Topology past the
+        // base (KeptTopologies::FinestFaces: the finest level's face list only).
+        if (!topology) {
+            options.kept_topologies = KeptTopologies::FinestFaces;
+        }
         std::optional<Hierarchy> hierarchy;
         {
             const py::gil_scoped_release release;
@@ -53,9 +56,16 @@ py::object subdivide(const Mesh& mesh, const std::string& scheme, int levels, bo
                 (void)hierarchy->accumulated_form(2, levels);
             }
         }
-        py::object finest =
-            py::cast(Mesh{ControlMesh(hierarchy->topology(levels), hierarchy->positions(levels), mesh.mesh.hints()),
-                          SourceMap{}, ValidationReport{}});
+        py::object finest;
+        if (topology) {
+            finest =
+                py::cast(Mesh{ControlMesh(hierarchy->topology(levels), hierarchy->positions(levels), mesh.mesh.hints()),
+                              SourceMap{}, ValidationReport{}});
+        } else {
+            const PolygonSoup& faces = hierarchy->finest_faces();
+            finest = py::make_tuple(to_numpy(hierarchy->positions(levels)),
+                                    faces_array(faces.face_offsets, faces.face_vertices));
+        }
         py::dict ops;
         ops["S0"] = to_scipy(hierarchy->accumulated(levels));
         if (forms) {
@@ -103,7 +113,8 @@ the 1- and 2-form subdivision of SEC that commutes with d (Loop and Catmull–Cl
 builds the rows; the result does not depend on it.
 With topology=False, returns the finest level as arrays (V, F) instead: its face list only, without
 the edge and one-ring tables of a Mesh (as `limsurf subdivide` writes it; 2 M quads: a peak of 210
-against 454 MiB); the same V and F as the Mesh's, sharpness tags not kept.
+against 454 MiB); the same V and F as the Mesh's, sharpness tags not kept. With operators too, the
+pair ((V, F), ops): the same operators, and no level's tables kept past the control mesh.
 Raises InputError beyond the memory budget (checked before any work), UnsupportedError for a
 scheme that cannot refine the mesh (Loop on a quad).)");
 }

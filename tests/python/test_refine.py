@@ -76,8 +76,29 @@ def test_topology_false_gives_the_meshs_arrays(mesh_path):
             assert F.dtype == np.int32 and np.array_equal(F, finest.F), name
     V, F = limsurf.subdivide(np.eye(3), [[0, 1, 2]], "loop", 1, topology=False)
     assert V.shape == (6, 3) and F.shape == (4, 3)
-    with pytest.raises(limsurf.InputError, match="topology=False returns the finest"):
-        limsurf.subdivide(limsurf.read_mesh(mesh_path("cube")), "catmull-clark", 1, operators=True, topology=False)
+
+
+def test_topology_false_with_operators_gives_the_same_arrays_and_operators(mesh_path):
+    # With operators, topology=False keeps no level's tables past the control mesh: the same finest
+    # arrays as the Mesh's and the same operators, every one of them, bit for bit.
+    for name, scheme, levels, forms in (("cube_creases", "catmull-clark", 3, False), ("cube", "catmull-clark", 2, True),
+                                        ("icosahedron", "loop", 2, True), ("cube", "doo-sabin", 2, False),
+                                        ("tetra_1", "c2g0", 0, False)):
+        mesh = limsurf.read_mesh(mesh_path(name))
+        finest, ops = limsurf.subdivide(mesh, scheme, levels, operators=True, forms=forms)
+        (V, F), lean = limsurf.subdivide(mesh, scheme, levels, operators=True, forms=forms, topology=False)
+        assert np.array_equal(V, finest.V), name
+        if isinstance(finest.F, list):
+            assert all(np.array_equal(a, b) for a, b in zip(F, finest.F)) and len(F) == finest.num_faces, name
+        else:
+            assert np.array_equal(F, finest.F), name
+        assert sorted(lean) == sorted(ops) and len(lean["steps"]) == levels == len(ops["steps"])
+        pairs = [(lean[k], ops[k]) for k in ("S0", "S1", "S2") if k in ops]
+        pairs += [(a[k], b[k]) for a, b in zip(lean["steps"], ops["steps"]) for k in b]
+        for got, want in pairs:
+            assert got.shape == want.shape and np.array_equal(got.indptr, want.indptr), name
+            assert np.array_equal(got.indices, want.indices) and np.array_equal(got.data, want.data), name
+        assert np.allclose(lean["S0"] @ mesh.V, V, rtol=0, atol=1e-12)
 
 
 def test_refusals_are_python_exceptions(mesh_path):

@@ -609,6 +609,107 @@ TEST(RefineThreads, TwoThreadsGiveWhatOneGivesBitForBit) {
     EXPECT_THROW(Hierarchy(read_mesh(test::find_bundled("cube").path).mesh.topology(), negative), InputError);
 }
 
+/// KeptTopologies::FinestFaces drops each level's Topology once its child exists and writes only the
+/// finest level's face list: every S0 (S1, S2), provenance, position and accumulated operator must be
+/// those of a hierarchy keeping every level, bit for bit, and finest_faces() what a writer gets from
+/// its finest level (to_polygon_soup), tag for tag. The levels it dropped are refused by name.
+/// KeptTopologies::Finest likewise, with the finest level's Topology equal to Every's, table for table.
+void expect_dropped_levels_keep_the_rest(const Topology& base, const Points& X, RefineOptions options,
+                                       const std::string& name) {
+    SCOPED_TRACE(name + " " + to_string(options.scheme) + " L = " + std::to_string(options.levels) +
+                 (options.forms ? " with forms" : "") + ", " + std::to_string(options.num_threads) + " threads");
+    const Hierarchy every(base, options, X);
+    options.kept_topologies = KeptTopologies::FinestFaces;
+    const Hierarchy plain(base, options);
+    const Hierarchy carried(base, options, X);
+    const int L = options.levels;
+    for (const Hierarchy* lean : {&plain, &carried}) {
+        ASSERT_EQ(lean->num_steps(), L);
+        expect_same_topology(lean->topology(0), base);
+        for (int l = 1; l <= L; ++l) {
+            SCOPED_TRACE("level " + std::to_string(l));
+            EXPECT_EQ(lean->step(l).topology.num_faces(), 0) << "a dropped level's topology is empty";
+            try {
+                (void)lean->topology(l);
+                ADD_FAILURE() << "level " << l << "'s topology was dropped";
+            } catch (const InputError& error) {
+                EXPECT_NE(std::string(error.what()).find("finest_faces()"), std::string::npos) << error.what();
+            }
+            expect_same_matrix(lean->step(l).S0, every.step(l).S0);
+            expect_same_matrix(lean->step(l).S1, every.step(l).S1);
+            expect_same_matrix(lean->step(l).S2, every.step(l).S2);
+            const Provenance& got = lean->step(l).provenance;
+            const Provenance& want = every.step(l).provenance;
+            EXPECT_EQ(got.vertex_parent_kind, want.vertex_parent_kind);
+            EXPECT_EQ(got.vertex_parent, want.vertex_parent);
+            EXPECT_EQ(got.face_parent_kind, want.face_parent_kind);
+            EXPECT_EQ(got.face_parent, want.face_parent);
+            EXPECT_EQ(got.face_parent_corner, want.face_parent_corner);
+        }
+        expect_same_matrix(lean->accumulated(L), every.accumulated(L));
+        if (options.forms) {
+            expect_same_matrix(lean->accumulated_form(1, L), every.accumulated_form(1, L));
+            expect_same_matrix(lean->accumulated_form(2, L), every.accumulated_form(2, L));
+        }
+        EXPECT_TRUE(lean->finest_faces().positions.size() == 0) << "positions(L) has them";
+    }
+    for (int l = 0; l <= L; ++l) {
+        EXPECT_TRUE((carried.positions(l).array() == every.positions(l).array()).all()) << "level " << l;
+    }
+    EXPECT_TRUE((plain.positions(L, X).array() == every.positions(L).array()).all());
+    FinestLevel expected{every.topology(L), every.positions(L), {}};
+    FinestFaces got{plain.finest_faces(), {}};
+    got.mesh.positions = carried.positions(L);
+    expect_faces_equal_finest(got, expected);
+    got.mesh = carried.finest_faces();
+    got.mesh.positions = carried.positions(L);
+    expect_faces_equal_finest(got, expected);
+    EXPECT_THROW((void)every.finest_faces(), InputError);
+
+    // KeptTopologies::Finest keeps the finest level's whole Topology, and drops only the levels between.
+    options.kept_topologies = KeptTopologies::Finest;
+    const Hierarchy finest(base, options, X);
+    expect_same_topology(finest.topology(L), every.topology(L));
+    expect_same_topology(finest.topology(0), base);
+    for (int l = 1; l < L; ++l) {
+        EXPECT_EQ(finest.step(l).topology.num_faces(), 0) << "level " << l;
+        EXPECT_THROW((void)finest.topology(l), InputError) << "level " << l;
+    }
+    for (int l = 1; l <= L; ++l) {
+        expect_same_matrix(finest.step(l).S0, every.step(l).S0);
+        expect_same_matrix(finest.step(l).S1, every.step(l).S1);
+        EXPECT_EQ(finest.step(l).provenance.face_parent_corner, every.step(l).provenance.face_parent_corner);
+        EXPECT_TRUE((finest.positions(l).array() == every.positions(l).array()).all()) << "level " << l;
+    }
+    expect_same_matrix(finest.accumulated(L), every.accumulated(L));
+    EXPECT_THROW((void)finest.finest_faces(), InputError);
+}
+
+TEST(Hierarchy, KeepingOnlyTheFinestLevelChangesNothingElse) {
+    const auto check = [](const char* name, SchemeKind scheme, int levels, bool forms = false, int threads = 1,
+                          BoundaryInterpolation boundary = BoundaryInterpolation::EdgeAndCorner) {
+        const BuildResult built = read_mesh(test::find_bundled(name).path);
+        RefineOptions options = options_for(scheme, levels);
+        options.forms = forms;
+        options.num_threads = threads;
+        options.scheme_options.boundary = boundary;
+        expect_dropped_levels_keep_the_rest(built.mesh.topology(), built.mesh.positions(), options, name);
+    };
+    check("cube_creases", SchemeKind::CatmullClark, 3);
+    check("cube_creases", SchemeKind::CatmullClark, 5, false, 2);  // the last steps on two threads
+    check("cube", SchemeKind::CatmullClark, 0);                    // the finest is the base
+    check("cube", SchemeKind::CatmullClark, 1);
+    check("cube", SchemeKind::CatmullClark, 3, true);  // with forms the finest Topology is built and dropped
+    check("icosahedron", SchemeKind::Loop, 3, true);
+    check("annulus", SchemeKind::CatmullClark, 2, false, 1, BoundaryInterpolation::None);
+    check("annulus", SchemeKind::Bilinear, 2);
+    check("tri_grid", SchemeKind::Loop, 2);
+    check("tri_grid", SchemeKind::Linear, 2);
+    check("tetra_1", SchemeKind::C2g0, 2);
+    check("cube", SchemeKind::DooSabin, 2);
+    check("annulus", SchemeKind::DooSabin, 2, false, 1, BoundaryInterpolation::None);
+}
+
 /// refine_finest and refine_finest_faces keep two levels at a time, and the latter only the finest
 /// level's face list: they are held to their own estimates, which lie below the Hierarchy's.
 TEST(RefineFinest, IsHeldToItsOwnMemoryEstimate) {
@@ -638,6 +739,26 @@ TEST(RefineFinest, IsHeldToItsOwnMemoryEstimate) {
     EXPECT_THROW((void)refine_finest(base, built.mesh.positions(), options), InputError);
     options.max_memory = finest;
     EXPECT_NO_THROW((void)refine_finest(base, built.mesh.positions(), options));
+    EXPECT_THROW(Hierarchy(base, options), InputError);
+    // A Hierarchy that keeps only the finest faces holds every S0 (10 bytes and more per non-zero):
+    // more than refine_finest, less than every level's topology too.
+    const std::int64_t lean = estimated_peak_bytes(sizes, KeptTopologies::FinestFaces);
+    EXPECT_EQ(estimated_peak_bytes(sizes, KeptTopologies::Every), every_level);
+    EXPECT_LT(lean, every_level);
+    EXPECT_GT(lean, faces);
+    options.kept_topologies = KeptTopologies::FinestFaces;
+    options.max_memory = lean;
+    EXPECT_NO_THROW(Hierarchy(base, options));
+    options.max_memory = lean - 1;
+    EXPECT_THROW(Hierarchy(base, options), InputError);
+    // Keeping the finest Topology: between the two.
+    const std::int64_t finest_topology = estimated_peak_bytes(sizes, KeptTopologies::Finest);
+    EXPECT_GT(finest_topology, lean);
+    EXPECT_LT(finest_topology, every_level);
+    options.kept_topologies = KeptTopologies::Finest;
+    options.max_memory = finest_topology;
+    EXPECT_NO_THROW(Hierarchy(base, options));
+    options.max_memory = finest_topology - 1;
     EXPECT_THROW(Hierarchy(base, options), InputError);
 }
 

@@ -27,6 +27,26 @@
 
 namespace limsurf {
 
+/// Which level topologies a Hierarchy keeps (refine_finest() and refine_finest_faces() ignore it).
+enum class KeptTopologies : std::uint8_t {
+    /// Every level's Topology (Hierarchy::topology(l) for l = 0..L): the default.
+    Every,
+    /// The base's and the finest level's Topology only (topology(0) and topology(L)): each level's
+    /// between goes once its child is built. Every S0, S1, S2, provenance, position and accumulated
+    /// operator is Every's, bit for bit. For computations on the finest level alone (the reference
+    /// solutions of the SEC applications): the levels between are a third of the finest's tables.
+    Finest,
+    /// The base's Topology and the finest level's face list only (Hierarchy::finest_faces()): each
+    /// level's Topology is dropped once its child is built, and the last step writes only its child's
+    /// face list and sharpness tags, as refine_finest_faces() does (with RefineOptions::forms the
+    /// finest Topology is built, S1 and S2 are numbered by its edges, and dropped after). Every S0, S1,
+    /// S2, provenance, position and accumulated operator is Every's, bit for bit. For users who want
+    /// the operators and the refined mesh as arrays (Python's subdivide(operators=True,
+    /// topology=False)): Catmull–Clark, 100 k → 1.6 M quads, peaks at about 0.6 of Every's
+    /// (docs/BENCHMARKS.md).
+    FinestFaces,
+};
+
 /// Options for uniform refinement.
 struct RefineOptions {
     SchemeKind scheme = SchemeKind::CatmullClark;
@@ -48,6 +68,8 @@ struct RefineOptions {
     /// builds the child topology on a second thread while the first builds S0 or carries the
     /// points, once the parent has 1024 faces. The result does not depend on it.
     int num_threads = 0;
+    /// Which level topologies a Hierarchy keeps (the others are dropped as soon as the next step exists).
+    KeptTopologies kept_topologies = KeptTopologies::Every;
 };
 
 /// Element counts of one level, predicted before refining.
@@ -83,6 +105,12 @@ struct LevelSize {
 ///   step. Calibrated on the bundled meshes (measured peaks 0.73–0.95 of it; docs/io.md "Memory").
 [[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes);
 
+/// @brief Peak memory (bytes) of a Hierarchy over @p sizes keeping @p kept: Every as above; Finest and
+///   FinestFaces every level's S0 and positions, the base's topology, and at the largest step its
+///   parent's topology, its child's (at the last step: FinestFaces only its face list) and the
+///   transient tables.
+[[nodiscard]] std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, KeptTopologies kept);
+
 /// @brief Peak memory (bytes) of refine_finest() (@p face_list false) or refine_finest_faces() (true)
 ///   over @p sizes: the base, and the largest step's parent (topology and points), child (topology —
 ///   for refine_finest_faces' last step only its face list — and points) and transient tables, each
@@ -117,10 +145,20 @@ class Hierarchy {
     [[nodiscard]] int num_steps() const noexcept { return static_cast<int>(steps_.size()); }
     [[nodiscard]] const RefineOptions& options() const noexcept { return options_; }
 
-    /// Topology of level @p level (0 = the base). @throws InputError when out of range
+    /// Topology of level @p level (0 = the base).
+    /// @throws InputError when out of range, or for a level the hierarchy did not keep
+    ///   (KeptTopologies::Finest: 1..L−1; FinestFaces: 1..L, finest_faces() has the finest level's faces)
     [[nodiscard]] const Topology& topology(int level) const;
 
-    /// The step that produced level @p level (1 <= level <= L). @throws InputError when out of range
+    /// The finest level's face list and sharpness tags (PolygonSoup's face_offsets, face_vertices and
+    /// sharpness; no positions: positions(num_steps()) has them) of a hierarchy built with
+    /// KeptTopologies::FinestFaces: to_polygon_soup() of what topology(num_steps()) would be, tag for tag
+    /// (Doo–Sabin: no tags, as refine_finest_faces()).
+    /// @throws InputError when the hierarchy keeps every Topology (topology(num_steps()) is the finest)
+    [[nodiscard]] const PolygonSoup& finest_faces() const;
+
+    /// The step that produced level @p level (1 <= level <= L); its topology is empty where the
+    /// hierarchy did not keep it (KeptTopologies). @throws InputError when out of range
     [[nodiscard]] const Level& step(int level) const;
 
     /// A^level = S0^{level−1} ··· S0^0, #V_level × #V_0 (identity for level 0); built once, cached.
@@ -164,6 +202,7 @@ class Hierarchy {
     Topology base_;
     std::vector<Level> steps_;
     std::vector<Points> positions_;  ///< [level], when built with control points; otherwise empty
+    PolygonSoup finest_faces_;       ///< KeptTopologies::FinestFaces: the finest level's faces and tags
     // Lazily built accumulated operators; the mutex lives on the heap so that
     // the hierarchy stays movable.
     mutable std::array<std::vector<std::optional<SparseMatrix>>, 3> accumulated_;  // [k][level]

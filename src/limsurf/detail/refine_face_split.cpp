@@ -57,18 +57,16 @@ void number_child_vertices(std::initializer_list<std::pair<Index, ParentKind>> c
 
 }  // namespace
 
-Provenance quad_split_provenance(const Topology& parent) {
-    const Index F = parent.num_faces();
+Provenance quad_split_provenance(Index vertices, Index edges, std::span<const Index> face_offsets) {
+    const auto F = static_cast<Index>(face_offsets.size()) - 1;
     Provenance p;
-    number_child_vertices(
-        {{parent.num_vertices(), ParentKind::Vertex}, {F, ParentKind::Face}, {parent.num_edges(), ParentKind::Edge}},
-        p);
-    const auto num_child_faces = at(parent.num_corners());
+    number_child_vertices({{vertices, ParentKind::Vertex}, {F, ParentKind::Face}, {edges, ParentKind::Edge}}, p);
+    const auto num_child_faces = at(face_offsets.back());
     assign_huge(p.face_parent_kind, num_child_faces, ParentKind::Face);
     reserve_huge(p.face_parent, num_child_faces);
     reserve_huge(p.face_parent_corner, num_child_faces);
     for (Index f = 0; f < F; ++f) {
-        const Index n = parent.face_degree(f);
+        const Index n = face_offsets[at(f) + 1] - face_offsets[at(f)];
         for (Index k = 0; k < n; ++k) {
             p.face_parent.push_back(f);
             p.face_parent_corner.push_back(k);
@@ -77,10 +75,9 @@ Provenance quad_split_provenance(const Topology& parent) {
     return p;
 }
 
-Provenance tri_split_provenance(const Topology& parent) {
-    const Index F = parent.num_faces();
+Provenance tri_split_provenance(Index vertices, Index edges, Index F) {
     Provenance p;
-    number_child_vertices({{parent.num_vertices(), ParentKind::Vertex}, {parent.num_edges(), ParentKind::Edge}}, p);
+    number_child_vertices({{vertices, ParentKind::Vertex}, {edges, ParentKind::Edge}}, p);
     const auto num_child_faces = 4 * at(F);
     assign_huge(p.face_parent_kind, num_child_faces, ParentKind::Face);
     reserve_huge(p.face_parent, num_child_faces);
@@ -333,6 +330,10 @@ void add_vertex_and_neighbours(const Topology& parent, Index v, const VertexMask
 
 SparseMatrix SparseRowBuilder::finish() {
     LIMSURF_ASSERT(current_ == matrix_.rows(), "rows ended: ", current_, " of ", matrix_.rows());
+    if (carried_ != nullptr) {
+        carried_->parent = {};  // read by the rows only: freed before the rest of the step
+    }
+    slot_of_column_ = {};
     SparseMatrix out;  // swap, not move: Eigen 3.4's SparseMatrix has no move constructor
     out.swap(matrix_);
     return out;
@@ -367,10 +368,33 @@ int step_threads(int requested, const Topology& parent) {
 }
 
 Level finish_step(const Topology& parent, std::future<Topology>& child, SparseRowBuilder& rows, const StepRun& run,
-                  Provenance (*provenance_of)(const Topology&)) {
+                  Split split, EffectiveSharpness* effective) {
     SparseMatrix S0 = rows.finish();
-    Provenance provenance = run.keeps_matrix() ? provenance_of(parent) : Provenance{};
-    return Level{child.get(), std::move(S0), std::move(provenance)};
+    // The child (its sharpness reads the effective sharpness) before the provenance, the step's last
+    // table: what the child no longer needs, and with run.release_parent the parent, goes first, and
+    // the step peaks lower.
+    Topology topology = child.get();
+    if (effective != nullptr) {
+        *effective = {};
+    }
+    const Index vertices = parent.num_vertices();
+    const Index edges = parent.num_edges();
+    const Index parent_faces = parent.num_faces();
+    std::span<const Index> face_offsets = parent.face_offsets();
+    std::vector<Index> kept_offsets;  // the quad split's face sizes, when the parent goes first
+    if (run.release_parent) {
+        if (split == Split::Quads && run.keeps_matrix()) {
+            kept_offsets.assign(face_offsets.begin(), face_offsets.end());
+        }
+        face_offsets = kept_offsets;
+        run.release_parent();  // `parent` is not read from here on
+    }
+    Provenance provenance;
+    if (run.keeps_matrix()) {
+        provenance = split == Split::Quads ? quad_split_provenance(vertices, edges, face_offsets)
+                                           : tri_split_provenance(vertices, edges, parent_faces);
+    }
+    return Level{std::move(topology), std::move(S0), std::move(provenance)};
 }
 
 }  // namespace limsurf::detail

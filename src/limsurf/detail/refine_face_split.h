@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <future>
 #include <span>
 #include <type_traits>
@@ -38,10 +39,11 @@ struct EffectiveSharpness {
 /// @brief Effective sharpness of @p parent under @p boundary.
 [[nodiscard]] EffectiveSharpness effective_sharpness(const Topology& parent, BoundaryInterpolation boundary);
 
-/// @brief Provenance of the quad split (vertices, faces, edges; n quads per face).
-[[nodiscard]] Provenance quad_split_provenance(const Topology& parent);
-/// @brief Provenance of the triangle split (vertices, edges; 4 triangles per face).
-[[nodiscard]] Provenance tri_split_provenance(const Topology& parent);
+/// @brief Provenance of the quad split (vertices, faces, edges; n quads per face) of a parent with
+///   @p vertices vertices, @p edges edges and faces @p face_offsets (#F + 1): all it reads of the parent.
+[[nodiscard]] Provenance quad_split_provenance(Index vertices, Index edges, std::span<const Index> face_offsets);
+/// @brief Provenance of the triangle split (vertices, edges; 4 triangles per face) of a parent of these counts.
+[[nodiscard]] Provenance tri_split_provenance(Index vertices, Index edges, Index faces);
 
 /// @brief The sharpness tags of the child: the two halves of a parent edge get the
 ///   subdivided sharpness at their parent end vertex (Uniform or Chaikin, computed
@@ -65,8 +67,9 @@ void require_triangles(const Topology& parent, const char* scheme);
 /// is 10 million non-zeros written once and read once). The parent's are row-major, so that the
 /// points a row reads are one cache line each; the child's are written in order, as Points.
 struct CarriedPoints {
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> parent;  ///< #V_parent × 3
-    Points child;                                                      ///< #V_child × 3, written by the step
+    /// #V_parent × 3; freed when the step's rows are finished (SparseRowBuilder::finish)
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> parent;
+    Points child;  ///< #V_child × 3, written by the step
 };
 
 /// How one step of a face-split scheme runs.
@@ -86,6 +89,11 @@ struct StepRun {
     /// face_vertices and sharpness, as to_polygon_soup() of the child Topology would, tag for tag)
     /// and builds no Topology (the Level's is empty): the last step of refine_finest_faces().
     PolygonSoup* faces = nullptr;
+    /// When set: called by the face splits (finish_step) once the rows and the child are built and
+    /// before the provenance, which then reads a copy of the parent's counts and face sizes: the
+    /// caller frees the parent there, so that the step's last table does not stand on it (a Hierarchy
+    /// keeping KeptTopologies::FinestFaces). The step does not read the parent after the call.
+    std::function<void()> release_parent;
 };
 
 /// The two ways a face-split scheme cuts its faces (refine/level.h gives the child order).
@@ -154,7 +162,8 @@ class SparseRowBuilder {
     }
     /// Closes the current row and starts the next.
     void end_row();
-    /// The matrix (rows × cols without entries when points were carried); @pre every row has been ended
+    /// The matrix (rows × cols without entries when points were carried); frees the carried parent
+    /// points and the builder's tables. @pre every row has been ended
     [[nodiscard]] SparseMatrix finish();
 
   private:
@@ -291,8 +300,12 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 ///   result does not depend on it).
 /// @param carried when not null: @p carried's points are carried to the child as the rows are built
 ///   (S0 · parent, bit for bit), and S0 and the provenance are kept too (StepRun::keep_matrix)
+/// @param[out] faces when not null: the child's face list and sharpness tags are written here
+///   (StepRun::faces), and the Level's topology is empty
+/// @param release_parent StepRun::release_parent
 [[nodiscard]] Level refine_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                                const TunedWeights& weights, int threads, CarriedPoints* carried = nullptr);
+                                const TunedWeights& weights, int threads, CarriedPoints* carried = nullptr,
+                                PolygonSoup* faces = nullptr, std::function<void()> release_parent = {});
 
 /// @brief refine(parent, kind, options, weights)'s child topology, with @p carried's points carried to
 ///   it: S0 · parent, bit for bit, without storing S0 (every scheme builds its rows in order).
@@ -305,8 +318,11 @@ void vertex_mask(const Topology& parent, const EffectiveSharpness& effective, Cr
 
 /// @brief The end of every face-split step: the Level of the child topology (detail::quad_split_topology
 ///   or detail::tri_split_topology, waited for), the S0 of @p rows (taken over, not copied: Eigen 3.4's
-///   SparseMatrix has no move constructor) and @p provenance_of(@p parent) when @p run keeps the matrix.
+///   SparseMatrix has no move constructor) and the provenance of @p split when @p run keeps the matrix;
+///   calls run.release_parent (when set) before the provenance.
+/// @param effective when not null: the step's effective sharpness, freed once the child is built (before
+///   the provenance is)
 [[nodiscard]] Level finish_step(const Topology& parent, std::future<Topology>& child, SparseRowBuilder& rows,
-                                const StepRun& run, Provenance (*provenance_of)(const Topology&));
+                                const StepRun& run, Split split, EffectiveSharpness* effective = nullptr);
 
 }  // namespace limsurf::detail

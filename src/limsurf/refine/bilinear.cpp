@@ -13,7 +13,7 @@ Level detail::refine_bilinear_step(const Topology& parent, const StepRun& run) {
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
     // Sharpness is carried with uniform decay so that a later smooth scheme sees it.
-    const auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
+    auto effective = detail::effective_sharpness(parent, BoundaryInterpolation::EdgeOnly);
     auto child = detail::split_child(parent, detail::Split::Quads, run, [&] {
         return detail::child_sharpness(parent, effective, CreasingMethod::Uniform, V + F, false);
     });
@@ -28,7 +28,7 @@ Level detail::refine_bilinear_step(const Topology& parent, const StepRun& run) {
         rows.end_row();
     }
     detail::add_midpoint_rows(parent, rows);
-    return detail::finish_step(parent, child, rows, run, detail::quad_split_provenance);
+    return detail::finish_step(parent, child, rows, run, detail::Split::Quads, &effective);
 }
 
 }  // namespace limsurf

@@ -37,7 +37,7 @@ Level detail::refine_c2g0_step(const Topology& parent, const StepRun& run) {
         emit();
     }
 
-    return detail::finish_step(parent, child, rows, run, detail::tri_split_provenance);
+    return detail::finish_step(parent, child, rows, run, detail::Split::Triangles);
 }
 
 }  // namespace limsurf

@@ -111,7 +111,7 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
     const Index V = parent.num_vertices();
     const Index F = parent.num_faces();
     const Index E = parent.num_edges();
-    const auto effective = detail::effective_sharpness(parent, options.boundary);
+    auto effective = detail::effective_sharpness(parent, options.boundary);
     auto child = detail::split_child(parent, detail::Split::Quads, run, [&] {
         return detail::child_sharpness(parent, effective, options.creasing, V + F, false);
     });
@@ -210,7 +210,7 @@ Level detail::refine_catmull_clark_forced(const Topology& parent, const SchemeOp
         rows.end_row();
     }
 
-    return detail::finish_step(parent, child, rows, run, detail::quad_split_provenance);
+    return detail::finish_step(parent, child, rows, run, detail::Split::Quads, &effective);
 }
 
 }  // namespace limsurf

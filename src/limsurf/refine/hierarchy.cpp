@@ -1,6 +1,7 @@
 #include "limsurf/refine/hierarchy.h"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -146,7 +147,7 @@ void check_memory(const Topology& base, const std::vector<LevelSize>& sizes, std
 
 /// What a refinement keeps, which decides its peak.
 enum class Keeping {
-    EveryLevel,   ///< Hierarchy: estimated_peak_bytes()
+    EveryLevel,   ///< Hierarchy: estimated_peak_bytes(…, options.kept_topologies)
     FinestLevel,  ///< refine_finest(): estimated_finest_peak_bytes(…, false)
     FinestFaces,  ///< refine_finest_faces(): estimated_finest_peak_bytes(…, true)
 };
@@ -161,7 +162,7 @@ void check_refinement(const Topology& base, const RefineOptions& options, Keepin
     const std::vector<LevelSize> sizes = predict_sizes(base, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
     const std::int64_t peak =
-        (keeping == Keeping::EveryLevel ? estimated_peak_bytes(sizes)
+        (keeping == Keeping::EveryLevel ? estimated_peak_bytes(sizes, options.kept_topologies)
                                         : estimated_finest_peak_bytes(sizes, keeping == Keeping::FinestFaces)) +
         options.reserved_bytes;
     LIMSURF_CHECK(finest.faces <= options.max_faces, InputError, to_string(options.scheme), " with ", options.levels,
@@ -246,6 +247,29 @@ std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes) {
     return kept + transient;
 }
 
+std::int64_t estimated_peak_bytes(const std::vector<LevelSize>& sizes, KeptTopologies kept) {
+    if (kept == KeptTopologies::Every) {
+        return estimated_peak_bytes(sizes);
+    }
+    const auto topology_bytes = [](const LevelSize& size) { return estimated_bytes(size) - 24 * size.vertices; };
+    std::int64_t held = estimated_bytes(sizes[0]);  // the base, kept
+    std::int64_t largest_step = 0;
+    const auto last = sizes.size() - 1;
+    for (std::size_t l = 1; l <= last; ++l) {
+        const LevelSize& parent = sizes[l - 1];
+        const LevelSize& child = sizes[l];
+        const std::int64_t nonzeros = parent.step_nonzeros;
+        held += 12 * nonzeros + 4 * child.vertices + 24 * child.vertices;  // S0 and positions, kept
+        // The parent's topology (the base's is counted above) and the child's, only its face list at
+        // the last step, live while the step runs.
+        const std::int64_t parent_topology = l == 1 ? 0 : topology_bytes(parent);
+        const bool faces_only = l == last && kept == KeptTopologies::FinestFaces;
+        const std::int64_t child_topology = faces_only ? 4 * (child.corners + child.faces) : topology_bytes(child);
+        largest_step = std::max(largest_step, parent_topology + child_topology + transient_bytes(child, nonzeros));
+    }
+    return held + largest_step;
+}
+
 std::int64_t estimated_finest_peak_bytes(const std::vector<LevelSize>& sizes, bool face_list) {
     // Tables of 4 MiB and more take whole 2 MiB huge pages (core/huge_page_allocator.h): each of a
     // level's tables and the step's temporaries (fewer than 17) rounds up by less than 2 MiB, and
@@ -302,14 +326,30 @@ void Hierarchy::build(const Points* control_points) {
             carried.parent = *control_points;
         }
     }
+    // KeptTopologies::Finest and FinestFaces: a level's topology goes once its child is built; with
+    // FinestFaces the last step writes only its child's faces (with forms, S1 and S2 need the child's
+    // edges: its whole Topology, dropped after).
+    const bool drop_levels = options_.kept_topologies != KeptTopologies::Every;
+    const bool faces_only = options_.kept_topologies == KeptTopologies::FinestFaces;
     for (int l = 0; l < options_.levels; ++l) {
         const Topology& parent = l == 0 ? base_ : steps_.back().topology;
         const bool carry = control_points != nullptr && !options_.forms;
-        steps_.push_back(options_.forms
-                             ? refine_with_forms(parent, options_.scheme, options_.scheme_options, options_.weights)
-                             : detail::refine_step(parent, options_.scheme, options_.scheme_options, options_.weights,
-                                                   detail::step_threads(options_.num_threads, parent),
-                                                   carry ? &carried : nullptr));
+        PolygonSoup* faces = faces_only && !options_.forms && l + 1 == options_.levels ? &finest_faces_ : nullptr;
+        // The parent goes as soon as the step has no more use for it (the face splits: before their
+        // provenance), else after the step.
+        std::function<void()> release_parent;
+        if (drop_levels && l > 0) {
+            release_parent = [this] { steps_.back().topology = Topology{}; };
+        }
+        Level child = options_.forms
+                          ? refine_with_forms(parent, options_.scheme, options_.scheme_options, options_.weights)
+                          : detail::refine_step(parent, options_.scheme, options_.scheme_options, options_.weights,
+                                                detail::step_threads(options_.num_threads, parent),
+                                                carry ? &carried : nullptr, faces, release_parent);
+        if (release_parent) {
+            release_parent();  // (again, for steps that do not call it)
+        }
+        steps_.push_back(std::move(child));
         if (control_points == nullptr) {
             continue;
         }
@@ -325,6 +365,12 @@ void Hierarchy::build(const Points* control_points) {
         }
         check_finite(*control_points, positions_.back(), l + 1);
     }
+    if (faces_only && (options_.levels == 0 || options_.forms)) {
+        write_faces(options_.levels == 0 ? base_ : steps_.back().topology, finest_faces_);
+        if (options_.levels > 0) {
+            steps_.back().topology = Topology{};
+        }
+    }
     for (auto& cache : accumulated_) {
         cache.resize(steps_.size() + 1);
     }
@@ -337,7 +383,21 @@ void Hierarchy::check_level(int level, int lowest) const {
 
 const Topology& Hierarchy::topology(int level) const {
     check_level(level, 0);
+    const KeptTopologies kept = options_.kept_topologies;
+    LIMSURF_CHECK(
+        level == 0 || kept == KeptTopologies::Every || (kept == KeptTopologies::Finest && level == num_steps()),
+        InputError, "level ", level, "'s topology was not kept (RefineOptions::kept_topologies is ",
+        kept == KeptTopologies::Finest ? "Finest: only levels 0 and " + std::to_string(num_steps())
+                                       : std::string("FinestFaces: finest_faces() has the finest level's face list"),
+        ")");
     return level == 0 ? base_ : steps_[static_cast<std::size_t>(level) - 1].topology;
+}
+
+const PolygonSoup& Hierarchy::finest_faces() const {
+    LIMSURF_CHECK(options_.kept_topologies == KeptTopologies::FinestFaces, InputError,
+                  "finest_faces() needs a hierarchy built with KeptTopologies::FinestFaces: topology(", num_steps(),
+                  ") is the finest level");
+    return finest_faces_;
 }
 
 const Level& Hierarchy::step(int level) const {

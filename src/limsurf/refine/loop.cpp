@@ -23,7 +23,7 @@ Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& opti
     detail::require_triangles(parent, "Loop");
     const Index V = parent.num_vertices();
     const Index E = parent.num_edges();
-    const auto effective = detail::effective_sharpness(parent, options.boundary);
+    auto effective = detail::effective_sharpness(parent, options.boundary);
     auto child = detail::split_child(parent, detail::Split::Triangles, run, [&] {
         return detail::child_sharpness(parent, effective, options.creasing, V, true);
     });
@@ -72,7 +72,7 @@ Level detail::refine_loop_step(const Topology& parent, const SchemeOptions& opti
         rows.end_row();
     }
 
-    return detail::finish_step(parent, child, rows, run, detail::tri_split_provenance);
+    return detail::finish_step(parent, child, rows, run, detail::Split::Triangles, &effective);
 }
 
 }  // namespace limsurf

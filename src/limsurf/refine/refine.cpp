@@ -68,16 +68,21 @@ Level run_step(const Topology& parent, SchemeKind kind, const SchemeOptions& opt
 }  // namespace
 
 Level detail::refine_step(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
-                          const TunedWeights& weights, int threads, CarriedPoints* carried) {
+                          const TunedWeights& weights, int threads, CarriedPoints* carried, PolygonSoup* faces,
+                          std::function<void()> release_parent) {
     return run_step(parent, kind, options, weights,
-                    StepRun{.carried = carried, .keep_matrix = true, .threads = threads});
+                    StepRun{.carried = carried,
+                            .keep_matrix = true,
+                            .threads = threads,
+                            .faces = faces,
+                            .release_parent = std::move(release_parent)});
 }
 
 Topology detail::refine_carrying(const Topology& parent, SchemeKind kind, const SchemeOptions& options,
                                  const TunedWeights& weights, CarriedPoints& carried, int threads, PolygonSoup* faces) {
-    return std::move(
-        run_step(parent, kind, options, weights, StepRun{.carried = &carried, .threads = threads, .faces = faces})
-            .topology);
+    return std::move(run_step(parent, kind, options, weights,
+                              StepRun{.carried = &carried, .threads = threads, .faces = faces, .release_parent = {}})
+                         .topology);
 }
 
 }  // namespace limsurf
