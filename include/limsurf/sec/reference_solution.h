@@ -36,7 +36,8 @@ struct ReferenceProblem {
     std::optional<std::int64_t> max_memory = std::nullopt;
 };
 
-/// @brief Estimated peak memory (bytes) of compare_with_reference(): the hierarchy to level K
+/// @brief Estimated peak memory (bytes) of compare_with_reference(): the hierarchy to level K (of whose
+///   topologies it keeps the base and level K: KeptTopologies::Finest)
 ///   and the DEC solve there (about 2 KiB per level-K vertex with its Cholesky factor).
 [[nodiscard]] std::int64_t reference_peak_bytes(const Topology& topology, SchemeKind scheme, int level);
 

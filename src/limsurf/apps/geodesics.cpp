@@ -214,6 +214,7 @@ GradientMesh make_gradient_mesh(const Topology& t, const Points& X, SchemeKind s
     refine.levels = gradient_level;
     refine.scheme_options = options.scheme_options;
     refine.num_threads = options.num_threads;
+    refine.kept_topologies = KeptTopologies::Finest;  // the gradient mesh is level L alone
     const Hierarchy h(t, refine, X);
     const Topology& fine = h.topology(gradient_level);
     const Points XL = evaluation_positions(fine, h.positions(gradient_level), method, scheme, options.scheme_options);
@@ -596,6 +597,7 @@ ReferenceComparison compare_geodesics_with_reference(const Topology& topology, c
     refine.levels = level;
     refine.scheme_options = scheme_options;
     refine.max_memory = max_memory;
+    refine.kept_topologies = KeptTopologies::Finest;  // the reference runs on level K alone
     const Hierarchy h(topology, refine, X);
     const Topology& fine = h.topology(level);
     const Points& XK = h.positions(level);

@@ -369,6 +369,7 @@ HodgeReference hodge_reference(const Topology& topology, const Points& X0, Schem
     ro.levels = K;
     ro.scheme_options = options.scheme_options;
     ro.forms = true;
+    ro.kept_topologies = KeptTopologies::Finest;  // the reference decomposes on level K alone
     const Hierarchy h(topology, ro);
     const Topology& tK = h.topology(K);
     const HodgeDecomposer fine(tK, polygonal_inner_products(tK, h.positions(K, X0)));

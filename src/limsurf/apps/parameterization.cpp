@@ -147,6 +147,7 @@ RefineOptions area_form_refinement(SchemeKind scheme, const ParameterizationOpti
     refine.levels = options.level;
     refine.scheme_options = options.scheme_options;
     refine.num_threads = options.num_threads;
+    refine.kept_topologies = KeptTopologies::Finest;  // only level L's boundary and the steps' S0 are read
     return refine;
 }
 
@@ -565,6 +566,7 @@ ReferenceComparison circle_reference(const ControlMesh& mesh, SchemeKind scheme,
     refine.scheme_options = options.scheme_options;
     refine.num_threads = options.num_threads;
     refine.max_memory = options.max_memory;
+    refine.kept_topologies = KeptTopologies::Finest;  // the reference is solved on level K alone
     const Hierarchy h(mesh.topology(), refine);
     const int K = *options.reference_level;
     const Topology& fine = h.topology(K);

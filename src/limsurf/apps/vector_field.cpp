@@ -404,6 +404,7 @@ VectorFieldReference design_reference(const Topology& topology, const Points& X0
     ro.levels = K;
     ro.scheme_options = options.scheme_options;
     ro.forms = true;
+    ro.kept_topologies = KeptTopologies::Finest;  // the reference is designed on level K alone
     const Hierarchy h(topology, ro);
     const Topology& tK = h.topology(K);
     const Points XK = h.positions(K, X0);
@@ -506,6 +507,7 @@ OneFormVectors one_form_vectors(const Topology& topology, const Points& X0, Sche
     ro.levels = level;
     ro.scheme_options = scheme_options;
     ro.forms = true;
+    ro.kept_topologies = KeptTopologies::Finest;  // sampled on level L alone
     const Hierarchy h(topology, ro);
     OneFormVectors out;
     out.level = level;

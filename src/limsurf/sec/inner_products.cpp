@@ -96,6 +96,7 @@ InnerProducts hierarchy_inner_products(const Topology& topology, const Points& X
     refine.levels = options.level;
     refine.scheme_options = scheme_options;
     refine.forms = true;
+    refine.kept_topologies = KeptTopologies::Finest;  // the inner products are level L's, pulled back
     const Hierarchy hierarchy(topology, refine);
     const Points XL = evaluation_positions(hierarchy.topology(options.level), hierarchy.positions(options.level, X0),
                                            options.method, scheme, scheme_options);

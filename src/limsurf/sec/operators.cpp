@@ -116,6 +116,7 @@ Eigen::VectorXd hierarchy_load_vector(const Topology& topology, const Points& X0
     refine.levels = level;
     refine.scheme_options = scheme_options;
     refine.num_threads = options.num_threads;
+    refine.kept_topologies = KeptTopologies::Finest;  // the load is assembled on level L alone
     const Hierarchy h(topology, refine, X0);
     const Points XL =
         evaluation_positions(h.topology(level), h.positions(level), options.method, scheme, scheme_options);

@@ -19,6 +19,7 @@ RefineOptions refine_options(SchemeKind scheme, const ReferenceProblem& problem)
     refine.scheme = scheme;
     refine.levels = problem.level;
     refine.scheme_options = problem.scheme_options;
+    refine.kept_topologies = KeptTopologies::Finest;  // the reference is solved on level K alone
     return refine;
 }
 
@@ -26,7 +27,7 @@ RefineOptions refine_options(SchemeKind scheme, const ReferenceProblem& problem)
 
 std::int64_t reference_peak_bytes(const Topology& topology, SchemeKind scheme, int level) {
     const std::vector<LevelSize> sizes = predict_sizes(topology, scheme, level);
-    return estimated_peak_bytes(sizes) + solve_bytes_per_vertex * sizes.back().vertices;
+    return estimated_peak_bytes(sizes, KeptTopologies::Finest) + solve_bytes_per_vertex * sizes.back().vertices;
 }
 
 void check_reference(const Topology& topology, SchemeKind scheme, const ReferenceProblem& problem) {
