@@ -162,12 +162,20 @@ def cases(limsurf, np):
         a = mutate(rng, {"keep": rng.random(base.num_faces) < 0.6})
         return lambda: limsurf.submesh(base, a["keep"])
 
+    def subdivide(rng):  # from arrays, with the operators and only the finest level's faces kept
+        base = cube if rng.random() < 0.5 else ico
+        a = mutate(rng, {"V": base.V, "F": np.array(base.F)})
+        scheme = "catmull-clark" if base is cube else str(rng.choice(["loop", "catmull-clark"]))
+        return lambda: limsurf.subdivide(a["V"], a["F"], scheme, int(rng.integers(3)), operators=True,
+                                         forms=bool(rng.integers(2)), topology=False)
+
     return [("LimitBasis.evaluate", evaluate), ("LimitBasis.evaluate(out=)", evaluate_out),
             ("LimitBasis.weights", weights), ("LimitBasis.patch", patch), ("Mesh", mesh),
             ("Mesh.with_positions", with_positions), ("volume", volume), ("LimitBasis.limit_positions", limit_positions),
             ("poisson", poisson), ("geodesic_distance", geodesic), ("plate", plate_load),
             ("rectangle_plate_deflection", rectangle_plate), ("tessellate", tessellate),
-            ("one_form_vectors", one_form), ("hodge_decomposition", hodge), ("submesh", submesh)]
+            ("one_form_vectors", one_form), ("hodge_decomposition", hodge), ("submesh", submesh),
+            ("subdivide", subdivide)]
 
 
 def child(seed, first, last, progress):

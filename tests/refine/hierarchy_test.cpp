@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -615,7 +616,7 @@ TEST(RefineThreads, TwoThreadsGiveWhatOneGivesBitForBit) {
 /// its finest level (to_polygon_soup), tag for tag. The levels it dropped are refused by name.
 /// KeptTopologies::Finest likewise, with the finest level's Topology equal to Every's, table for table.
 void expect_dropped_levels_keep_the_rest(const Topology& base, const Points& X, RefineOptions options,
-                                       const std::string& name) {
+                                         const std::string& name) {
     SCOPED_TRACE(name + " " + to_string(options.scheme) + " L = " + std::to_string(options.levels) +
                  (options.forms ? " with forms" : "") + ", " + std::to_string(options.num_threads) + " threads");
     const Hierarchy every(base, options, X);
@@ -708,6 +709,9 @@ TEST(Hierarchy, KeepingOnlyTheFinestLevelChangesNothingElse) {
     check("tetra_1", SchemeKind::C2g0, 2);
     check("cube", SchemeKind::DooSabin, 2);
     check("annulus", SchemeKind::DooSabin, 2, false, 1, BoundaryInterpolation::None);
+    RefineOptions unknown = options_for(SchemeKind::CatmullClark, 1);
+    unknown.kept_topologies = static_cast<KeptTopologies>(7);
+    EXPECT_THROW(Hierarchy(read_mesh(test::find_bundled("cube").path).mesh.topology(), unknown), InputError);
 }
 
 /// refine_finest and refine_finest_faces keep two levels at a time, and the latter only the finest
@@ -741,25 +745,22 @@ TEST(RefineFinest, IsHeldToItsOwnMemoryEstimate) {
     EXPECT_NO_THROW((void)refine_finest(base, built.mesh.positions(), options));
     EXPECT_THROW(Hierarchy(base, options), InputError);
     // A Hierarchy that keeps only the finest faces holds every S0 (10 bytes and more per non-zero):
-    // more than refine_finest, less than every level's topology too.
+    // more than refine_finest, less than every level's topology too; keeping the finest Topology lies
+    // between the two. Each is held to its own estimate: run at it, refused 1 byte under.
     const std::int64_t lean = estimated_peak_bytes(sizes, KeptTopologies::FinestFaces);
-    EXPECT_EQ(estimated_peak_bytes(sizes, KeptTopologies::Every), every_level);
-    EXPECT_LT(lean, every_level);
-    EXPECT_GT(lean, faces);
-    options.kept_topologies = KeptTopologies::FinestFaces;
-    options.max_memory = lean;
-    EXPECT_NO_THROW(Hierarchy(base, options));
-    options.max_memory = lean - 1;
-    EXPECT_THROW(Hierarchy(base, options), InputError);
-    // Keeping the finest Topology: between the two.
     const std::int64_t finest_topology = estimated_peak_bytes(sizes, KeptTopologies::Finest);
+    EXPECT_EQ(estimated_peak_bytes(sizes, KeptTopologies::Every), every_level);
+    EXPECT_GT(lean, faces);
     EXPECT_GT(finest_topology, lean);
     EXPECT_LT(finest_topology, every_level);
-    options.kept_topologies = KeptTopologies::Finest;
-    options.max_memory = finest_topology;
-    EXPECT_NO_THROW(Hierarchy(base, options));
-    options.max_memory = finest_topology - 1;
-    EXPECT_THROW(Hierarchy(base, options), InputError);
+    for (const auto& [kept, estimate] :
+         {std::pair{KeptTopologies::FinestFaces, lean}, std::pair{KeptTopologies::Finest, finest_topology}}) {
+        options.kept_topologies = kept;
+        options.max_memory = estimate;
+        EXPECT_NO_THROW(Hierarchy(base, options));
+        options.max_memory = estimate - 1;
+        EXPECT_THROW(Hierarchy(base, options), InputError);
+    }
 }
 
 TEST(RefineFinest, RefusesWhatTheHierarchyRefuses) {

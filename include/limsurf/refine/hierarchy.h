@@ -122,7 +122,8 @@ struct LevelSize {
 class Hierarchy {
   public:
     /// @brief Refines @p base options.levels times.
-    /// @throws InputError when levels is out of range, num_threads negative, or the finest level would
+    /// @throws InputError when levels is out of range, num_threads negative, kept_topologies not one of
+    ///   KeptTopologies' values, or the finest level would
     ///   exceed options.max_faces or 32-bit indices, or the estimated peak memory
     ///   options.max_memory (all checked before any work; the message names the largest face
     ///   when dense masks over it dominate)

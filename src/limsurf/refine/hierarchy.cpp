@@ -159,6 +159,9 @@ void check_refinement(const Topology& base, const RefineOptions& options, Keepin
     LIMSURF_CHECK(options.max_faces > 0, InputError, "max_faces must be > 0");
     LIMSURF_CHECK(options.num_threads >= 0, InputError, "num_threads must be >= 0 (0: all cores), got ",
                   options.num_threads);
+    const auto kept = static_cast<int>(options.kept_topologies);
+    LIMSURF_CHECK(kept >= 0 && kept <= static_cast<int>(KeptTopologies::FinestFaces), InputError,
+                  "kept_topologies must be Every, Finest or FinestFaces, got ", kept);
     const std::vector<LevelSize> sizes = predict_sizes(base, options.scheme, options.levels);
     const LevelSize& finest = sizes.back();
     const std::int64_t peak =
