@@ -517,6 +517,14 @@ void expect_same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
     EXPECT_TRUE(std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr()));
 }
 
+void expect_same_provenance(const Provenance& got, const Provenance& want) {
+    EXPECT_EQ(got.vertex_parent_kind, want.vertex_parent_kind);
+    EXPECT_EQ(got.vertex_parent, want.vertex_parent);
+    EXPECT_EQ(got.face_parent_kind, want.face_parent_kind);
+    EXPECT_EQ(got.face_parent, want.face_parent);
+    EXPECT_EQ(got.face_parent_corner, want.face_parent_corner);
+}
+
 /// A Hierarchy built with its control points carries them through each step's rows
 /// (StepRun::keep_matrix): every level's topology, S0 and provenance must be the plain Hierarchy's,
 /// and its positions those of positions(level, X), bit for bit.
@@ -531,13 +539,7 @@ void expect_built_with_points_equals_plain(const Hierarchy& plain, const Topolog
         SCOPED_TRACE("carried, level " + std::to_string(l));
         expect_same_topology(carried.topology(l), plain.topology(l));
         expect_same_matrix(carried.step(l).S0, plain.step(l).S0);
-        const Provenance& got = carried.step(l).provenance;
-        const Provenance& want = plain.step(l).provenance;
-        EXPECT_EQ(got.vertex_parent_kind, want.vertex_parent_kind);
-        EXPECT_EQ(got.vertex_parent, want.vertex_parent);
-        EXPECT_EQ(got.face_parent_kind, want.face_parent_kind);
-        EXPECT_EQ(got.face_parent, want.face_parent);
-        EXPECT_EQ(got.face_parent_corner, want.face_parent_corner);
+        expect_same_provenance(carried.step(l).provenance, plain.step(l).provenance);
         const Points expected = plain.positions(l, control_points);
         ASSERT_EQ(carried.positions(l).rows(), expected.rows());
         EXPECT_TRUE((carried.positions(l).array() == expected.array()).all()) << "positions differ";
@@ -639,13 +641,7 @@ void expect_dropped_levels_keep_the_rest(const Topology& base, const Points& X, 
             expect_same_matrix(lean->step(l).S0, every.step(l).S0);
             expect_same_matrix(lean->step(l).S1, every.step(l).S1);
             expect_same_matrix(lean->step(l).S2, every.step(l).S2);
-            const Provenance& got = lean->step(l).provenance;
-            const Provenance& want = every.step(l).provenance;
-            EXPECT_EQ(got.vertex_parent_kind, want.vertex_parent_kind);
-            EXPECT_EQ(got.vertex_parent, want.vertex_parent);
-            EXPECT_EQ(got.face_parent_kind, want.face_parent_kind);
-            EXPECT_EQ(got.face_parent, want.face_parent);
-            EXPECT_EQ(got.face_parent_corner, want.face_parent_corner);
+            expect_same_provenance(lean->step(l).provenance, every.step(l).provenance);
         }
         expect_same_matrix(lean->accumulated(L), every.accumulated(L));
         if (options.forms) {
@@ -679,7 +675,7 @@ void expect_dropped_levels_keep_the_rest(const Topology& base, const Points& X, 
     for (int l = 1; l <= L; ++l) {
         expect_same_matrix(finest.step(l).S0, every.step(l).S0);
         expect_same_matrix(finest.step(l).S1, every.step(l).S1);
-        EXPECT_EQ(finest.step(l).provenance.face_parent_corner, every.step(l).provenance.face_parent_corner);
+        expect_same_provenance(finest.step(l).provenance, every.step(l).provenance);
         EXPECT_TRUE((finest.positions(l).array() == every.positions(l).array()).all()) << "level " << l;
     }
     expect_same_matrix(finest.accumulated(L), every.accumulated(L));
