@@ -32,7 +32,7 @@ class SparseCholesky {
     ///   positive definite
     SparseCholesky(const SparseMatrix& A, const char* what) {
         const ColMatrix column_major(A);  // freed once factorised: the factor is all a solve reads
-        if (!prepare(column_major, what)) {
+        if (!prepare(column_major, Pattern::of(column_major), what)) {
             return;
         }
         solver_.compute(column_major);
@@ -45,10 +45,11 @@ class SparseCholesky {
     /// @throws std::logic_error when the patterns differ; as the other constructor
     SparseCholesky(const SparseMatrix& A, const SparseCholesky& same_pattern, const char* what) {
         const ColMatrix column_major(A);
-        if (Pattern::of(column_major) != same_pattern.pattern_) {
+        const Pattern pattern = Pattern::of(column_major);
+        if (pattern != same_pattern.pattern_) {
             throw std::logic_error("limsurf bug: SparseCholesky reused the analysis of a matrix of another pattern");
         }
-        if (!prepare(column_major, what)) {
+        if (!prepare(column_major, pattern, what)) {
             return;
         }
 #ifdef LIMSURF_HAVE_CHOLMOD
@@ -95,10 +96,32 @@ class SparseCholesky {
     }
 
   private:
-    /// Records @p A's pattern, checks its entries and quiets CHOLMOD. @return false for an empty matrix
-    /// (nothing to factor: CHOLMOD crashes on one)
-    bool prepare(const ColMatrix& A, const char* what) {
-        pattern_ = Pattern::of(A);
+    /// What the same-pattern constructor compares, in place of the matrix (which can be a large
+    /// part of a factorisation's memory and is not needed once it is factorised): the size, the
+    /// number of entries and a hash (FNV-1a) of the column-major pattern.
+    struct Pattern {
+        Eigen::Index rows = 0;
+        Eigen::Index nonzeros = 0;
+        std::uint64_t hash = 0;
+
+        static Pattern of(const ColMatrix& A) {
+            std::uint64_t h = 14695981039346656037ULL;
+            const auto mix = [&h](const ColMatrix::StorageIndex* first, const ColMatrix::StorageIndex* last) {
+                for (; first != last; ++first) {
+                    h = (h ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(*first))) * 1099511628211ULL;
+                }
+            };
+            mix(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+            mix(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+            return {A.rows(), A.nonZeros(), h};
+        }
+        bool operator==(const Pattern&) const = default;
+    };
+
+    /// Records @p pattern (@p A's), checks A's entries and quiets CHOLMOD. @return false for an empty
+    /// matrix (nothing to factor: CHOLMOD crashes on one)
+    bool prepare(const ColMatrix& A, const Pattern& pattern, const char* what) {
+        pattern_ = pattern;
         if (A.rows() == 0) {
             return false;
         }
@@ -197,28 +220,6 @@ class SparseCholesky {
         }
     };
 #endif
-
-    /// What the same-pattern constructor compares, in place of the matrix (which can be a large
-    /// part of a factorisation's memory and is not needed once it is factorised): the size, the
-    /// number of entries and a hash (FNV-1a) of the column-major pattern.
-    struct Pattern {
-        Eigen::Index rows = 0;
-        Eigen::Index nonzeros = 0;
-        std::uint64_t hash = 0;
-
-        static Pattern of(const ColMatrix& A) {
-            std::uint64_t h = 14695981039346656037ULL;
-            const auto mix = [&h](const ColMatrix::StorageIndex* first, const ColMatrix::StorageIndex* last) {
-                for (; first != last; ++first) {
-                    h = (h ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(*first))) * 1099511628211ULL;
-                }
-            };
-            mix(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-            mix(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-            return {A.rows(), A.nonZeros(), h};
-        }
-        bool operator==(const Pattern&) const = default;
-    };
 
     Pattern pattern_;
 #ifdef LIMSURF_HAVE_CHOLMOD
