@@ -4,7 +4,9 @@
 // functionals of a subdivision limit surface; Surface Evolver's solve time is compared by
 // tests/membrane/evolver_canham.py (docs/BENCHMARKS.md).
 //
-//   ShapeEval/scheme/threads   evaluate(X, {W, A, V, M}) (counters: vertices, samples)
+//   ShapeEval/scheme/threads   evaluate(X, {W, A, V, M}) (counters: vertices, samples, elements
+//                              evaluated by sum factorisation)
+//   ShapeEvalDense/scheme/threads  the same for Catmull–Clark with every element dense
 //   ShapeSetup/scheme          ShapeFunctionals construction (sampler with second derivatives)
 //   ShapeHessian/mesh/threads  hessian(X, W + A + V + M), the work of a Newton iterate
 //                              (MembraneHessian::Exact); ShapeEval of the same mesh beside it
@@ -63,11 +65,12 @@ const char* scheme_label(int which) {
                         : "c2g0 tetra_3";
 }
 
-void ShapeEval(benchmark::State& state) {
+void evaluate(benchmark::State& state, bool sum_factorisation) {
     const Mesh& m = mesh(static_cast<int>(state.range(0)));
     const limsurf::LimitBasis basis(m.topology, m.scheme);
     limsurf::ShapeOptions options;
     options.num_threads = static_cast<int>(state.range(1));
+    options.sum_factorisation = sum_factorisation;
     const limsurf::ShapeFunctionals functionals(basis, options);
     constexpr std::array<limsurf::ShapeFunctional, 4> terms{
         limsurf::ShapeFunctional::Willmore, limsurf::ShapeFunctional::Area, limsurf::ShapeFunctional::Volume,
@@ -77,9 +80,20 @@ void ShapeEval(benchmark::State& state) {
     }
     state.counters["vertices"] = static_cast<double>(m.X.rows());
     state.counters["samples"] = static_cast<double>(functionals.num_samples());
+    state.counters["factorised"] = static_cast<double>(functionals.num_sum_factorised_elements());
     state.SetLabel(scheme_label(static_cast<int>(state.range(0))));
 }
+
+void ShapeEval(benchmark::State& state) {
+    evaluate(state, true);
+}
 BENCHMARK(ShapeEval)->ArgsProduct({{0, 1, 2, 3, 4}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Catmull–Clark with every element through its dense kernel (ShapeOptions::sum_factorisation off).
+void ShapeEvalDense(benchmark::State& state) {
+    evaluate(state, false);
+}
+BENCHMARK(ShapeEvalDense)->ArgsProduct({{2, 3}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void ShapeHessian(benchmark::State& state) {
     const Mesh& m = mesh(static_cast<int>(state.range(0)));

@@ -52,6 +52,11 @@ struct ShapeOptions {
     /// Loop and Catmull–Clark: the volume by exact trilinear forms (true) or by the same quadrature
     /// as C2g0 (false). C2g0 always uses quadrature.
     bool exact_volume = true;
+    /// Catmull–Clark: the regular patches' elements (a bicubic B-spline on the square rule's grid)
+    /// one direction at a time, by sum factorisation (true), or through their dense kernels like
+    /// every other element (false). The same values and gradients to rounding (~1e-15 relative);
+    /// false is for checking.
+    bool sum_factorisation = true;
 };
 
 /// Values of every functional at one X, and the gradients that were asked for.
@@ -132,6 +137,9 @@ class ShapeFunctionals {
     [[nodiscard]] const ShapeOptions& options() const noexcept;
     /// True when the volume comes from exact trilinear forms, false when from quadrature.
     [[nodiscard]] bool volume_is_exact() const noexcept;
+    /// The elements (ptex faces) evaluated by sum factorisation (ShapeOptions::sum_factorisation):
+    /// on a closed all-quad mesh, the faces whose four corners have valence 4; 0 for other schemes.
+    [[nodiscard]] Index num_sum_factorised_elements() const noexcept;
 
   private:
     struct Impl;

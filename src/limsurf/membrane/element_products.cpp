@@ -127,3 +127,132 @@ void element_backward(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::pt
 }
 
 }  // namespace limsurf::detail
+
+namespace limsurf::detail {
+namespace {
+
+// The orders of each row's derivatives in u and in v (SampleRow's order: value, ∂u, ∂v, ∂uu, ∂uv, ∂vv).
+constexpr int row_u[6] = {0, 1, 0, 2, 1, 0};
+constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
+
+}  // namespace
+
+LIMSURF_TARGET_CLONES
+void tensor_forward(const TensorElement& element, const double* __restrict P, int first_row, double* __restrict out,
+                    std::ptrdiff_t ld_out) noexcept {
+    const std::ptrdiff_t n = element.n;
+    constexpr std::ptrdiff_t m = max_tensor_samples;
+    // The control points as a grid, per coordinate: grid[c][b][a].
+    double grid[3][4][4];
+    for (int c = 0; c < 3; ++c) {
+        for (int b = 0; b < 4; ++b) {
+            for (int a = 0; a < 4; ++a) {
+                grid[c][b][a] = P[16 * c + element.slot[a + 4 * b]];
+            }
+        }
+    }
+    // Along v first: half[kv][c][j][a] = Σ_b N_b^(kv)(t_j) grid[c][b][a], b = 0, 1, 2, 3.
+    bool needed[3] = {false, false, false};
+    for (int r = first_row; r < 6; ++r) {
+        needed[row_v[r]] = true;
+    }
+    double half[3][3][m][4];
+    for (int kv = 0; kv < 3; ++kv) {
+        if (!needed[kv]) {
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) {
+            for (std::ptrdiff_t j = 0; j < n; ++j) {
+                const double* w = element.basis_by_node + (n * kv + j) * 4;
+                double sum[4] = {0.0, 0.0, 0.0, 0.0};
+                for (int b = 0; b < 4; ++b) {
+                    for (int a = 0; a < 4; ++a) {
+                        sum[a] += w[b] * grid[c][b][a];
+                    }
+                }
+                for (int a = 0; a < 4; ++a) {
+                    half[kv][c][j][a] = sum[a];
+                }
+            }
+        }
+    }
+    // Then along u: row r at (t_i, t_j) = Σ_a N_a^(ku)(t_i) half[kv][c][j][a], a = 0, 1, 2, 3.
+    const std::ptrdiff_t nn = n * n;
+    for (int r = first_row; r < 6; ++r) {
+        const double* U = element.basis + 4 * row_u[r] * n;
+        for (int c = 0; c < 3; ++c) {
+            for (std::ptrdiff_t j = 0; j < n; ++j) {
+                const double* h = half[row_v[r]][c][j];
+                double* d = out + c * ld_out + r * nn + j * n;
+                for (std::ptrdiff_t i = 0; i < n; ++i) {
+                    d[i] = 0.0;
+                }
+                for (int a = 0; a < 4; ++a) {
+                    const double t = h[a];
+                    const double* u = U + a * n;
+                    for (std::ptrdiff_t i = 0; i < n; ++i) {
+                        d[i] += t * u[i];
+                    }
+                }
+            }
+        }
+    }
+}
+
+LIMSURF_TARGET_CLONES
+void tensor_backward(const TensorElement& element, const double* __restrict L, std::ptrdiff_t ld_l, int first_row,
+                     int last_row, double* __restrict out, std::ptrdiff_t ld_out) noexcept {
+    const std::ptrdiff_t n = element.n;
+    const std::ptrdiff_t nn = n * n;
+    constexpr std::ptrdiff_t m = max_tensor_samples;
+    // Along u first: half[kv][c][j][a] = Σ_r Σ_i N_a^(ku)(t_i) L(r n² + n j + i, c) over the rows r
+    // whose v-order is kv, in increasing r, then i.
+    bool have[3] = {false, false, false};
+    double half[3][3][m][4];
+    for (int r = first_row; r < last_row; ++r) {
+        const int kv = row_v[r];
+        const double* U = element.basis_by_node + 4 * n * row_u[r];
+        for (int c = 0; c < 3; ++c) {
+            for (std::ptrdiff_t j = 0; j < n; ++j) {
+                double sum[4] = {0.0, 0.0, 0.0, 0.0};
+                if (have[kv]) {
+                    for (int a = 0; a < 4; ++a) {
+                        sum[a] = half[kv][c][j][a];
+                    }
+                }
+                const double* l = L + c * ld_l + r * nn + j * n;
+                for (std::ptrdiff_t i = 0; i < n; ++i) {
+                    for (int a = 0; a < 4; ++a) {
+                        sum[a] += l[i] * U[4 * i + a];
+                    }
+                }
+                for (int a = 0; a < 4; ++a) {
+                    half[kv][c][j][a] = sum[a];
+                }
+            }
+        }
+        have[kv] = true;
+    }
+    // Then along v: out(slot(a, b), c) = Σ_kv Σ_j N_b^(kv)(t_j) half[kv][c][j][a], kv then j increasing.
+    for (int c = 0; c < 3; ++c) {
+        for (int b = 0; b < 4; ++b) {
+            double sum[4] = {0.0, 0.0, 0.0, 0.0};
+            for (int kv = 0; kv < 3; ++kv) {
+                if (!have[kv]) {
+                    continue;
+                }
+                const double* V = element.basis + (4 * kv + b) * n;
+                for (std::ptrdiff_t j = 0; j < n; ++j) {
+                    for (int a = 0; a < 4; ++a) {
+                        sum[a] += V[j] * half[kv][c][j][a];
+                    }
+                }
+            }
+            for (int a = 0; a < 4; ++a) {
+                out[element.slot[a + 4 * b] * ld_out + c] = sum[a];
+            }
+        }
+    }
+}
+
+}  // namespace limsurf::detail

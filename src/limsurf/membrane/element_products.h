@@ -36,3 +36,36 @@ void element_backward(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t row
                       std::ptrdiff_t ld_l, std::ptrdiff_t width, double* out, std::ptrdiff_t ld_out) noexcept;
 
 }  // namespace limsurf::detail
+
+namespace limsurf::detail {
+
+/// A regular Catmull–Clark element: a bicubic B-spline patch sampled on an n × n tensor grid (the
+/// square Gauss rule, sample n j + i at (t_i, t_j)). Its kernel is a sum of products of
+/// one-dimensional tables, K(r n² + n j + i, slot(a, b)) = N_a^(ku)(t_i) N_b^(kv)(t_j) with (ku, kv)
+/// the orders of row r's derivatives in u and v, so both products go one direction at a time (sum
+/// factorisation): at n = 5, 7 740 multiply–adds per element for the forward product and the
+/// backward ones of W, A and M against 20 400 through the dense kernel.
+inline constexpr std::ptrdiff_t max_tensor_samples = 16;  ///< per direction
+
+struct TensorElement {
+    std::ptrdiff_t n = 0;  ///< samples per direction, 1 ≤ n ≤ max_tensor_samples
+    /// basis[(4 k + a) n + i] = the k-th derivative (k = 0, 1, 2) of the uniform cubic B-spline N_a
+    /// (a = 0…3; N_0 = (1 − t)³/6 … N_3 = t³/6) at t_i; basis_by_node[(n k + i) 4 + a] the same.
+    const double* basis = nullptr;
+    const double* basis_by_node = nullptr;
+    const int* slot = nullptr;  ///< slot[a + 4 b]: the element's slot (0…15) of control point (a, b)
+};
+
+/// The forward product of a tensor element: rows [first_row, 6) of out (value, ∂u, ∂v, ∂uu, ∂uv,
+/// ∂vv; row r n² + n j + i, column-major, three columns, leading dimension ld_out ≥ 6 n²) from P
+/// (16 slots × 3, column-major). Every entry is a sum in an order fixed by the loops alone.
+void tensor_forward(const TensorElement& element, const double* P, int first_row, double* out,
+                    std::ptrdiff_t ld_out) noexcept;
+
+/// The backward product of a tensor element over rows [first_row, last_row) of L (layout of
+/// tensor_forward's out, leading dimension ld_l, three columns): out(slot, c) = Σ_r K(r, slot) L(r, c)
+/// for the 16 slots, row-major with leading dimension ld_out ≥ 3.
+void tensor_backward(const TensorElement& element, const double* L, std::ptrdiff_t ld_l, int first_row, int last_row,
+                     double* out, std::ptrdiff_t ld_out) noexcept;
+
+}  // namespace limsurf::detail

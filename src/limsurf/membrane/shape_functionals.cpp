@@ -21,6 +21,7 @@
 #include "limsurf/membrane/element_products.h"
 #include "limsurf/membrane/sample_hessians.h"
 #include "limsurf/membrane/sample_integrands.h"
+#include "limsurf/quadrature/rules.h"
 #include "limsurf/quadrature/sampler.h"
 #include "limsurf/volume/enclosed_volume.h"
 
@@ -100,9 +101,93 @@ struct ElementKernel {
     // The same, row-major with the slots padded with zeros to a multiple of 8: the backward product
     // runs across the slots (element_products.h). Filled once per distinct kernel (intern).
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows_by_slot;
+    // A regular Catmull–Clark patch on the square rule's grid: the slot of each control point
+    // (a, b) of its bicubic B-spline (element_products.h's TensorElement), found and checked entry
+    // by entry in intern(); empty for every other kernel.
+    std::vector<int> tensor_slot;
 
     [[nodiscard]] Eigen::Index num_samples() const { return static_cast<Eigen::Index>(weights.size()); }
 };
+
+namespace {
+
+/// The tables of element_products.h's TensorElement for the n-point Gauss rule: the uniform cubic
+/// B-splines and their first two derivatives at the nodes, by function and by node.
+struct TensorTables {
+    std::ptrdiff_t n = 0;
+    std::vector<double> basis, basis_by_node;
+
+    TensorTables() = default;  // no tensor elements: every kernel stays dense
+    /// For square_rule(@p degree); none when the rule has more than max_tensor_samples points per
+    /// direction (or the degree is out of range: the sampler refuses it).
+    explicit TensorTables(int degree) {
+        if (degree < 1 || (degree + 2) / 2 > detail::max_tensor_samples) {
+            return;
+        }
+        n = (degree + 2) / 2;  // square_rule's points per direction
+        const QuadratureRule rule = gauss_legendre_1d(static_cast<int>(n));
+        const auto un = static_cast<std::size_t>(n);
+        basis.resize(12 * un);
+        basis_by_node.resize(12 * un);
+        for (std::size_t i = 0; i < un; ++i) {
+            const double t = rule.u[i];
+            const double s = 1.0 - t;
+            const double values[3][4] = {{s * s * s / 6.0, (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
+                                          (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0, t * t * t / 6.0},
+                                         {-0.5 * s * s, 1.5 * t * t - 2.0 * t, -1.5 * t * t + t + 0.5, 0.5 * t * t},
+                                         {s, 3.0 * t - 2.0, 1.0 - 3.0 * t, t}};
+            for (std::size_t k = 0; k < 3; ++k) {
+                for (std::size_t a = 0; a < 4; ++a) {
+                    basis[(4 * k + a) * un + i] = values[k][a];
+                    basis_by_node[(un * k + i) * 4 + a] = values[k][a];
+                }
+            }
+        }
+    }
+
+    /// The slot of each control point (a, b) when @p rows (6 n² × 16, element_kernel's rows) is
+    /// the bicubic B-spline's kernel on the n × n grid to 1e-12 in every entry; else empty.
+    [[nodiscard]] std::vector<int> slots_of(const Eigen::MatrixXd& rows) const {
+        constexpr int row_u[6] = {0, 1, 0, 2, 1, 0};
+        constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
+        const Eigen::Index nn = n * n;
+        if (n == 0 || rows.cols() != 16 || rows.rows() != 6 * nn) {
+            return {};
+        }
+        const auto un = static_cast<std::size_t>(n);
+        const auto entry = [&](int k, int a, Eigen::Index i) {
+            return basis[(4 * static_cast<std::size_t>(k) + static_cast<std::size_t>(a)) * un +
+                         static_cast<std::size_t>(i)];
+        };
+        std::vector<int> slot(16, -1);
+        for (Eigen::Index k = 0; k < 16; ++k) {
+            int found = -1;
+            for (int g = 0; g < 16 && found < 0; ++g) {
+                const int a = g % 4;
+                const int b = g / 4;
+                bool equal = true;
+                for (int r = 0; r < 6 && equal; ++r) {
+                    for (Eigen::Index j = 0; j < n && equal; ++j) {
+                        for (Eigen::Index i = 0; i < n && equal; ++i) {
+                            const double tensor = entry(row_u[r], a, i) * entry(row_v[r], b, j);
+                            equal = std::abs(rows(r * nn + j * n + i, k) - tensor) <= 1e-12;
+                        }
+                    }
+                }
+                if (equal) {
+                    found = g;
+                }
+            }
+            if (found < 0 || slot[static_cast<std::size_t>(found)] >= 0) {
+                return {};
+            }
+            slot[static_cast<std::size_t>(found)] = static_cast<int>(k);
+        }
+        return slot;
+    }
+};
+
+}  // namespace
 
 struct ShapeFunctionals::Impl {
     ShapeOptions options;
@@ -122,10 +207,15 @@ struct ShapeFunctionals::Impl {
     // Per vertex: the first element whose support holds it. A thread adds an element's gradient to
     // the vertices whose first element lies in its range of elements, and keeps the rest for later.
     std::vector<std::size_t> vertex_first_element;
+    // Regular Catmull–Clark elements go by sum factorisation (ShapeOptions::sum_factorisation).
+    TensorTables tensor;
 
     Impl(const LimitBasis& basis, const ShapeOptions& o)
         : options(o), scheme(basis.scheme()), triangle(basis.domain() == ParameterDomain::Triangle),
           num_vertices(basis.topology().num_vertices()) {
+        if (o.sum_factorisation && scheme == SchemeKind::CatmullClark && !triangle) {
+            tensor = TensorTables(o.degree);
+        }
         // The sampler's per-sample weights are only read here, into the kernels; a piece of the
         // mesh at a time, so that they are never all held at once (hundreds of MB at 10k vertices).
         const SamplerOptions sampling{o.degree, o.subdivide_near_extraordinary, o.num_threads};
@@ -268,6 +358,7 @@ std::size_t ShapeFunctionals::Impl::intern(const ElementKernel& kernel, KernelIn
     ElementKernel& added = kernels.back();
     added.rows_by_slot.setZero(added.rows.rows(), (added.rows.cols() + 7) / 8 * 8);
     added.rows_by_slot.leftCols(added.rows.cols()) = added.rows;
+    added.tensor_slot = tensor.slots_of(added.rows);
     return kernels.size() - 1;
 }
 
@@ -359,7 +450,17 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
             const Eigen::Index rows = kernel.rows.rows();
             const auto size = static_cast<std::size_t>(n);
             derivatives.resize(3 * 6 * size);
-            if (value_rows) {
+            const detail::TensorElement tensor_element{tensor.n, tensor.basis.data(), tensor.basis_by_node.data(),
+                                                       kernel.tensor_slot.data()};
+            if (!kernel.tensor_slot.empty()) {
+                if (!value_rows) {
+                    for (std::size_t c = 0; c < 3; ++c) {
+                        std::fill_n(derivatives.begin() + static_cast<std::ptrdiff_t>(c * 6 * size), size, 0.0);
+                    }
+                }
+                detail::tensor_forward(tensor_element, element_points.data(), value_rows ? 0 : 1, derivatives.data(),
+                                       rows);
+            } else if (value_rows) {
                 detail::element_forward(kernel.rows.data(), rows, rows, num_element_slots, element_points.data(),
                                         derivatives.data(), rows);
             } else {  // the derivatives only: the rows after the n value rows, which are left zero
@@ -401,6 +502,12 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
                 const Eigen::Index first = detail::local_rows_first[f] * n;
                 const Eigen::Index last = detail::local_rows_last[f] * n;
                 const Eigen::Index ld = kernel.rows_by_slot.cols();
+                if (!kernel.tensor_slot.empty()) {
+                    detail::tensor_backward(tensor_element, &local[3 * f * 6 * size], rows, detail::local_rows_first[f],
+                                            detail::local_rows_last[f], &element_gradient[3 * q],
+                                            static_cast<std::ptrdiff_t>(width));
+                    continue;
+                }
                 detail::element_backward(kernel.rows_by_slot.data() + first * ld, ld, last - first, num_element_slots,
                                          &local[3 * f * 6 * size] + first, rows, 3, &element_gradient[3 * q],
                                          static_cast<std::ptrdiff_t>(width));
@@ -740,6 +847,14 @@ const ShapeOptions& ShapeFunctionals::options() const noexcept {
 }
 bool ShapeFunctionals::volume_is_exact() const noexcept {
     return impl_->exact_volume != nullptr;
+}
+
+Index ShapeFunctionals::num_sum_factorised_elements() const noexcept {
+    Index count = 0;
+    for (const std::size_t k : impl_->element_kernel) {
+        count += impl_->kernels[k].tensor_slot.empty() ? 0 : 1;
+    }
+    return count;
 }
 
 }  // namespace limsurf
