@@ -1,5 +1,6 @@
 // The shape functionals' element arithmetic (private: src/limsurf/membrane/element_products.h and
-// sample_integrands.h). The products must sum in the order their header documents, bit for bit
+// sample_integrands.h). The products (dense and sum-factorised) must sum in the order their header
+// documents, bit for bit
 // (that order is what makes every CPU's copy give the same bits), and agree with Eigen's products;
 // the integrands must give the analytic values on a sphere of radius r (H = 1/r, K = 1/r²) and
 // local gradients equal to finite differences of those values.
@@ -8,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -160,6 +162,148 @@ Integrands integrands(const std::vector<double>& rows, const std::vector<double>
 }
 
 // 11 samples: more than one vector of eight, and a remainder.
+/// Random tables and a random assignment of the 16 control points to slots, for n samples per
+/// direction, with the dense kernel they stand for (6 n² × 16, column-major).
+struct TensorCase {
+    explicit TensorCase(std::ptrdiff_t samples, unsigned seed)
+        : n(samples), basis(random_values(static_cast<std::size_t>(12 * samples), seed)),
+          by_node(static_cast<std::size_t>(12 * samples)), slot(16) {
+        const auto un = static_cast<std::size_t>(n);
+        for (std::size_t k = 0; k < 3; ++k) {
+            for (std::size_t a = 0; a < 4; ++a) {
+                for (std::size_t i = 0; i < un; ++i) {
+                    by_node[(un * k + i) * 4 + a] = table(static_cast<int>(k), static_cast<int>(a), i);
+                }
+            }
+        }
+        for (int g = 0; g < 16; ++g) {
+            slot[static_cast<std::size_t>(g)] = (5 * g + 3) % 16;  // a permutation
+        }
+        kernel = Eigen::MatrixXd::Zero(6 * n * n, 16);
+        for (int r = 0; r < 6; ++r) {
+            for (std::ptrdiff_t j = 0; j < n; ++j) {
+                for (std::ptrdiff_t i = 0; i < n; ++i) {
+                    for (int g = 0; g < 16; ++g) {
+                        kernel(r * n * n + j * n + i, slot[static_cast<std::size_t>(g)]) =
+                            table(row_u[r], g % 4, static_cast<std::size_t>(i)) *
+                            table(row_v[r], g / 4, static_cast<std::size_t>(j));
+                    }
+                }
+            }
+        }
+    }
+    [[nodiscard]] double table(int k, int a, std::size_t i) const {
+        return basis[(4 * static_cast<std::size_t>(k) + static_cast<std::size_t>(a)) * static_cast<std::size_t>(n) + i];
+    }
+    [[nodiscard]] detail::TensorElement element() const { return {n, basis.data(), by_node.data(), slot.data()}; }
+
+    static constexpr int row_u[6] = {0, 1, 0, 2, 1, 0};
+    static constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
+    std::ptrdiff_t n;
+    std::vector<double> basis, by_node;
+    std::vector<int> slot;
+    Eigen::MatrixXd kernel;
+};
+
+// The unrolled sizes (3, 4, 5), one with n known only at run time (7) and one with two vectors of
+// four per row (9): every entry is the header's order bit for bit, and the dense kernel's product
+// to rounding; the rows before first_row are left as they are.
+TEST(TensorProducts, ForwardSumsAlongVThenUInTheHeadersOrder) {
+    for (const std::ptrdiff_t n : {3, 4, 5, 7, 9}) {
+        const TensorCase t(n, static_cast<unsigned>(10 + n));
+        const auto P = random_values(48, 5);
+        for (const int first_row : {0, 1}) {
+            SCOPED_TRACE(testing::Message() << "n " << n << ", first row " << first_row);
+            const std::ptrdiff_t ld_out = 6 * n * n + 3;
+            const double untouched = -7.25;
+            std::vector<double> out(static_cast<std::size_t>(3 * ld_out), untouched);
+            detail::tensor_forward(t.element(), P.data(), first_row, out.data(), ld_out);
+            const Eigen::MatrixXd dense = t.kernel * Eigen::Map<const Eigen::MatrixXd>(P.data(), 16, 3);
+            for (int c = 0; c < 3; ++c) {
+                for (int r = 0; r < 6; ++r) {
+                    for (std::ptrdiff_t j = 0; j < n; ++j) {
+                        for (std::ptrdiff_t i = 0; i < n; ++i) {
+                            const std::ptrdiff_t row = r * n * n + j * n + i;
+                            const double got = out[static_cast<std::size_t>(c * ld_out + row)];
+                            if (r < first_row) {
+                                EXPECT_EQ(got, untouched) << "row " << row;
+                                continue;
+                            }
+                            double sum = 0.0;
+                            for (int a = 0; a < 4; ++a) {
+                                double h = 0.0;
+                                for (int b = 0; b < 4; ++b) {
+                                    h += t.table(TensorCase::row_v[r], b, static_cast<std::size_t>(j)) *
+                                         P[static_cast<std::size_t>(16 * c +
+                                                                    t.slot[static_cast<std::size_t>(a + 4 * b)])];
+                                }
+                                sum += t.table(TensorCase::row_u[r], a, static_cast<std::size_t>(i)) * h;
+                            }
+                            EXPECT_EQ(got, sum) << "row " << row << ", column " << c;
+                            EXPECT_NEAR(got, dense(row, c), 1e-14 * 16);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(TensorProducts, BackwardSumsAlongUThenVInTheHeadersOrder) {
+    for (const std::ptrdiff_t n : {3, 4, 5, 7, 9}) {
+        const TensorCase t(n, static_cast<unsigned>(20 + n));
+        const std::ptrdiff_t ld_l = 6 * n * n + 2;
+        const auto L = random_values(static_cast<std::size_t>(3 * ld_l), 6);
+        for (const auto& [first_row, last_row] : {std::pair{1, 6}, std::pair{1, 3}, std::pair{0, 3}, std::pair{2, 5}}) {
+            SCOPED_TRACE(testing::Message() << "n " << n << ", rows " << first_row << "–" << last_row);
+            const std::ptrdiff_t ld_out = 5;
+            const double untouched = -7.25;
+            std::vector<double> out(static_cast<std::size_t>(16 * ld_out), untouched);
+            detail::tensor_backward(t.element(), L.data(), ld_l, first_row, last_row, out.data(), ld_out);
+            const std::ptrdiff_t first = first_row * n * n, count = (last_row - first_row) * n * n;
+            const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> l(L.data(), ld_l, 3,
+                                                                               Eigen::OuterStride<>(ld_l));
+            const Eigen::MatrixXd dense = t.kernel.middleRows(first, count).transpose() * l.middleRows(first, count);
+            for (int g = 0; g < 16; ++g) {
+                const int a = g % 4, b = g / 4;
+                const auto k = static_cast<std::size_t>(t.slot[static_cast<std::size_t>(g)]);
+                for (int c = 0; c < 3; ++c) {
+                    double sum = 0.0;
+                    for (int kv = 0; kv < 3; ++kv) {
+                        bool present = false;
+                        for (int r = first_row; r < last_row; ++r) {
+                            present = present || TensorCase::row_v[r] == kv;
+                        }
+                        if (!present) {
+                            continue;
+                        }
+                        for (std::ptrdiff_t j = 0; j < n; ++j) {
+                            double h = 0.0;
+                            for (int r = first_row; r < last_row; ++r) {
+                                if (TensorCase::row_v[r] != kv) {
+                                    continue;
+                                }
+                                for (std::ptrdiff_t i = 0; i < n; ++i) {
+                                    h += t.table(TensorCase::row_u[r], a, static_cast<std::size_t>(i)) *
+                                         L[static_cast<std::size_t>(c * ld_l + r * n * n + j * n + i)];
+                                }
+                            }
+                            sum += t.table(kv, b, static_cast<std::size_t>(j)) * h;
+                        }
+                    }
+                    const double got = out[k * ld_out + static_cast<std::size_t>(c)];
+                    EXPECT_EQ(got, sum) << "slot " << k << ", column " << c;
+                    EXPECT_NEAR(got, dense(static_cast<Eigen::Index>(k), c), 1e-14 * static_cast<double>(count));
+                }
+                for (std::ptrdiff_t c = 3; c < ld_out; ++c) {
+                    EXPECT_EQ(out[k * ld_out + static_cast<std::size_t>(c)], untouched)
+                        << "a column beyond 3 was written";
+                }
+            }
+        }
+    }
+}
+
 TEST(SampleIntegrands, SphereValuesAreAnalytic) {
     const double r = 1.7, u = 0.3;
     std::vector<double> v, weights;

@@ -1,7 +1,9 @@
-// element_products.h. The loops are written so that the compiler vectorises them without
-// reassociating anything: the forward pass across K's rows, the backward pass across K's columns
-// (both independent sums, never a reduction across lanes). Both keep six vector sums in flight,
-// because a sum of products is limited by the latency of the addition, not by the multiplications.
+// element_products.h. The loops are written in vectors (detail/vector_lanes.h) without
+// reassociating anything: the dense forward pass across K's rows, the dense backward pass across
+// K's columns, the tensor passes across a grid row's four points (all independent sums, never a
+// reduction across lanes). Each keeps several vector sums in flight, because a sum of products is
+// limited by the latency of the addition, not by the multiplications. Templates on N (doubles per
+// register) are instantiated once per instruction set (detail/target_clones.h).
 #include "limsurf/membrane/element_products.h"
 
 #include <algorithm>
@@ -11,29 +13,33 @@
 #include "limsurf/detail/vector_lanes.h"
 
 namespace limsurf::detail {
+namespace {
 
-LIMSURF_TARGET_CLONES
-void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
-                     const double* __restrict P, double* __restrict out, std::ptrdiff_t ld_out) noexcept {
-    // 16 rows per pass, times three columns: six vector sums in flight.
+/// element_forward() with N doubles per register.
+template <int N>
+[[gnu::always_inline]] inline void forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdiff_t rows,
+                                           std::ptrdiff_t cols, const double* __restrict P, double* __restrict out,
+                                           std::ptrdiff_t ld_out) {
+    // 16 rows per pass, times three columns: six sums of eight in flight.
     constexpr std::ptrdiff_t block = 16;
     const double* P0 = P;
     const double* P1 = P + cols;
     const double* P2 = P + 2 * cols;
     std::ptrdiff_t r = 0;
     for (; r + block <= rows; r += block) {
-        Lanes a0 = {}, a1 = {}, b0 = {}, b1 = {}, c0 = {}, c1 = {};
+        Lanes<N> a0 = zero_lanes<N>(), a1 = zero_lanes<N>(), b0 = zero_lanes<N>(), b1 = zero_lanes<N>(),
+                 c0 = zero_lanes<N>(), c1 = zero_lanes<N>();
         for (std::ptrdiff_t j = 0; j < cols; ++j) {
-            Lanes k0, k1;
+            Lanes<N> k0, k1;
             load(k0, K + j * ld_k + r);
             load(k1, K + j * ld_k + r + 8);
             const double p0 = P0[j], p1 = P1[j], p2 = P2[j];
-            a0 += k0 * p0;
-            a1 += k1 * p0;
-            b0 += k0 * p1;
-            b1 += k1 * p1;
-            c0 += k0 * p2;
-            c1 += k1 * p2;
+            add_product(a0, k0, p0);
+            add_product(a1, k1, p0);
+            add_product(b0, k0, p1);
+            add_product(b1, k1, p1);
+            add_product(c0, k0, p2);
+            add_product(c1, k1, p2);
         }
         store(out + r, a0);
         store(out + r + 8, a1);
@@ -56,18 +62,23 @@ void element_forward(const double* __restrict K, std::ptrdiff_t ld_k, std::ptrdi
     }
 }
 
-namespace {
-
-/// Columns [first, first + 8 Blocks) of out = Kᵀ L for W columns of L: W × Blocks vector sums,
+/// Columns [first, first + 8 Blocks) of out = Kᵀ L for W columns of L: W × Blocks sums of eight,
 /// one row of K and W entries of L at a time.
-template <int Blocks, int W>
+template <int N, int Blocks, int W>
 [[gnu::always_inline]] inline void backward_pass(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
                                                  std::ptrdiff_t first, std::ptrdiff_t cols, const double* __restrict L,
                                                  std::ptrdiff_t ld_l, double* __restrict out, std::ptrdiff_t ld_out) {
     // The small loops unrolled completely, so that the sums stay in registers.
-    Lanes sum[W][Blocks] = {};
+    Lanes<N> sum[W][Blocks];
+#pragma GCC unroll 3
+    for (int w = 0; w < W; ++w) {
+#pragma GCC unroll 2
+        for (int b = 0; b < Blocks; ++b) {
+            sum[w][b] = zero_lanes<N>();
+        }
+    }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        Lanes k[Blocks];
+        Lanes<N> k[Blocks];
 #pragma GCC unroll 2
         for (int b = 0; b < Blocks; ++b) {
             load(k[b], Kt + r * ld_kt + first + 8 * b);
@@ -77,7 +88,7 @@ template <int Blocks, int W>
             const double l = L[w * ld_l + r];
 #pragma GCC unroll 2
             for (int b = 0; b < Blocks; ++b) {
-                sum[w][b] += k[b] * l;
+                add_product(sum[w][b], k[b], l);
             }
         }
     }
@@ -95,35 +106,92 @@ template <int Blocks, int W>
     }
 }
 
-/// All columns of out, for W columns of L: 16 columns of K per pass, then 8.
-template <int W>
+/// All columns of out, for W columns of L: with AVX-512, 16 columns of K per pass, then 8; with
+/// narrower registers 8 per pass, so that the 3 W (8 / N) sums and a row of K fit in the 16
+/// registers. (How the columns are grouped does not change any sum.)
+template <int N, int W>
 [[gnu::always_inline]] inline void backward_columns(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
                                                     std::ptrdiff_t cols, const double* L, std::ptrdiff_t ld_l,
                                                     double* out, std::ptrdiff_t ld_out) {
     std::ptrdiff_t first = 0;
-    for (; first + 8 < cols; first += 16) {
-        backward_pass<2, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+    if constexpr (N == 8) {
+        for (; first + 8 < cols; first += 16) {
+            backward_pass<N, 2, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+        }
     }
-    if (first < cols) {
-        backward_pass<1, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+    for (; first < cols; first += 8) {
+        backward_pass<N, 1, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
     }
 }
 
-}  // namespace
-
-LIMSURF_TARGET_CLONES
-void element_backward(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows, std::ptrdiff_t cols,
-                      const double* __restrict L, std::ptrdiff_t ld_l, std::ptrdiff_t width, double* __restrict out,
-                      std::ptrdiff_t ld_out) noexcept {
+/// element_backward() with N doubles per register.
+template <int N>
+[[gnu::always_inline]] inline void backward(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
+                                            std::ptrdiff_t cols, const double* __restrict L, std::ptrdiff_t ld_l,
+                                            std::ptrdiff_t width, double* __restrict out, std::ptrdiff_t ld_out) {
     std::ptrdiff_t w = 0;
     for (; w + 3 <= width; w += 3) {  // three columns of L sharing the loads of K's rows
-        backward_columns<3>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
+        backward_columns<N, 3>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
     }
     if (width - w == 2) {
-        backward_columns<2>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
+        backward_columns<N, 2>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
     } else if (width - w == 1) {
-        backward_columns<1>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
+        backward_columns<N, 1>(Kt, ld_kt, rows, cols, L + w * ld_l, ld_l, out + w, ld_out);
     }
+}
+
+// One copy of each product per instruction set (target_clones.h).
+#ifdef LIMSURF_ISA_VARIANTS
+LIMSURF_TARGET_AVX512F void forward_avx512f(const double* K, std::ptrdiff_t ld_k, std::ptrdiff_t rows,
+                                            std::ptrdiff_t cols, const double* P, double* out, std::ptrdiff_t ld_out) {
+    forward<8>(K, ld_k, rows, cols, P, out, ld_out);
+}
+LIMSURF_TARGET_AVX2 void forward_avx2(const double* K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols,
+                                      const double* P, double* out, std::ptrdiff_t ld_out) {
+    forward<4>(K, ld_k, rows, cols, P, out, ld_out);
+}
+LIMSURF_TARGET_AVX512F void backward_avx512f(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
+                                             std::ptrdiff_t cols, const double* L, std::ptrdiff_t ld_l,
+                                             std::ptrdiff_t width, double* out, std::ptrdiff_t ld_out) {
+    backward<8>(Kt, ld_kt, rows, cols, L, ld_l, width, out, ld_out);
+}
+LIMSURF_TARGET_AVX2 void backward_avx2(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows, std::ptrdiff_t cols,
+                                       const double* L, std::ptrdiff_t ld_l, std::ptrdiff_t width, double* out,
+                                       std::ptrdiff_t ld_out) {
+    backward<4>(Kt, ld_kt, rows, cols, L, ld_l, width, out, ld_out);
+}
+#endif
+
+}  // namespace
+
+void element_forward(const double* K, std::ptrdiff_t ld_k, std::ptrdiff_t rows, std::ptrdiff_t cols, const double* P,
+                     double* out, std::ptrdiff_t ld_out) noexcept {
+#ifdef LIMSURF_ISA_VARIANTS
+    switch (vector_doubles()) {
+    case 8:
+        return forward_avx512f(K, ld_k, rows, cols, P, out, ld_out);
+    case 4:
+        return forward_avx2(K, ld_k, rows, cols, P, out, ld_out);
+    default:
+        break;
+    }
+#endif
+    forward<2>(K, ld_k, rows, cols, P, out, ld_out);
+}
+
+void element_backward(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows, std::ptrdiff_t cols, const double* L,
+                      std::ptrdiff_t ld_l, std::ptrdiff_t width, double* out, std::ptrdiff_t ld_out) noexcept {
+#ifdef LIMSURF_ISA_VARIANTS
+    switch (vector_doubles()) {
+    case 8:
+        return backward_avx512f(Kt, ld_kt, rows, cols, L, ld_l, width, out, ld_out);
+    case 4:
+        return backward_avx2(Kt, ld_kt, rows, cols, L, ld_l, width, out, ld_out);
+    default:
+        break;
+    }
+#endif
+    backward<2>(Kt, ld_kt, rows, cols, L, ld_l, width, out, ld_out);
 }
 
 }  // namespace limsurf::detail
@@ -135,44 +203,54 @@ namespace {
 constexpr int row_u[6] = {0, 1, 0, 2, 1, 0};
 constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
 
-}  // namespace
+/// Four doubles (a row of a patch's control points) in N-double registers: one AVX2 register, or
+/// two SSE2 ones.
+template <int N>
+using Quad = Lanes<(N < 4 ? N : 4), 4>;
 
-LIMSURF_TARGET_CLONES
-void tensor_forward(const TensorElement& element, const double* __restrict P, int first_row, double* __restrict out,
-                    std::ptrdiff_t ld_out) noexcept {
-    const std::ptrdiff_t n = element.n;
-    constexpr std::ptrdiff_t m = max_tensor_samples;
-    // The control points as a grid, per coordinate: grid[c][b][a].
-    double grid[3][4][4];
+/// tensor_forward() with N doubles per register and Fixed samples per direction (element.n when
+/// Fixed is 0). Vectorised across four lanes: the four control points of a grid row (along v),
+/// then four samples of a row of the grid (along u). Every sum is in the same order for every N
+/// and Fixed.
+template <int N, int Fixed>
+[[gnu::always_inline]] inline void tensor_forward_n(const TensorElement& element, const double* __restrict P,
+                                                    int first_row, double* __restrict out, std::ptrdiff_t ld_out) {
+    const std::ptrdiff_t n = Fixed > 0 ? Fixed : element.n;
+    constexpr std::ptrdiff_t m = Fixed > 0 ? Fixed : max_tensor_samples;
+    // The control points as a grid, per coordinate: grid[c][b] holds points (0…3, b).
+    Quad<N> grid[3][4];
     for (int c = 0; c < 3; ++c) {
         for (int b = 0; b < 4; ++b) {
+            double row[4];
             for (int a = 0; a < 4; ++a) {
-                grid[c][b][a] = P[16 * c + element.slot[a + 4 * b]];
+                row[a] = P[16 * c + element.slot[a + 4 * b]];
             }
+            load(grid[c][b], row);
         }
     }
-    // Along v first: half[kv][c][j][a] = Σ_b N_b^(kv)(t_j) grid[c][b][a], b = 0, 1, 2, 3.
-    bool needed[3] = {false, false, false};
-    for (int r = first_row; r < 6; ++r) {
-        needed[row_v[r]] = true;
-    }
+    // Along v first: half[kv][c][j][a] = Σ_b N_b^(kv)(t_j) grid[c][b][a], b = 0, 1, 2, 3 (every
+    // v-order: the rows from ∂u on need all three).
+    // The three coordinates side by side: three independent sums in flight (a sum of products is
+    // bound by the latency of the addition). So below.
     double half[3][3][m][4];
     for (int kv = 0; kv < 3; ++kv) {
-        if (!needed[kv]) {
-            continue;
-        }
-        for (int c = 0; c < 3; ++c) {
-            for (std::ptrdiff_t j = 0; j < n; ++j) {
-                const double* w = element.basis_by_node + (n * kv + j) * 4;
-                double sum[4] = {0.0, 0.0, 0.0, 0.0};
-                for (int b = 0; b < 4; ++b) {
-                    for (int a = 0; a < 4; ++a) {
-                        sum[a] += w[b] * grid[c][b][a];
-                    }
+        for (std::ptrdiff_t j = 0; j < n; ++j) {
+            const double* w = element.basis_by_node + (n * kv + j) * 4;
+            Quad<N> sum[3];
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; ++c) {
+                sum[c] = zero_lanes<(N < 4 ? N : 4), 4>();
+            }
+#pragma GCC unroll 4
+            for (int b = 0; b < 4; ++b) {
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; ++c) {
+                    add_product(sum[c], grid[c][b], w[b]);
                 }
-                for (int a = 0; a < 4; ++a) {
-                    half[kv][c][j][a] = sum[a];
-                }
+            }
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; ++c) {
+                store(half[kv][c][j], sum[c]);
             }
         }
     }
@@ -180,31 +258,52 @@ void tensor_forward(const TensorElement& element, const double* __restrict P, in
     const std::ptrdiff_t nn = n * n;
     for (int r = first_row; r < 6; ++r) {
         const double* U = element.basis + 4 * row_u[r] * n;
-        for (int c = 0; c < 3; ++c) {
-            for (std::ptrdiff_t j = 0; j < n; ++j) {
-                const double* h = half[row_v[r]][c][j];
-                double* d = out + c * ld_out + r * nn + j * n;
-                for (std::ptrdiff_t i = 0; i < n; ++i) {
-                    d[i] = 0.0;
+        for (std::ptrdiff_t j = 0; j < n; ++j) {
+            const std::ptrdiff_t at = r * nn + j * n;
+            std::ptrdiff_t i = 0;
+            for (; i + 4 <= n; i += 4) {
+                Quad<N> d[3];
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; ++c) {
+                    d[c] = zero_lanes<(N < 4 ? N : 4), 4>();
                 }
+#pragma GCC unroll 4
                 for (int a = 0; a < 4; ++a) {
-                    const double t = h[a];
-                    const double* u = U + a * n;
-                    for (std::ptrdiff_t i = 0; i < n; ++i) {
-                        d[i] += t * u[i];
+                    Quad<N> u;
+                    load(u, U + a * n + i);
+#pragma GCC unroll 3
+                    for (int c = 0; c < 3; ++c) {
+                        add_product(d[c], u, half[row_v[r]][c][j][a]);
                     }
+                }
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; ++c) {
+                    store(out + c * ld_out + at + i, d[c]);
+                }
+            }
+            for (; i < n; ++i) {
+                for (int c = 0; c < 3; ++c) {
+                    const double* h = half[row_v[r]][c][j];
+                    double d = 0.0;
+                    for (int a = 0; a < 4; ++a) {
+                        d += U[a * n + i] * h[a];
+                    }
+                    out[c * ld_out + at + i] = d;
                 }
             }
         }
     }
 }
 
-LIMSURF_TARGET_CLONES
-void tensor_backward(const TensorElement& element, const double* __restrict L, std::ptrdiff_t ld_l, int first_row,
-                     int last_row, double* __restrict out, std::ptrdiff_t ld_out) noexcept {
-    const std::ptrdiff_t n = element.n;
+/// tensor_backward() with N doubles per register and Fixed samples per direction (as above),
+/// vectorised across the four control points of a grid row.
+template <int N, int Fixed>
+[[gnu::always_inline]] inline void tensor_backward_n(const TensorElement& element, const double* __restrict L,
+                                                     std::ptrdiff_t ld_l, int first_row, int last_row,
+                                                     double* __restrict out, std::ptrdiff_t ld_out) {
+    const std::ptrdiff_t n = Fixed > 0 ? Fixed : element.n;
+    constexpr std::ptrdiff_t m = Fixed > 0 ? Fixed : max_tensor_samples;
     const std::ptrdiff_t nn = n * n;
-    constexpr std::ptrdiff_t m = max_tensor_samples;
     // Along u first: half[kv][c][j][a] = Σ_r Σ_i N_a^(ku)(t_i) L(r n² + n j + i, c) over the rows r
     // whose v-order is kv, in increasing r, then i.
     bool have[3] = {false, false, false};
@@ -212,47 +311,129 @@ void tensor_backward(const TensorElement& element, const double* __restrict L, s
     for (int r = first_row; r < last_row; ++r) {
         const int kv = row_v[r];
         const double* U = element.basis_by_node + 4 * n * row_u[r];
-        for (int c = 0; c < 3; ++c) {
-            for (std::ptrdiff_t j = 0; j < n; ++j) {
-                double sum[4] = {0.0, 0.0, 0.0, 0.0};
+        for (std::ptrdiff_t j = 0; j < n; ++j) {
+            Quad<N> sum[3];
+            const double* l[3];
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; ++c) {
+                sum[c] = zero_lanes<(N < 4 ? N : 4), 4>();
                 if (have[kv]) {
-                    for (int a = 0; a < 4; ++a) {
-                        sum[a] = half[kv][c][j][a];
-                    }
+                    load(sum[c], half[kv][c][j]);
                 }
-                const double* l = L + c * ld_l + r * nn + j * n;
-                for (std::ptrdiff_t i = 0; i < n; ++i) {
-                    for (int a = 0; a < 4; ++a) {
-                        sum[a] += l[i] * U[4 * i + a];
-                    }
+                l[c] = L + c * ld_l + r * nn + j * n;
+            }
+            for (std::ptrdiff_t i = 0; i < n; ++i) {
+                Quad<N> u;
+                load(u, U + 4 * i);
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; ++c) {
+                    add_product(sum[c], u, l[c][i]);
                 }
-                for (int a = 0; a < 4; ++a) {
-                    half[kv][c][j][a] = sum[a];
-                }
+            }
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; ++c) {
+                store(half[kv][c][j], sum[c]);
             }
         }
         have[kv] = true;
     }
     // Then along v: out(slot(a, b), c) = Σ_kv Σ_j N_b^(kv)(t_j) half[kv][c][j][a], kv then j increasing.
-    for (int c = 0; c < 3; ++c) {
-        for (int b = 0; b < 4; ++b) {
-            double sum[4] = {0.0, 0.0, 0.0, 0.0};
-            for (int kv = 0; kv < 3; ++kv) {
-                if (!have[kv]) {
-                    continue;
-                }
-                const double* V = element.basis + (4 * kv + b) * n;
-                for (std::ptrdiff_t j = 0; j < n; ++j) {
-                    for (int a = 0; a < 4; ++a) {
-                        sum[a] += V[j] * half[kv][c][j][a];
-                    }
+    for (int b = 0; b < 4; ++b) {
+        Quad<N> sum[3];
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; ++c) {
+            sum[c] = zero_lanes<(N < 4 ? N : 4), 4>();
+        }
+        for (int kv = 0; kv < 3; ++kv) {
+            if (!have[kv]) {
+                continue;
+            }
+            const double* V = element.basis + (4 * kv + b) * n;
+            for (std::ptrdiff_t j = 0; j < n; ++j) {
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; ++c) {
+                    Quad<N> h;
+                    load(h, half[kv][c][j]);
+                    add_product(sum[c], h, V[j]);
                 }
             }
+        }
+        for (int c = 0; c < 3; ++c) {
+            double column[4];
+            store(column, sum[c]);
             for (int a = 0; a < 4; ++a) {
-                out[element.slot[a + 4 * b] * ld_out + c] = sum[a];
+                out[element.slot[a + 4 * b] * ld_out + c] = column[a];
             }
         }
     }
+}
+
+/// Both with N doubles per register: the square rule's common sizes (degrees 3–4, 5–6 and 7–8:
+/// 3, 4 and 5 points) with their loops unrolled, any other size with n known only at run time.
+template <int N>
+[[gnu::always_inline]] inline void tensor_forward_isa(const TensorElement& element, const double* P, int first_row,
+                                                      double* out, std::ptrdiff_t ld_out) {
+    switch (element.n) {
+    case 3:
+        return tensor_forward_n<N, 3>(element, P, first_row, out, ld_out);
+    case 4:
+        return tensor_forward_n<N, 4>(element, P, first_row, out, ld_out);
+    case 5:
+        return tensor_forward_n<N, 5>(element, P, first_row, out, ld_out);
+    default:
+        return tensor_forward_n<N, 0>(element, P, first_row, out, ld_out);
+    }
+}
+
+template <int N>
+[[gnu::always_inline]] inline void tensor_backward_isa(const TensorElement& element, const double* L,
+                                                       std::ptrdiff_t ld_l, int first_row, int last_row, double* out,
+                                                       std::ptrdiff_t ld_out) {
+    switch (element.n) {
+    case 3:
+        return tensor_backward_n<N, 3>(element, L, ld_l, first_row, last_row, out, ld_out);
+    case 4:
+        return tensor_backward_n<N, 4>(element, L, ld_l, first_row, last_row, out, ld_out);
+    case 5:
+        return tensor_backward_n<N, 5>(element, L, ld_l, first_row, last_row, out, ld_out);
+    default:
+        return tensor_backward_n<N, 0>(element, L, ld_l, first_row, last_row, out, ld_out);
+    }
+}
+
+// A grid row has four points: AVX2 registers are as wide as the work, so an AVX-512 CPU runs
+// the AVX2 copy too.
+#ifdef LIMSURF_ISA_VARIANTS
+LIMSURF_TARGET_AVX2 void tensor_forward_avx2(const TensorElement& element, const double* P, int first_row, double* out,
+                                             std::ptrdiff_t ld_out) {
+    tensor_forward_isa<4>(element, P, first_row, out, ld_out);
+}
+LIMSURF_TARGET_AVX2 void tensor_backward_avx2(const TensorElement& element, const double* L, std::ptrdiff_t ld_l,
+                                              int first_row, int last_row, double* out, std::ptrdiff_t ld_out) {
+    tensor_backward_isa<4>(element, L, ld_l, first_row, last_row, out, ld_out);
+}
+#endif
+
+}  // namespace
+
+void tensor_forward(const TensorElement& element, const double* P, int first_row, double* out,
+                    std::ptrdiff_t ld_out) noexcept {
+#ifdef LIMSURF_ISA_VARIANTS
+    if (vector_doubles() >= 4) {
+        return tensor_forward_avx2(element, P, first_row, out, ld_out);
+    }
+#endif
+    tensor_forward_isa<2>(element, P, first_row, out, ld_out);
+}
+
+void tensor_backward(const TensorElement& element, const double* L, std::ptrdiff_t ld_l, int first_row, int last_row,
+                     double* out, std::ptrdiff_t ld_out) noexcept {
+#ifdef LIMSURF_ISA_VARIANTS
+    if (vector_doubles() >= 4) {
+        return tensor_backward_avx2(element, L, ld_l, first_row, last_row, out, ld_out);
+    }
+#endif
+    tensor_backward_isa<2>(element, L, ld_l, first_row, last_row, out, ld_out);
 }
 
 }  // namespace limsurf::detail

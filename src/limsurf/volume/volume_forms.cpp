@@ -1,6 +1,7 @@
 // Shipped and on-demand volume forms (volume_forms.h).
 #include "limsurf/volume/volume_forms.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "limsurf/core/error.h"
@@ -31,10 +32,47 @@ std::vector<double> shipped_coefficients(const ShippedForm& form) {
     return {form.coefficients, form.coefficients + count};
 }
 
-/// evaluate_by_pairs() for facets of m points, rows of 8 × Blocks weights: the pairs' cross
-/// products in lexicographic order, each added to the gradient's 3 × 8 Blocks sums (one per
-/// point and coordinate, from +0, in pair order), then the volume ⅓ Σ_i p_i · G_i in point order.
-template <int Blocks>
+/// Blocks [first, first + Pass) of evaluate_by_pairs()'s gradient sums (eight lanes each), N doubles
+/// per register: the pairs' cross products in lexicographic order, each added to the 3 × 8 Pass
+/// sums (one per point and coordinate, from +0, in pair order); out[c][i] for lane i.
+template <int N, int Pass>
+[[gnu::always_inline]] inline void pair_gradient_pass(int m, int lanes, int first, const double* __restrict w,
+                                                      const double* x, const double* y, const double* z,
+                                                      double (*out)[32]) {
+    Lanes<N> gx[Pass], gy[Pass], gz[Pass];
+#pragma GCC unroll 4
+    for (int b = 0; b < Pass; ++b) {
+        gx[b] = zero_lanes<N>();
+        gy[b] = zero_lanes<N>();
+        gz[b] = zero_lanes<N>();
+    }
+    for (int j = 0; j + 1 < m; ++j) {
+        for (int k = j + 1; k < m; ++k, w += lanes) {
+            const double cx = y[j] * z[k] - z[j] * y[k];
+            const double cy = z[j] * x[k] - x[j] * z[k];
+            const double cz = x[j] * y[k] - y[j] * x[k];
+#pragma GCC unroll 4  // completely: the sums stay in registers
+            for (int b = 0; b < Pass; ++b) {
+                Lanes<N> row;
+                load(row, w + 8 * (first + b));
+                add_product(gx[b], row, cx);
+                add_product(gy[b], row, cy);
+                add_product(gz[b], row, cz);
+            }
+        }
+    }
+    for (int b = 0; b < Pass; ++b) {
+        store(out[0] + 8 * (first + b), gx[b]);
+        store(out[1] + 8 * (first + b), gy[b]);
+        store(out[2] + 8 * (first + b), gz[b]);
+    }
+}
+
+/// evaluate_by_pairs() for facets of m points, rows of 8 × Blocks weights, N doubles per
+/// register: the gradient's sums (pair_gradient_pass, as many blocks per pass as the registers
+/// hold: every block with AVX-512, two with AVX2, one with SSE2; the grouping changes no sum), then
+/// the volume ⅓ Σ_i p_i · G_i in point order.
+template <int N, int Blocks>
 [[gnu::always_inline]] inline double pair_form_volume(int m, const double* __restrict w, const double* __restrict p,
                                                       double* __restrict gradient) {
     constexpr int lanes = 8 * Blocks;
@@ -46,29 +84,14 @@ template <int Blocks>
         y[i] = p[3 * i + 1];
         z[i] = p[3 * i + 2];
     }
-    Lanes gx[Blocks] = {};
-    Lanes gy[Blocks] = {};
-    Lanes gz[Blocks] = {};
-    for (int j = 0; j + 1 < m; ++j) {
-        for (int k = j + 1; k < m; ++k, w += lanes) {
-            const double cx = y[j] * z[k] - z[j] * y[k];
-            const double cy = z[j] * x[k] - x[j] * z[k];
-            const double cz = x[j] * y[k] - y[j] * x[k];
-#pragma GCC unroll 4  // completely: the sums stay in registers
-            for (int b = 0; b < Blocks; ++b) {
-                Lanes row;
-                load(row, w + 8 * b);
-                gx[b] += row * cx;
-                gy[b] += row * cy;
-                gz[b] += row * cz;
-            }
-        }
+    double g[3][32];
+    constexpr int pass = N == 8 ? Blocks : N == 4 ? std::min(Blocks, 2) : 1;
+    int first = 0;
+    for (; first + pass <= Blocks; first += pass) {
+        pair_gradient_pass<N, pass>(m, lanes, first, w, x, y, z, g);
     }
-    double g[3][lanes];
-    for (int b = 0; b < Blocks; ++b) {
-        store(g[0] + 8 * b, gx[b]);
-        store(g[1] + 8 * b, gy[b]);
-        store(g[2] + 8 * b, gz[b]);
+    if (first < Blocks) {  // pass is 2 and Blocks odd
+        pair_gradient_pass<N, 1>(m, lanes, first, w, x, y, z, g);
     }
     double sum = 0.0;
     for (int i = 0; i < m; ++i) {
@@ -84,20 +107,44 @@ template <int Blocks>
     return sum / 3.0;
 }
 
-/// The pair-weight kernel, compiled per instruction set (target_clones.h); @p lanes is 8, 16, 24
-/// or 32.
-LIMSURF_TARGET_CLONES
-double pair_form_kernel(int m, int lanes, const double* w, const double* p, double* gradient) noexcept {
+/// The pair-weight kernel with N doubles per register; @p lanes is 8, 16, 24 or 32.
+template <int N>
+[[gnu::always_inline]] inline double pair_form_lanes(int m, int lanes, const double* w, const double* p,
+                                                     double* gradient) {
     switch (lanes) {
     case 8:
-        return pair_form_volume<1>(m, w, p, gradient);
+        return pair_form_volume<N, 1>(m, w, p, gradient);
     case 16:
-        return pair_form_volume<2>(m, w, p, gradient);
+        return pair_form_volume<N, 2>(m, w, p, gradient);
     case 24:
-        return pair_form_volume<3>(m, w, p, gradient);
+        return pair_form_volume<N, 3>(m, w, p, gradient);
     default:
-        return pair_form_volume<4>(m, w, p, gradient);
+        return pair_form_volume<N, 4>(m, w, p, gradient);
     }
+}
+
+#ifdef LIMSURF_ISA_VARIANTS
+LIMSURF_TARGET_AVX512F double pair_form_avx512f(int m, int lanes, const double* w, const double* p, double* gradient) {
+    return pair_form_lanes<8>(m, lanes, w, p, gradient);
+}
+LIMSURF_TARGET_AVX2 double pair_form_avx2(int m, int lanes, const double* w, const double* p, double* gradient) {
+    return pair_form_lanes<4>(m, lanes, w, p, gradient);
+}
+#endif
+
+/// The pair-weight kernel, one copy per instruction set (target_clones.h).
+double pair_form_kernel(int m, int lanes, const double* w, const double* p, double* gradient) noexcept {
+#ifdef LIMSURF_ISA_VARIANTS
+    switch (vector_doubles()) {
+    case 8:
+        return pair_form_avx512f(m, lanes, w, p, gradient);
+    case 4:
+        return pair_form_avx2(m, lanes, w, p, gradient);
+    default:
+        break;
+    }
+#endif
+    return pair_form_lanes<2>(m, lanes, w, p, gradient);
 }
 
 }  // namespace
