@@ -208,6 +208,15 @@ constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
 template <int N>
 using Quad = Lanes<(N < 4 ? N : 4), 4>;
 
+/// Three sums of four (one per coordinate), from +0.
+template <int N>
+[[gnu::always_inline]] inline void zero_coordinates(Quad<N> (&sums)[3]) {
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+        sums[c] = zero_lanes<(N < 4 ? N : 4), 4>();
+    }
+}
+
 /// tensor_forward() with N doubles per register and Fixed samples per direction (element.n when
 /// Fixed is 0). Vectorised across four lanes: the four control points of a grid row (along v),
 /// then four samples of a row of the grid (along u). Every sum is in the same order for every N
@@ -229,18 +238,14 @@ template <int N, int Fixed>
         }
     }
     // Along v first: half[kv][c][j][a] = Σ_b N_b^(kv)(t_j) grid[c][b][a], b = 0, 1, 2, 3 (every
-    // v-order: the rows from ∂u on need all three).
-    // The three coordinates side by side: three independent sums in flight (a sum of products is
-    // bound by the latency of the addition). So below.
+    // v-order: the rows from ∂u on need all three). Here and below the three coordinates go side by
+    // side: three independent sums in flight, as a sum of products is bound by the addition's latency.
     double half[3][3][m][4];
     for (int kv = 0; kv < 3; ++kv) {
         for (std::ptrdiff_t j = 0; j < n; ++j) {
             const double* w = element.basis_by_node + (n * kv + j) * 4;
             Quad<N> sum[3];
-#pragma GCC unroll 3
-            for (int c = 0; c < 3; ++c) {
-                sum[c] = zero_lanes<(N < 4 ? N : 4), 4>();
-            }
+            zero_coordinates<N>(sum);
 #pragma GCC unroll 4
             for (int b = 0; b < 4; ++b) {
 #pragma GCC unroll 3
@@ -263,10 +268,7 @@ template <int N, int Fixed>
             std::ptrdiff_t i = 0;
             for (; i + 4 <= n; i += 4) {
                 Quad<N> d[3];
-#pragma GCC unroll 3
-                for (int c = 0; c < 3; ++c) {
-                    d[c] = zero_lanes<(N < 4 ? N : 4), 4>();
-                }
+                zero_coordinates<N>(d);
 #pragma GCC unroll 4
                 for (int a = 0; a < 4; ++a) {
                     Quad<N> u;
@@ -340,10 +342,7 @@ template <int N, int Fixed>
     // Then along v: out(slot(a, b), c) = Σ_kv Σ_j N_b^(kv)(t_j) half[kv][c][j][a], kv then j increasing.
     for (int b = 0; b < 4; ++b) {
         Quad<N> sum[3];
-#pragma GCC unroll 3
-        for (int c = 0; c < 3; ++c) {
-            sum[c] = zero_lanes<(N < 4 ? N : 4), 4>();
-        }
+        zero_coordinates<N>(sum);
         for (int kv = 0; kv < 3; ++kv) {
             if (!have[kv]) {
                 continue;
