@@ -199,9 +199,8 @@ void element_backward(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t row
 namespace limsurf::detail {
 namespace {
 
-// The orders of each row's derivatives in u and in v (SampleRow's order: value, ∂u, ∂v, ∂uu, ∂uv, ∂vv).
-constexpr int row_u[6] = {0, 1, 0, 2, 1, 0};
-constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
+constexpr const int* row_u = tensor_row_u;
+constexpr const int* row_v = tensor_row_v;
 
 /// Four doubles (a row of a patch's control points) in N-double registers: one AVX2 register, or
 /// two SSE2 ones.

@@ -44,6 +44,11 @@ void element_backward(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t row
 /// backward ones of W, A and M against 20 400 through the dense kernel.
 inline constexpr std::ptrdiff_t max_tensor_samples = 16;  ///< per direction
 
+/// The orders (ku, kv) of each row's derivatives in u and in v, in the rows' order (value, ∂u, ∂v,
+/// ∂uu, ∂uv, ∂vv; sample_integrands.h's SampleRow).
+inline constexpr int tensor_row_u[6] = {0, 1, 0, 2, 1, 0};
+inline constexpr int tensor_row_v[6] = {0, 0, 1, 0, 1, 2};
+
 struct TensorElement {
     std::ptrdiff_t n = 0;  ///< samples per direction, 1 ≤ n ≤ max_tensor_samples
     /// basis[(4 k + a) n + i] = the k-th derivative (k = 0, 1, 2) of the uniform cubic B-spline N_a

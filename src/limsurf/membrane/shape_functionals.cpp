@@ -148,8 +148,8 @@ struct TensorTables {
     /// The slot of each control point (a, b) when @p rows (6 n² × 16, element_kernel's rows) is
     /// the bicubic B-spline's kernel on the n × n grid to 1e-12 in every entry; else empty.
     [[nodiscard]] std::vector<int> slots_of(const Eigen::MatrixXd& rows) const {
-        constexpr int row_u[6] = {0, 1, 0, 2, 1, 0};
-        constexpr int row_v[6] = {0, 0, 1, 0, 1, 2};
+        using detail::tensor_row_u;
+        using detail::tensor_row_v;
         const Eigen::Index nn = n * n;
         if (n == 0 || rows.cols() != 16 || rows.rows() != 6 * nn) {
             return {};
@@ -169,7 +169,7 @@ struct TensorTables {
                 for (int r = 0; r < 6 && equal; ++r) {
                     for (Eigen::Index j = 0; j < n && equal; ++j) {
                         for (Eigen::Index i = 0; i < n && equal; ++i) {
-                            const double tensor = entry(row_u[r], a, i) * entry(row_v[r], b, j);
+                            const double tensor = entry(tensor_row_u[r], a, i) * entry(tensor_row_v[r], b, j);
                             equal = std::abs(rows(r * nn + j * n + i, k) - tensor) <= 1e-12;
                         }
                     }
