@@ -54,8 +54,8 @@ struct ShapeOptions {
     bool exact_volume = true;
     /// Catmull–Clark: the regular patches' elements (a bicubic B-spline on the square rule's grid)
     /// one direction at a time, by sum factorisation (true), or through their dense kernels like
-    /// every other element (false). The same values and gradients to rounding (~1e-15 relative);
-    /// false is for checking.
+    /// every other element (false). The same values and gradients to rounding (another order of
+    /// summation; the tests hold them to 1e-13); false is for checking.
     bool sum_factorisation = true;
 };
 
