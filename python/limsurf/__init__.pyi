@@ -327,6 +327,7 @@ class ShapeFunctionals(TypedDict, total=False):
     helfrich: float
     volume_is_exact: bool
     samples: int
+    sum_factorised_elements: int
     gradient: dict[str, FloatArray]
 
 class MembraneIterationReport(TypedDict):
@@ -341,11 +342,13 @@ class MembraneIterationReport(TypedDict):
 @overload
 def shape_functionals(mesh: Mesh, scheme: MembraneScheme, *, X: ArrayLike | None = None, gradients: bool = True,
                       spontaneous_curvature: float | None = None, degree: int = 8,
-                      subdivide_near_extraordinary: int = 3, threads: int = 0) -> ShapeFunctionals: ...
+                      subdivide_near_extraordinary: int = 3, threads: int = 0,
+                      sum_factorisation: bool = True) -> ShapeFunctionals: ...
 @overload
 def shape_functionals(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: MembraneScheme, *,
                       X: ArrayLike | None = None, gradients: bool = True, spontaneous_curvature: float | None = None,
-                      degree: int = 8, subdivide_near_extraordinary: int = 3, threads: int = 0) -> ShapeFunctionals: ...
+                      degree: int = 8, subdivide_near_extraordinary: int = 3, threads: int = 0,
+                      sum_factorisation: bool = True) -> ShapeFunctionals: ...
 @overload
 def minimize_membrane(mesh: Mesh, scheme: MembraneScheme, *, area: float, volume: float | None = None,
                       reduced_volume: float | None = None, mean_curvature: float | None = None,

@@ -27,6 +27,7 @@ struct ShapeArguments {
     int degree = 8;
     int subdivide_near_extraordinary = 3;
     int threads = 0;
+    bool sum_factorisation = true;  ///< ShapeOptions::sum_factorisation
 };
 
 /// The limit basis of @p mesh under @p scheme, with the file's rules (built with the GIL released).
@@ -43,6 +44,7 @@ ShapeFunctionals functionals_of(const LimitBasis& basis, const ShapeArguments& a
     options.degree = args.degree;
     options.subdivide_near_extraordinary = args.subdivide_near_extraordinary;
     options.num_threads = args.threads;
+    options.sum_factorisation = args.sum_factorisation;
     const py::gil_scoped_release release;
     return ShapeFunctionals(basis, options);
 }
@@ -103,6 +105,7 @@ py::dict shape_functionals(const Mesh& mesh, const std::string& scheme, const st
         py::dict out = values_dict(values, spontaneous_curvature);
         out["volume_is_exact"] = functionals.volume_is_exact();
         out["samples"] = functionals.num_samples();
+        out["sum_factorised_elements"] = functionals.num_sum_factorised_elements();
         if (gradients) {
             py::dict gradient;
             for (int f = 0; f < num_shape_functionals; ++f) {
@@ -295,8 +298,11 @@ shape_functionals(mesh, scheme, ...) or shape_functionals(V, F, scheme, ...), sc
 'catmull-clark'. A dict with 'area', 'volume', 'mean_curvature' (∫H dA, H = 1 on the unit sphere),
 'willmore' (∫H² dA, 4π on a sphere), 'gaussian' (∫K dA = 2πχ), 'harmonic' (the harmonic energy (3.6)),
 'reduced_volume', 'reduced_mean_curvature', 'helfrich' (∫(H − H0)² dA, with spontaneous_curvature=H0),
-'volume_is_exact' (trilinear forms for Loop/Catmull–Clark, quadrature for C2g0) and 'samples'; with
-gradients=True also 'gradient': name → (#V, 3) array. X: other positions (#V × 3) for the same faces.
+'volume_is_exact' (trilinear forms for Loop/Catmull–Clark, quadrature for C2g0), 'samples' and
+'sum_factorised_elements' (regular Catmull–Clark faces evaluated one direction at a time; with
+sum_factorisation=False every face goes through its dense kernel, the same values to rounding: for
+checking); with gradients=True also 'gradient': name → (#V, 3) array. X: other positions (#V × 3)
+for the same faces.
 Raises limsurf.InputError for an open mesh, limsurf.UnsupportedError for Doo–Sabin or tags.)";
 
 constexpr const char* minimize_doc = R"(Solves the Canham problem (min W s.t. A = area, V = volume) or, with
@@ -359,23 +365,24 @@ void bind_membrane(py::module_& m) {
 
     const auto shape = [](const Mesh& mesh, const std::string& scheme, std::optional<py::object> X, bool gradients,
                           std::optional<double> spontaneous_curvature, int degree, int subdivide_near_extraordinary,
-                          int threads) {
+                          int threads, bool sum_factorisation) {
         return shape_functionals(mesh, scheme, X, gradients, spontaneous_curvature,
-                                 {degree, subdivide_near_extraordinary, threads});
+                                 {degree, subdivide_near_extraordinary, threads, sum_factorisation});
     };
     m.def("shape_functionals", shape, "mesh"_a, "scheme"_a, py::kw_only(), "X"_a = py::none(), "gradients"_a = true,
           "spontaneous_curvature"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0,
-          shape_doc);
+          "sum_factorisation"_a = true, shape_doc);
     m.def(
         "shape_functionals",
         [shape](const py::object& V, const py::object& F, const std::string& scheme, std::optional<py::object> X,
                 bool gradients, std::optional<double> spontaneous_curvature, int degree,
-                int subdivide_near_extraordinary, int threads) {
+                int subdivide_near_extraordinary, int threads, bool sum_factorisation) {
             return shape(mesh_from(V, F), scheme, std::move(X), gradients, spontaneous_curvature, degree,
-                         subdivide_near_extraordinary, threads);
+                         subdivide_near_extraordinary, threads, sum_factorisation);
         },
         "V"_a, "F"_a, "scheme"_a, py::kw_only(), "X"_a = py::none(), "gradients"_a = true,
-        "spontaneous_curvature"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
+        "spontaneous_curvature"_a = py::none(), "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0,
+        "sum_factorisation"_a = true);
 
     const auto minimize = [](const Mesh& mesh, const std::string& scheme, double area, std::optional<double> volume,
                              std::optional<double> reduced_volume, std::optional<double> mean_curvature,

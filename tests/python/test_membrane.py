@@ -55,6 +55,27 @@ def test_gradients_match_finite_differences_and_the_identities(mesh_path):
         assert fd == pytest.approx(g["willmore"][i, k], rel=1e-6, abs=1e-8 * np.abs(g["willmore"]).max())
 
 
+def test_sum_factorisation_is_the_dense_path_to_rounding(mesh_path):
+    # genus2 refined once: regular Catmull–Clark faces next to valence-3 and -5 corners.
+    V, F = limsurf.subdivide(limsurf.read_mesh(mesh_path("genus2")), "catmull-clark", 1, topology=False)
+    F = np.asarray(F)
+    valence = np.bincount(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 3]], F[:, [3, 0]]]).ravel(),
+                          minlength=len(V)) // 2
+    regular_faces = int(np.all(valence[F] == 4, axis=1).sum())
+    assert 0 < regular_faces < len(F)
+    rng = np.random.default_rng(5)
+    X = V + 0.02 * rng.standard_normal(V.shape)
+    fast = limsurf.shape_functionals(V, F, "catmull-clark", X=X)
+    dense = limsurf.shape_functionals(V, F, "catmull-clark", X=X, sum_factorisation=False)
+    assert fast["sum_factorised_elements"] == regular_faces and dense["sum_factorised_elements"] == 0
+    for name in NAMES:
+        assert fast[name] == pytest.approx(dense[name], rel=1e-13, abs=1e-13), name
+        scale = max(np.abs(dense["gradient"][name]).max(), 1.0)
+        assert np.abs(fast["gradient"][name] - dense["gradient"][name]).max() <= 1e-13 * scale, name
+    loop = limsurf.shape_functionals(limsurf.read_mesh(mesh_path("icosahedron")), "loop", gradients=False)
+    assert loop["sum_factorised_elements"] == 0
+
+
 def test_shape_hessian_matches_the_gradients_and_the_identities(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("icosahedron"))
     X = mesh.V + 0.05 * np.random.default_rng(23).standard_normal(mesh.V.shape)
