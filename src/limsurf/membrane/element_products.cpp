@@ -199,9 +199,6 @@ void element_backward(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t row
 namespace limsurf::detail {
 namespace {
 
-constexpr const int* row_u = tensor_row_u;
-constexpr const int* row_v = tensor_row_v;
-
 /// Four doubles (a row of a patch's control points) in N-double registers: one AVX2 register, or
 /// two SSE2 ones.
 template <int N>
@@ -261,7 +258,7 @@ template <int N, int Fixed>
     // Then along u: row r at (t_i, t_j) = Σ_a N_a^(ku)(t_i) half[kv][c][j][a], a = 0, 1, 2, 3.
     const std::ptrdiff_t nn = n * n;
     for (int r = first_row; r < 6; ++r) {
-        const double* U = element.basis + 4 * row_u[r] * n;
+        const double* U = element.basis + 4 * tensor_row_u[r] * n;
         for (std::ptrdiff_t j = 0; j < n; ++j) {
             const std::ptrdiff_t at = r * nn + j * n;
             std::ptrdiff_t i = 0;
@@ -274,7 +271,7 @@ template <int N, int Fixed>
                     load(u, U + a * n + i);
 #pragma GCC unroll 3
                     for (int c = 0; c < 3; ++c) {
-                        add_product(d[c], u, half[row_v[r]][c][j][a]);
+                        add_product(d[c], u, half[tensor_row_v[r]][c][j][a]);
                     }
                 }
 #pragma GCC unroll 3
@@ -284,7 +281,7 @@ template <int N, int Fixed>
             }
             for (; i < n; ++i) {
                 for (int c = 0; c < 3; ++c) {
-                    const double* h = half[row_v[r]][c][j];
+                    const double* h = half[tensor_row_v[r]][c][j];
                     double d = 0.0;
                     for (int a = 0; a < 4; ++a) {
                         d += U[a * n + i] * h[a];
@@ -310,8 +307,8 @@ template <int N, int Fixed>
     bool have[3] = {false, false, false};
     double half[3][3][m][4];
     for (int r = first_row; r < last_row; ++r) {
-        const int kv = row_v[r];
-        const double* U = element.basis_by_node + 4 * n * row_u[r];
+        const int kv = tensor_row_v[r];
+        const double* U = element.basis_by_node + 4 * n * tensor_row_u[r];
         for (std::ptrdiff_t j = 0; j < n; ++j) {
             Quad<N> sum[3];
             const double* l[3];

@@ -450,25 +450,22 @@ ShapeValues ShapeFunctionals::Impl::evaluate(const Points& X, std::span<const Sh
             const Eigen::Index rows = kernel.rows.rows();
             const auto size = static_cast<std::size_t>(n);
             derivatives.resize(3 * 6 * size);
-            const detail::TensorElement tensor_element{tensor.n, tensor.basis.data(), tensor.basis_by_node.data(),
-                                                       kernel.tensor_slot.data()};
-            if (!kernel.tensor_slot.empty()) {
-                if (!value_rows) {
-                    for (std::size_t c = 0; c < 3; ++c) {
-                        std::fill_n(derivatives.begin() + static_cast<std::ptrdiff_t>(c * 6 * size), size, 0.0);
-                    }
-                }
-                detail::tensor_forward(tensor_element, element_points.data(), value_rows ? 0 : 1, derivatives.data(),
-                                       rows);
-            } else if (value_rows) {
-                detail::element_forward(kernel.rows.data(), rows, rows, num_element_slots, element_points.data(),
-                                        derivatives.data(), rows);
-            } else {  // the derivatives only: the rows after the n value rows, which are left zero
+            // Without the value rows (the positions feed only the quadrature volume) they are left zero.
+            const Eigen::Index first_row = value_rows ? 0 : 1;
+            if (!value_rows) {
                 for (std::size_t c = 0; c < 3; ++c) {
                     std::fill_n(derivatives.begin() + static_cast<std::ptrdiff_t>(c * 6 * size), size, 0.0);
                 }
-                detail::element_forward(kernel.rows.data() + n, rows, rows - n, num_element_slots,
-                                        element_points.data(), derivatives.data() + n, rows);
+            }
+            const detail::TensorElement tensor_element{tensor.n, tensor.basis.data(), tensor.basis_by_node.data(),
+                                                       kernel.tensor_slot.data()};
+            if (!kernel.tensor_slot.empty()) {
+                detail::tensor_forward(tensor_element, element_points.data(), static_cast<int>(first_row),
+                                       derivatives.data(), rows);
+            } else {
+                detail::element_forward(kernel.rows.data() + first_row * n, rows, rows - first_row * n,
+                                        num_element_slots, element_points.data(), derivatives.data() + first_row * n,
+                                        rows);
             }
             // ... the integrands and their local gradients, ...
             values.resize(num_shape_functionals * size);
