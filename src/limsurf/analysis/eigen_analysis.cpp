@@ -270,6 +270,15 @@ CharacteristicMap characteristic_map(const EigenRequest& request, const detail::
                                       : "not evaluated for Doo–Sabin (its centre is a face)";
         return map;
     }
+    // The limit patches of the faces at the vertex read the default rings. With fewer, the
+    // eigenvector is known only on part of their control points: the others would be taken as 0
+    // and the map (and the C¹ verdict drawn from it) would be wrong — Catmull–Clark at valence 5
+    // with 1 ring came out "NOT regular".
+    if (spectrum.rings < default_rings(request.scheme)) {
+        map.reason = detail::concat("not evaluated with ", spectrum.rings, " ring", spectrum.rings == 1 ? "" : "s",
+                                    ": the limit patches at the vertex read ", default_rings(request.scheme));
+        return map;
+    }
     const EigenvalueEntry* sub = nullptr;
     for (const EigenvalueEntry& e : spectrum.eigenvalues) {
         if (e.frequency == 1 && std::abs(std::abs(e.value) - spectrum.subdominant) <= equality_tolerance) {
