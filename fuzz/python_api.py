@@ -169,13 +169,20 @@ def cases(limsurf, np):
         return lambda: limsurf.subdivide(a["V"], a["F"], scheme, int(rng.integers(3)), operators=True,
                                          forms=bool(rng.integers(2)), topology=False)
 
+    def eigen(rng):  # the weights as an odd array, with odd valences and rings
+        a = mutate(rng, {"weights": np.array([13.4575, 0.999938, 0.999938])})
+        valence = int(rng.choice([-1, 0, 2, 3, 5, 7, 129, 2**31 - 1]))
+        scheme = str(rng.choice(["catmull-clark", "loop", "c2g0", "doo-sabin", "bilinear"]))
+        return lambda: limsurf.eigen_analysis(scheme, valence, boundary=bool(rng.integers(2)), weights=a["weights"],
+                                              rings=int(rng.choice([-1, 0, 1, 3, 9])))
+
     return [("LimitBasis.evaluate", evaluate), ("LimitBasis.evaluate(out=)", evaluate_out),
             ("LimitBasis.weights", weights), ("LimitBasis.patch", patch), ("Mesh", mesh),
             ("Mesh.with_positions", with_positions), ("volume", volume), ("LimitBasis.limit_positions", limit_positions),
             ("poisson", poisson), ("geodesic_distance", geodesic), ("plate", plate_load),
             ("rectangle_plate_deflection", rectangle_plate), ("tessellate", tessellate),
             ("one_form_vectors", one_form), ("hodge_decomposition", hodge), ("submesh", submesh),
-            ("subdivide", subdivide)]
+            ("subdivide", subdivide), ("eigen_analysis", eigen)]
 
 
 def child(seed, first, last, progress):

@@ -480,6 +480,56 @@ def decompose_shapes(V: ArrayLike, F: ArrayLike | list[ArrayLike], P: ArrayLike 
                      weights: TunedWeightsSpec = None, min_valence: int = 5,
                      poisson_ratio: float = 0.3) -> list[ShapeDecomposition]: ...
 
+# The eigen-analysis of a scheme at one extraordinary vertex (docs/guide/eigen.md, docs/eigen.md).
+EigenScheme = Literal["catmull-clark", "loop", "doo-sabin", "c2g0"]
+
+class Eigenvalue(TypedDict):
+    value: complex
+    frequency: int | None  # the Fourier block; None without rotational symmetry (a boundary vertex)
+    algebraic: int
+    geometric: int
+    jordan_blocks: list[int]
+    eigenvectors: npt.NDArray[np.complex128]  # size × geometric, over the neighbourhood
+
+class CharacteristicMap(TypedDict, total=False):
+    evaluated: bool
+    reason: str  # when not evaluated
+    min_jacobian: float
+    max_jacobian: float
+    winding_number: float
+    samples: int  # those in the ring segment, where det DΦ is checked
+    resolution: int
+    positions: FloatArray  # every face's (resolution + 1)² or (resolution + 1)(resolution + 2)/2 points × 3, z = 0
+    faces: IndexArray
+
+class SmoothnessTest(TypedDict):
+    checked: bool
+    passed: bool | None  # None when not checked
+    detail: str
+
+class SchemeSpectrum(TypedDict):
+    """`limsurf eigen --json`'s dict, with the local subdivision matrix S and its sectors."""
+    scheme: EigenScheme
+    valence: int
+    boundary: bool
+    rings: int
+    size: int
+    symmetry_residual: float
+    dominant: float
+    subdominant: float
+    subdominant_multiplicity: int
+    subsubdominant: float
+    subsubdominant_multiplicity: int
+    eigenvalues: list[Eigenvalue]
+    characteristic_map: CharacteristicMap
+    tests: dict[Literal["c1_spectrum", "c1", "bounded_curvature", "c2_necessary"], SmoothnessTest]
+    S: FloatArray
+    sector: IndexArray
+
+def eigen_analysis(scheme: EigenScheme, valence: int, *, boundary: bool = False,
+                   weights: VertexWeights | None = None, rings: int = 0) -> SchemeSpectrum:
+    """The spectrum of the local subdivision matrix at one extraordinary vertex and the smoothness verdicts."""
+
 # Plane elasticity and homogenisation (docs/guide/elasticity.md).
 RectangleSide = Literal["left", "right", "bottom", "top"]
 

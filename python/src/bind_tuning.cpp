@@ -128,33 +128,6 @@ int integer_from(const py::handle& key, const std::string& what) {
     return py::cast<int>(key);
 }
 
-/// (alpha, beta, gamma) from a 3-sequence or a mapping with 'alpha', 'beta', 'gamma' (a W).
-VertexRuleWeights vertex_weights_from(const py::handle& value, const std::string& what) {
-    std::array<double, 3> w{};
-    if (py::isinstance<py::dict>(value)) {
-        const auto d = py::reinterpret_borrow<py::dict>(value);
-        constexpr std::array<const char*, 3> keys = {"alpha", "beta", "gamma"};
-        for (std::size_t k = 0; k < 3; ++k) {
-            if (!d.contains(keys[k])) {
-                throw InputError(detail::concat(what, ": the weights have no '", keys[k], "'"));
-            }
-            w[k] = real_from(d[keys[k]], what + "['" + keys[k] + "']");
-        }
-    } else {
-        if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::len(value) != 3) {
-            throw InputError(
-                detail::concat(what, ": expected (alpha, beta, gamma) or a dict with 'alpha', 'beta', 'gamma'"));
-        }
-        const auto s = py::reinterpret_borrow<py::sequence>(value);
-        for (std::size_t k = 0; k < 3; ++k) {
-            w[k] = real_from(s[k], detail::concat(what, "[", k, "]"));
-        }
-    }
-    LIMSURF_CHECK(std::isfinite(w[0]) && std::isfinite(w[1]) && std::isfinite(w[2]), InputError, what,
-                  ": the weights must be finite");
-    return {w[0], w[1], w[2]};
-}
-
 /// None (Catmull–Clark), a preset name or weights file (as `limsurf subdivide --weights`), or
 /// {"valence": {n: w}, "vertex": {i: w}} with w (alpha, beta, gamma) or a W dict.
 TunedWeights tuned_weights_from(const py::object& spec) {
@@ -283,6 +256,32 @@ py::dict shape_decomposition_dict(const ShapeDecomposition& d) {
                     "normal"_a = to_numpy(Eigen::VectorXd(d.normal)),
                     "position"_a = to_numpy(Eigen::VectorXd(d.position)), "tangents"_a = to_numpy(tangents),
                     "cup_dominates"_a = d.cup_dominates());
+}
+
+VertexRuleWeights vertex_weights_from(const py::handle& value, const std::string& what) {
+    std::array<double, 3> w{};
+    if (py::isinstance<py::dict>(value)) {
+        const auto d = py::reinterpret_borrow<py::dict>(value);
+        constexpr std::array<const char*, 3> keys = {"alpha", "beta", "gamma"};
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (!d.contains(keys[k])) {
+                throw InputError(detail::concat(what, ": the weights have no '", keys[k], "'"));
+            }
+            w[k] = real_from(d[keys[k]], what + "['" + keys[k] + "']");
+        }
+    } else {
+        if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::len(value) != 3) {
+            throw InputError(
+                detail::concat(what, ": expected (alpha, beta, gamma) or a dict with 'alpha', 'beta', 'gamma'"));
+        }
+        const auto s = py::reinterpret_borrow<py::sequence>(value);
+        for (std::size_t k = 0; k < 3; ++k) {
+            w[k] = real_from(s[k], detail::concat(what, "[", k, "]"));
+        }
+    }
+    LIMSURF_CHECK(std::isfinite(w[0]) && std::isfinite(w[1]) && std::isfinite(w[2]), InputError, what,
+                  ": the weights must be finite");
+    return {w[0], w[1], w[2]};
 }
 
 void bind_tuning(py::module_& m) {

@@ -17,6 +17,7 @@
 
 namespace limsurf {
 struct ShapeDecomposition;
+struct VertexRuleWeights;
 }  // namespace limsurf
 
 namespace limsurf::python {
@@ -128,6 +129,7 @@ void bind_vector_field(py::module_& m);
 void bind_hodge(py::module_& m);
 void bind_membrane(py::module_& m);
 void bind_tuning(py::module_& m);
+void bind_eigen(py::module_& m);
 void bind_reverse(py::module_& m);
 void bind_elasticity(py::module_& m);
 
@@ -135,5 +137,11 @@ void bind_elasticity(py::module_& m);
 /// it: vertex, valence, k3, k4, k5, ratio, cup_dominates, and the 3-arrays normal and position and
 /// the 2 × 3 array tangents (∂P/∂ξ₁, ∂P/∂ξ₂). Defined in bind_tuning.cpp.
 [[nodiscard]] py::dict shape_decomposition_dict(const ShapeDecomposition& d);
+
+/// @brief The weights (alpha, beta, gamma) of a tuned Catmull–Clark vertex from a 3-sequence or a
+///   dict with 'alpha', 'beta', 'gamma' (a W of the tuning functions). Defined in bind_tuning.cpp.
+/// @throws InputError naming @p what for another shape, a value that is not a number or a non-finite
+///   weight (the library checks the signs)
+[[nodiscard]] VertexRuleWeights vertex_weights_from(const py::handle& value, const std::string& what);
 
 }  // namespace limsurf::python

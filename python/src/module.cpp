@@ -26,6 +26,7 @@ PYBIND11_MODULE(_limsurf, m) {
     limsurf::python::bind_hodge(m);
     limsurf::python::bind_membrane(m);
     limsurf::python::bind_tuning(m);
+    limsurf::python::bind_eigen(m);
     limsurf::python::bind_reverse(m);
     limsurf::python::bind_elasticity(m);
 }
