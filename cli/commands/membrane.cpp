@@ -62,6 +62,7 @@ struct MembraneCommandOptions {
     int degree = 8;
     int threads = 0;
     bool evaluate_only = false;
+    bool dense_kernels = false;  ///< --no-sum-factorisation
     std::string output;
     std::string field_output;
     int resolution = 0;               // 0: automatic, about field_points points
@@ -256,6 +257,7 @@ int evaluate_and_report(const MembraneCommandOptions& options, const ControlMesh
                        {"vertices", mesh.num_vertices()},
                        {"samples", functionals.num_samples()},
                        {"degree", options.degree},
+                       {"sum_factorised_elements", functionals.num_sum_factorised_elements()},
                        {"volume_is_exact", functionals.volume_is_exact()}};
     out.update(values_json(functionals.evaluate(mesh.positions()), options.spontaneous_curvature));
     out["self_intersection"] = self_intersection_json(options, basis, mesh.positions());
@@ -298,6 +300,7 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
                        {"unknowns", 3 * mesh.num_vertices()},
                        {"samples", functionals.num_samples()},
                        {"degree", options.degree},
+                       {"sum_factorised_elements", functionals.num_sum_factorised_elements()},
                        {"volume_is_exact", functionals.volume_is_exact()},
                        {"hessian", options.hessian},
                        {"initial_area", run.initial_area},
@@ -379,6 +382,7 @@ int run_membrane(const MembraneCommandOptions& options) {
         ShapeOptions shape;
         shape.degree = options.degree;
         shape.num_threads = options.threads;
+        shape.sum_factorisation = !options.dense_kernels;
         const ShapeFunctionals functionals(basis, shape);
         if (options.evaluate_only) {
             return evaluate_and_report(options, built.mesh, basis, functionals);
@@ -437,6 +441,9 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
             ->check(CLI::IsMember({"limited-memory", "exact"}));
     regularization_hessian->needs(regularize);
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (default 8)");
+    cmd->add_flag("--no-sum-factorisation", options->dense_kernels,
+                  "Evaluate regular Catmull-Clark faces through their dense kernels as every other face (for "
+                  "checking; the same numbers to rounding, slower)");
     add_threads_option(cmd, options->threads);
     CLI::Option* evaluate = cmd->add_flag(
         "--evaluate-only", options->evaluate_only,

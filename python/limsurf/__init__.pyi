@@ -357,7 +357,8 @@ def minimize_membrane(mesh: Mesh, scheme: MembraneScheme, *, area: float, volume
                       objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
                       regularization_hessian: MembraneHessian | None = None,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
-                      subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
+                      subdivide_near_extraordinary: int = 3, threads: int = 0,
+                      sum_factorisation: bool = True) -> dict[str, object]: ...
 @overload
 def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: MembraneScheme, *, area: float,
                       volume: float | None = None, reduced_volume: float | None = None,
@@ -367,7 +368,8 @@ def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Memb
                       objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
                       regularization_hessian: MembraneHessian | None = None,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
-                      subdivide_near_extraordinary: int = 3, threads: int = 0) -> dict[str, object]: ...
+                      subdivide_near_extraordinary: int = 3, threads: int = 0,
+                      sum_factorisation: bool = True) -> dict[str, object]: ...
 
 @overload
 def shape_hessian(mesh: Mesh, scheme: MembraneScheme, coefficients: dict[ShapeFunctionalName, float], *,

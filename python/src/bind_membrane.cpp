@@ -201,8 +201,9 @@ py::dict run_dict(const std::string& scheme, const Mesh& mesh, const ShapeFuncti
                   const ShapeArguments& args, const MembraneRequest& request, const MembraneRun& run) {
     py::dict out("scheme"_a = scheme, "vertices"_a = mesh.mesh.num_vertices(),
                  "unknowns"_a = 3 * mesh.mesh.num_vertices(), "samples"_a = functionals.num_samples(),
-                 "degree"_a = args.degree, "volume_is_exact"_a = functionals.volume_is_exact(),
-                 "hessian"_a = to_string(request.hessian), "initial_area"_a = run.initial_area, "scale"_a = run.scale,
+                 "degree"_a = args.degree, "sum_factorised_elements"_a = functionals.num_sum_factorised_elements(),
+                 "volume_is_exact"_a = functionals.volume_is_exact(), "hessian"_a = to_string(request.hessian),
+                 "initial_area"_a = run.initial_area, "scale"_a = run.scale,
                  "spontaneous_curvature"_a = optional_value(request.spontaneous_curvature));
     for (const auto& [key, value] : stage_dict(run.problem, run.shape, request.spontaneous_curvature)) {
         out[key] = value;
@@ -313,7 +314,8 @@ minimize_membrane(mesh, scheme, area=..., ...) or minimize_membrane(V, F, scheme
 Returns the dict of `limsurf membrane --json` plus 'positions' (#V × 3, the last stage's control points).
 hessian: 'limited-memory' (BFGS from the gradients, the default) or 'exact' (Newton steps with
 shape_hessian's matrices; fewer iterations, each dearer: docs/guide/membrane.md);
-regularization_hessian: the same for (3.12) only (None: hessian's).
+regularization_hessian: the same for (3.12) only (None: hessian's); sum_factorisation=False: every face
+through its dense kernel (`--no-sum-factorisation`; for checking).
 callback(dict) is called after every iteration with 'stage', 'iteration', 'objective',
 'constraint_violation', 'dual_infeasibility', 'step'; returning False stops the solve (converged False);
 an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
@@ -391,18 +393,19 @@ void bind_membrane(py::module_& m) {
                              double objective_tolerance, const std::string& hessian,
                              const std::optional<std::string>& regularization_hessian,
                              std::optional<py::function> callback, int degree, int subdivide_near_extraordinary,
-                             int threads) {
+                             int threads, bool sum_factorisation) {
         const MembraneRequest request = request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature,
                                                    spontaneous_curvature, regularize_harmonic, max_iterations,
                                                    tolerance, objective_tolerance, hessian, regularization_hessian);
-        return minimize_membrane(mesh, scheme, request, callback, {degree, subdivide_near_extraordinary, threads});
+        return minimize_membrane(mesh, scheme, request, callback,
+                                 {degree, subdivide_near_extraordinary, threads, sum_factorisation});
     };
     m.def("minimize_membrane", minimize, "mesh"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(),
           "reduced_volume"_a = py::none(), "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
           "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
           "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
           "regularization_hessian"_a = py::none(), "callback"_a = py::none(), "degree"_a = 8,
-          "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, minimize_doc);
+          "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, "sum_factorisation"_a = true, minimize_doc);
     m.def(
         "minimize_membrane",
         [minimize](const py::object& V, const py::object& F, const std::string& scheme, double area,
@@ -411,18 +414,18 @@ void bind_membrane(py::module_& m) {
                    std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
                    int max_iterations, double tolerance, double objective_tolerance, const std::string& hessian,
                    const std::optional<std::string>& regularization_hessian, std::optional<py::function> callback,
-                   int degree, int subdivide_near_extraordinary, int threads) {
+                   int degree, int subdivide_near_extraordinary, int threads, bool sum_factorisation) {
             return minimize(mesh_from(V, F), scheme, area, volume, reduced_volume, mean_curvature,
                             reduced_mean_curvature, spontaneous_curvature, regularize_harmonic, max_iterations,
                             tolerance, objective_tolerance, hessian, regularization_hessian, std::move(callback),
-                            degree, subdivide_near_extraordinary, threads);
+                            degree, subdivide_near_extraordinary, threads, sum_factorisation);
         },
         "V"_a, "F"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(), "reduced_volume"_a = py::none(),
         "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
         "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
         "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
         "regularization_hessian"_a = py::none(), "callback"_a = py::none(), "degree"_a = 8,
-        "subdivide_near_extraordinary"_a = 3, "threads"_a = 0);
+        "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, "sum_factorisation"_a = true);
 
     const auto hessian = [](const Mesh& mesh, const std::string& scheme, const py::dict& coefficients,
                             std::optional<py::object> X, int degree, int subdivide_near_extraordinary, int threads) {

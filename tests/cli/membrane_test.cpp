@@ -138,6 +138,22 @@ TEST(CliMembrane, EvaluateOnlyAgreesWithTheVolumeAndMeasureCommands) {
     EXPECT_NEAR(number(ours, "area"), number(measure, "area"), 3e-5 * number(measure, "area"));
 }
 
+TEST(CliMembrane, SumFactorisationCanBeSwitchedOffAndChangesOnlyRounding) {
+    // genus 2 (valences 3, 4, 5): its faces whose four corners have valence 4 are the regular ones
+    // that take the sum-factorised path, the others stay dense; --no-sum-factorisation takes every
+    // face dense. The same functionals to the library's 1e-13.
+    const auto mixed = evaluate(mesh("genus2"), "catmull-clark");
+    const auto dense = run_json({"membrane", mesh("genus2"), "--scheme", "catmull-clark", "--evaluate-only",
+                                 "--no-sum-factorisation", "--json"});
+    EXPECT_GT(mixed.at("sum_factorised_elements").get<int>(), 0);
+    EXPECT_LT(mixed.at("sum_factorised_elements").get<int>(), mixed.at("vertices").get<int>() * 2);
+    EXPECT_EQ(dense.at("sum_factorised_elements").get<int>(), 0);
+    for (const char* key : {"area", "volume", "mean_curvature", "willmore", "gaussian", "harmonic"}) {
+        EXPECT_NEAR(number(mixed, key), number(dense, key), 1e-13 * std::abs(number(dense, key)) + 1e-13) << key;
+    }
+    EXPECT_EQ(evaluate(mesh("icosahedron"), "loop").at("sum_factorised_elements").get<int>(), 0);
+}
+
 TEST(CliMembrane, EvaluateOnlyReportsTheHelfrichEnergyAndWritesCurvatureFields) {
     const fs::path vtk = temp_dir() / "curvature.vtk";
     const auto out =
