@@ -218,15 +218,29 @@ py::array_t<double> to_numpy(const Points& points) {
     return out;
 }
 
-py::array_t<double> to_numpy(const Eigen::MatrixXd& matrix) {
-    py::array_t<double> out = new_array(matrix.rows(), matrix.cols());
-    auto view = out.mutable_unchecked<2>();
+namespace {
+
+/// A C-ordered numpy copy of a dense matrix of any scalar type.
+template <class Scalar>
+py::array_t<Scalar> dense_copy(const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& matrix) {
+    py::array_t<Scalar> out({static_cast<py::ssize_t>(matrix.rows()), static_cast<py::ssize_t>(matrix.cols())});
+    auto view = out.template mutable_unchecked<2>();
     for (Eigen::Index i = 0; i < matrix.rows(); ++i) {
         for (Eigen::Index j = 0; j < matrix.cols(); ++j) {
             view(i, j) = matrix(i, j);
         }
     }
     return out;
+}
+
+}  // namespace
+
+py::array_t<double> to_numpy(const Eigen::MatrixXd& matrix) {
+    return dense_copy(matrix);
+}
+
+py::array_t<std::complex<double>> to_numpy(const Eigen::MatrixXcd& matrix) {
+    return dense_copy(matrix);
 }
 
 py::object to_scipy(const SparseMatrix& matrix) {

@@ -2,10 +2,12 @@
 // arrays into Python exceptions naming the array, the row and the problem (never a crash).
 #pragma once
 
+#include <complex>
 #include <span>
 #include <string>
 #include <vector>
 
+#include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -53,6 +55,8 @@ void require_real_numbers(const py::handle& array, const std::string& name);
 [[nodiscard]] py::array_t<double> to_numpy(const Points& points);
 /// A C-ordered numpy copy of a dense matrix.
 [[nodiscard]] py::array_t<double> to_numpy(const Eigen::MatrixXd& matrix);
+/// A C-ordered complex128 numpy copy of a dense complex matrix.
+[[nodiscard]] py::array_t<std::complex<double>> to_numpy(const Eigen::MatrixXcd& matrix);
 
 /// @brief F of a face list (face f is @p vertices[@p offsets[f], @p offsets[f + 1])): one int32 array
 ///   (#F × k) when every face has degree k, else a list of int32 arrays; copies.

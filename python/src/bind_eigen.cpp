@@ -22,24 +22,11 @@ namespace {
 
 using namespace pybind11::literals;
 
-/// A C-ordered complex128 copy of @p matrix.
-py::array_t<std::complex<double>> complex_array(const Eigen::MatrixXcd& matrix) {
-    py::array_t<std::complex<double>> out(
-        {static_cast<py::ssize_t>(matrix.rows()), static_cast<py::ssize_t>(matrix.cols())});
-    auto view = out.mutable_unchecked<2>();
-    for (Eigen::Index i = 0; i < matrix.rows(); ++i) {
-        for (Eigen::Index j = 0; j < matrix.cols(); ++j) {
-            view(i, j) = matrix(i, j);
-        }
-    }
-    return out;
-}
-
 py::dict eigenvalue_dict(const EigenvalueEntry& e) {
     return py::dict("value"_a = e.value,
                     "frequency"_a = e.frequency < 0 ? py::object(py::none()) : py::int_(e.frequency),
                     "algebraic"_a = e.algebraic, "geometric"_a = e.geometric, "jordan_blocks"_a = e.jordan_blocks,
-                    "eigenvectors"_a = complex_array(e.eigenvectors));
+                    "eigenvectors"_a = to_numpy(e.eigenvectors));
 }
 
 py::dict test_dict(const SmoothnessTest& t) {
