@@ -39,8 +39,12 @@ struct Shape {
 };
 // Row and column counts on either side of the eight lanes and of the 16-row (forwards) and
 // 16-column (backwards) blocks, a Loop element (96 rows of 12 columns), a Catmull–Clark one (150 of
-// 16), a C2g0-sized one (40 columns), widths not a multiple of three, and empty ones.
-constexpr std::array<Shape, 11> shapes{{{0, 3, 3},
+// 16), a C2g0-sized one (40 columns), widths not a multiple of three, and empty ones. With AVX2 the
+// backward passes take 12, 8 or 4 columns: 21 columns end with a pass of 12 at column 12, reading
+// up to the 24 that K's rows are padded to.
+constexpr std::array<Shape, 13> shapes{{{0, 3, 3},
+                                        {20, 21, 3},
+                                        {5, 4, 6},
                                         {1, 1, 1},
                                         {7, 5, 2},
                                         {8, 12, 3},

@@ -62,43 +62,31 @@ template <int N>
     }
 }
 
-/// Columns [first, first + 8 Blocks) of out = Kᵀ L for W columns of L: W × Blocks sums of eight,
-/// one row of K and W entries of L at a time.
-template <int N, int Blocks, int W>
+/// Columns [first, first + Width) of out = Kᵀ L for W columns of L: W sums of Width doubles, one
+/// row of K and W entries of L at a time.
+template <int N, int Width, int W>
 [[gnu::always_inline]] inline void backward_pass(const double* __restrict Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
                                                  std::ptrdiff_t first, std::ptrdiff_t cols, const double* __restrict L,
                                                  std::ptrdiff_t ld_l, double* __restrict out, std::ptrdiff_t ld_out) {
     // The small loops unrolled completely, so that the sums stay in registers.
-    Lanes<N> sum[W][Blocks];
+    Lanes<N, Width> sum[W];
 #pragma GCC unroll 3
     for (int w = 0; w < W; ++w) {
-#pragma GCC unroll 2
-        for (int b = 0; b < Blocks; ++b) {
-            sum[w][b] = zero_lanes<N>();
-        }
+        sum[w] = zero_lanes<N, Width>();
     }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        Lanes<N> k[Blocks];
-#pragma GCC unroll 2
-        for (int b = 0; b < Blocks; ++b) {
-            load(k[b], Kt + r * ld_kt + first + 8 * b);
-        }
+        Lanes<N, Width> k;
+        load(k, Kt + r * ld_kt + first);
 #pragma GCC unroll 3
         for (int w = 0; w < W; ++w) {
-            const double l = L[w * ld_l + r];
-#pragma GCC unroll 2
-            for (int b = 0; b < Blocks; ++b) {
-                add_product(sum[w][b], k[b], l);
-            }
+            add_product(sum[w], k, L[w * ld_l + r]);
         }
     }
-    double lanes[W][8 * Blocks];
+    double lanes[W][Width];
     for (int w = 0; w < W; ++w) {
-        for (int b = 0; b < Blocks; ++b) {
-            store(lanes[w] + 8 * b, sum[w][b]);
-        }
+        store(lanes[w], sum[w]);
     }
-    const std::ptrdiff_t count = std::min<std::ptrdiff_t>(8 * Blocks, cols - first);
+    const std::ptrdiff_t count = std::min<std::ptrdiff_t>(Width, cols - first);
     for (std::ptrdiff_t j = 0; j < count; ++j) {
         for (int w = 0; w < W; ++w) {
             out[(first + j) * ld_out + w] = lanes[w][j];
@@ -106,9 +94,11 @@ template <int N, int Blocks, int W>
     }
 }
 
-/// All columns of out, for W columns of L: with AVX-512, 16 columns of K per pass, then 8; with
-/// narrower registers 8 per pass, so that the 3 W (8 / N) sums and a row of K fit in the 16
-/// registers. (How the columns are grouped does not change any sum.)
+/// All columns of out, for W columns of L, in passes as wide as the registers allow: the 3 W / N
+/// sums per 8 columns and a row of K must fit in the 16 registers. AVX-512: 16 columns per pass,
+/// then 8. AVX2: 12 where 9–12 or more than 16 remain (a Loop or C2g0 element's 12 points in one
+/// pass instead of two of 8, a quarter of them padding), else 8, and 4 for the last 1–4. SSE2: 8.
+/// How the columns are grouped changes no sum.
 template <int N, int W>
 [[gnu::always_inline]] inline void backward_columns(const double* Kt, std::ptrdiff_t ld_kt, std::ptrdiff_t rows,
                                                     std::ptrdiff_t cols, const double* L, std::ptrdiff_t ld_l,
@@ -116,11 +106,27 @@ template <int N, int W>
     std::ptrdiff_t first = 0;
     if constexpr (N == 8) {
         for (; first + 8 < cols; first += 16) {
-            backward_pass<N, 2, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+            backward_pass<N, 16, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
         }
     }
+    if constexpr (N == 4) {
+        // first stays a multiple of 4, so first + 12 <= ld_kt (cols rounded up to 8) wherever 9 or more remain.
+        for (std::ptrdiff_t left = cols - first; left > 4; left = cols - first) {
+            if ((left > 8 && left <= 12) || left > 16) {
+                backward_pass<N, 12, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+                first += 12;
+            } else {
+                backward_pass<N, 8, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+                first += 8;
+            }
+        }
+        if (first < cols) {
+            backward_pass<N, 4, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+        }
+        return;
+    }
     for (; first < cols; first += 8) {
-        backward_pass<N, 1, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
+        backward_pass<N, 8, W>(Kt, ld_kt, rows, first, cols, L, ld_l, out, ld_out);
     }
 }
 
