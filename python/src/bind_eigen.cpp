@@ -91,7 +91,8 @@ subdivision matrix (size × size float64, sector-major: the centre, then sector 
 the same order, ...) and 'sector' (int32, each neighbourhood vertex's sector, −1 for the centre).
 scheme: 'catmull-clark', 'loop', 'doo-sabin' or 'c2g0' (valence 3 or 6); boundary: the vertex on a
 boundary with valence − 1 faces (Catmull–Clark, Loop); weights: tuned Catmull–Clark weights of the vertex,
-(alpha, beta, gamma) or a dict W; rings: face rings of the neighbourhood (1..8; 0: what the scheme needs).
+(alpha, beta, gamma) or a dict W; rings: face rings of the neighbourhood (1..8; 0: what the scheme needs;
+fewer give the spectrum but no characteristic map, so 'c1' is not checked).
 Raises limsurf.InputError for a request the analysis refuses, limsurf.NumericalError for too few rings.)";
 
 }  // namespace
