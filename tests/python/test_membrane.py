@@ -1,8 +1,9 @@
 """limsurf.shape_functionals and limsurf.minimize_membrane equal to `limsurf membrane --json` (the same
 numbers on the same input, with either Hessian), their gradients and limsurf.shape_hessian's matrices
-against finite differences and the homogeneity identities,
-the iteration callback, and their errors (membrane/, apps/membrane.h, docs/guide/membrane.md)."""
+against finite differences and the homogeneity identities, limsurf.ShapeEvaluator equal to the functions
+to the bit, the iteration callback, and their errors (membrane/, apps/membrane.h, docs/guide/membrane.md)."""
 import math
+import threading
 
 import numpy as np
 import pytest
@@ -80,6 +81,67 @@ def test_sum_factorisation_is_the_dense_path_to_rounding(mesh_path):
                                         sum_factorisation=flag) for flag in (True, False)]
     assert [s["sum_factorised_elements"] for s in solves] == [regular_faces, 0]
     assert solves[0]["willmore"] == pytest.approx(solves[1]["willmore"], rel=1e-9)
+
+
+@pytest.mark.parametrize("name, scheme, levels", [("tetra_3", "c2g0", 0), ("icosahedron", "loop", 1),
+                                                  ("genus2", "catmull-clark", 1)])
+def test_a_shape_evaluator_is_the_functions_to_the_bit(mesh_path, name, scheme, levels):
+    mesh = limsurf.subdivide(limsurf.read_mesh(mesh_path(name)), scheme, levels) if levels else \
+        limsurf.read_mesh(mesh_path(name))
+    evaluator = limsurf.ShapeEvaluator(mesh, scheme)
+    assert evaluator.scheme == scheme and evaluator.num_vertices == mesh.num_vertices
+    rng = np.random.default_rng(41)
+    for X in (None, mesh.V + 0.01 * rng.standard_normal(mesh.V.shape), 1.5 * mesh.V):
+        ours = evaluator.evaluate(X, spontaneous_curvature=0.5)
+        theirs = limsurf.shape_functionals(mesh, scheme, X=X, spontaneous_curvature=0.5)
+        assert set(ours) == set(theirs)
+        for key in VALUE_KEYS + ("helfrich", "sum_factorised_elements"):
+            assert ours[key] == theirs[key], key
+        for key, g in theirs["gradient"].items():
+            assert np.array_equal(ours["gradient"][key], g), key
+    assert evaluator.num_samples == ours["samples"] and evaluator.volume_is_exact == ours["volume_is_exact"]
+    assert evaluator.sum_factorised_elements == ours["sum_factorised_elements"]
+    assert (evaluator.sum_factorised_elements > 0) == (scheme == "catmull-clark")
+    assert "gradient" not in evaluator.evaluate(gradients=False)
+    weights = {"willmore": 1.0, "area": -0.5}
+    H = evaluator.hessian(weights, X=1.5 * mesh.V)
+    H_function = limsurf.shape_hessian(mesh, scheme, weights, X=1.5 * mesh.V)
+    assert (H != H_function).nnz == 0 and H.nnz == H_function.nnz
+    assert evaluator.self_intersections() == limsurf.self_intersections(mesh, scheme)
+    same = limsurf.ShapeEvaluator(mesh.V, mesh.F, scheme).evaluate(gradients=False)
+    assert same["willmore"] == evaluator.evaluate(gradients=False)["willmore"]
+
+
+def test_a_shape_evaluator_serves_threads_and_refuses_bad_input(mesh_path):
+    mesh = limsurf.read_mesh(mesh_path("icosahedron"))
+    evaluator = limsurf.ShapeEvaluator(mesh, "loop", threads=1)
+    X = [mesh.V * (1 + 0.1 * k) for k in range(4)]
+    results = [None] * 4
+
+    def work(k):
+        results[k] = evaluator.evaluate(X[k])["willmore"]
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert results == [evaluator.evaluate(x)["willmore"] for x in X]  # W is scale-invariant: all equal
+    assert max(results) - min(results) <= 1e-12 * results[0]
+    with pytest.raises(limsurf.InputError, match="X"):
+        evaluator.evaluate(mesh.V[:-1])
+    with pytest.raises(limsurf.InputError, match="X"):
+        evaluator.evaluate(np.full_like(mesh.V, np.nan))
+    with pytest.raises(limsurf.InputError, match="spontaneous_curvature"):
+        evaluator.evaluate(spontaneous_curvature=float("inf"))
+    with pytest.raises(limsurf.InputError, match="coefficients"):
+        evaluator.hessian({"bending": 1.0})
+    with pytest.raises(limsurf.InputError, match="threads"):
+        limsurf.ShapeEvaluator(mesh, "loop", threads=-1)
+    with pytest.raises(limsurf.InputError, match="closed surface"):
+        limsurf.ShapeEvaluator(limsurf.read_mesh(mesh_path("plate_sym")), "catmull-clark")
+    with pytest.raises(limsurf.UnsupportedError):
+        limsurf.ShapeEvaluator(limsurf.read_mesh(mesh_path("cube")), "doo-sabin")
 
 
 def test_shape_hessian_matches_the_gradients_and_the_identities(mesh_path):
