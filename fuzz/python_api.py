@@ -169,6 +169,12 @@ def cases(limsurf, np):
         return lambda: limsurf.subdivide(a["V"], a["F"], scheme, int(rng.integers(3)), operators=True,
                                          forms=bool(rng.integers(2)), topology=False)
 
+    shape = limsurf.ShapeEvaluator(ico, "loop", threads=1)
+
+    def shape_evaluate(rng):
+        a = mutate(rng, {"X": ico.V})
+        return lambda: shape.evaluate(a["X"], gradients=bool(rng.integers(2)))
+
     def eigen(rng):  # the weights as an odd array, with odd valences and rings
         a = mutate(rng, {"weights": np.array([13.4575, 0.999938, 0.999938])})
         valence = int(rng.choice([-1, 0, 2, 3, 5, 7, 129, 2**31 - 1]))
@@ -182,7 +188,7 @@ def cases(limsurf, np):
             ("poisson", poisson), ("geodesic_distance", geodesic), ("plate", plate_load),
             ("rectangle_plate_deflection", rectangle_plate), ("tessellate", tessellate),
             ("one_form_vectors", one_form), ("hodge_decomposition", hodge), ("submesh", submesh),
-            ("subdivide", subdivide), ("eigen_analysis", eigen)]
+            ("subdivide", subdivide), ("eigen_analysis", eigen), ("ShapeEvaluator.evaluate", shape_evaluate)]
 
 
 def child(seed, first, last, progress):
