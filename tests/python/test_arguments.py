@@ -31,13 +31,13 @@ def _right(annotation, right):
     raise LookupError(annotation)
 
 
-def _callables(mesh, basis, geodesics):
+def _callables(mesh, basis, geodesics, evaluator):
     for name in limsurf.__all__:
         value = getattr(limsurf, name)
         if callable(value) and not isinstance(value, type) and name != "subdivide":
             yield name, value, getattr(limsurf._limsurf, name).__doc__, ()
     yield "subdivide", limsurf.subdivide, limsurf._limsurf.subdivide.__doc__, ()
-    for instance in (mesh, basis, geodesics):
+    for instance in (mesh, basis, geodesics, evaluator):
         cls = type(instance)
         for name, attribute in vars(cls).items():
             if name.startswith("_") or isinstance(attribute, property):
@@ -56,9 +56,10 @@ def test_every_refused_argument_is_named(mesh_path):
     mesh = limsurf.read_mesh(mesh_path("cube"))
     basis = limsurf.LimitBasis(mesh, "catmull-clark")
     geodesics = limsurf.HeatGeodesics(mesh, "catmull-clark", method="dec")
+    evaluator = limsurf.ShapeEvaluator(mesh, "catmull-clark")
     right = _right_values(mesh, basis)
     checked = set()
-    for qualified, function, doc, bound in _callables(mesh, basis, geodesics):
+    for qualified, function, doc, bound in _callables(mesh, basis, geodesics, evaluator):
         short = qualified.split(".")[-1]
         signatures = _signatures(doc)
         for parameters in signatures:
@@ -81,10 +82,10 @@ def test_every_refused_argument_is_named(mesh_path):
                     assert message.startswith(f"{short}(): no overload takes these arguments:"), (qualified, message)
                     assert f"argument '{parameter}' must be " in message, (qualified, message)
                 checked.add(qualified)
-    # all 55 callables but the seven whose parameters are only arrays (handle) or none at all:
+    # all 58 callables but the seven whose parameters are only arrays (handle) or none at all:
     # LimitBasis.has_limit_surface, .limit_positions, .vertex_limit_matrix, HeatGeodesics.distance,
     # .source_values, Mesh.with_positions, rigid_body_modes
-    assert len(checked) == 48, sorted(checked)
+    assert len(checked) == 51, sorted(checked)
 
 
 def test_the_message_says_what_was_given_and_how_to_fix_it(mesh_path):
