@@ -66,14 +66,21 @@ def write_moved(source: Path, target: Path, moved: np.ndarray) -> None:
     target.write_text("\n".join(out) + "\n", encoding="utf-8")
 
 
+def refined(work: Path, mesh: str, levels: int) -> Path:
+    return work / f"{Path(mesh).stem}_L{levels}.obj"
+
+
+def refine(cli: str, work: Path, mesh: str, levels: int) -> None:
+    sl.run_cli(cli, "subdivide", sl.mesh(mesh), "--scheme", "catmull-clark", "--levels", str(levels),
+               "-o", str(refined(work, mesh, levels)))
+
+
 def run_case(cli: str, work: Path, mesh: str, levels: int, sigma: float, seed: int) -> dict:
+    """One noisy reversal of the refinement refine() wrote."""
     original = read_obj_vertices(Path(sl.mesh(mesh)))
     diagonal = float(np.linalg.norm(original.max(axis=0) - original.min(axis=0)))
-    stem = f"{Path(mesh).stem}_L{levels}"
-    fine = work / f"{stem}.obj"
-    if not fine.exists():
-        sl.run_cli(cli, "subdivide", sl.mesh(mesh), "--scheme", "catmull-clark", "--levels", str(levels),
-                   "-o", str(fine))
+    fine = refined(work, mesh, levels)
+    stem = fine.stem
     noisy = work / f"{stem}_s{sigma:g}.obj"
     points = read_obj_vertices(fine)
     rng = np.random.default_rng(seed)
@@ -104,9 +111,7 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         # One refinement per (mesh, L) first, then the noisy reversals side by side.
-        for mesh in meshes:
-            for L in levels:
-                run_case(args.limsurf, work, mesh, L, 0.0, 0)
+        sl.run_all(args.jobs, [lambda m=m, L=L: refine(args.limsurf, work, m, L) for m in meshes for L in levels])
         tasks = [lambda c=c, i=i: run_case(args.limsurf, work, *c, seed=1000 + i) for i, c in enumerate(cases)]
         rows = sl.run_all(args.jobs, tasks)
     sl.write_csv(args.outdir / f"{NAME}.csv", COLUMNS, rows)

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_studies import REPO, check_columns, check_images, num, run_study  # noqa: E402
+from test_studies import REPO, check_columns, check_images, num, study_outdir  # noqa: E402
 
 COLUMNS = ["mesh", "levels", "sigma", "fine_vertices", "fine_faces", "coarse_vertices", "coarse_faces",
            "first_level_fine_vertices", "first_level_coarse_vertices", "residual_rms", "residual_max",
@@ -32,10 +32,7 @@ def counts(mesh: str) -> tuple[int, int]:
 
 @pytest.fixture(scope="module")
 def outdir(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("reverse")
-    stdout = run_study("reverse", out)
-    assert "| mesh | L | sigma |" in stdout
-    return out
+    return study_outdir(tmp_path_factory, "reverse", "| mesh | L | sigma |")
 
 
 @pytest.fixture(scope="module")

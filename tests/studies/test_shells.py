@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_studies import check_columns, check_images, num, run_study  # noqa: E402
+from test_studies import check_columns, check_images, num, study_outdir  # noqa: E402
 
 COLUMNS = ["problem", "level", "vertices", "faces", "unknowns", "rigid_motions_removed", "strain_energy",
            "displacement", "reference", "ratio", "relative_error", "change"]
@@ -27,10 +27,7 @@ COLUMNS = ["problem", "level", "vertices", "faces", "unknowns", "rigid_motions_r
 
 @pytest.fixture(scope="module")
 def outdir(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("shells")
-    stdout = run_study("shells", out)
-    assert "| problem | level | control vertices |" in stdout
-    return out
+    return study_outdir(tmp_path_factory, "shells", "| problem | level | control vertices |")
 
 
 @pytest.fixture(scope="module")

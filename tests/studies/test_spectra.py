@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_studies import check_columns, check_images, num, run_study  # noqa: E402
+from test_studies import check_columns, check_images, num, study_outdir  # noqa: E402
 
 COLUMNS = ["scheme", "valence", "weights", "rings", "size", "lambda", "closed_form", "lambda_multiplicity",
            "next", "next_multiplicity", "lambda_squared", "next_over_lambda_squared", "c1_spectrum", "c1",
@@ -39,10 +39,7 @@ def loop(n):
 
 @pytest.fixture(scope="module")
 def outdir(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("spectra")
-    stdout = run_study("spectra", out)
-    assert "| scheme | valence | weights | lambda |" in stdout
-    return out
+    return study_outdir(tmp_path_factory, "spectra", "| scheme | valence | weights | lambda |")
 
 
 @pytest.fixture(scope="module")

@@ -49,6 +49,13 @@ def run_study(name: str, outdir: Path, *extra: str) -> str:
     return r.stdout
 
 
+def study_outdir(tmp_path_factory, name: str, table_header: str) -> Path:
+    """The study run once with --quick into a temporary directory; its printed table starts with table_header."""
+    out = tmp_path_factory.mktemp(name)
+    assert table_header in run_study(name, out)
+    return out
+
+
 def read_csv(path: Path) -> tuple[list[str], list[dict[str, str]]]:
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.DictReader(f)
