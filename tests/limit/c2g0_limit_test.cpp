@@ -306,6 +306,85 @@ TEST(C2g0Limit, RegularPatchReproducesPolynomials) {
     }
 }
 
+namespace power_form {
+#include "limsurf/limit/c2g0_patch_table.inc"
+}  // namespace power_form
+
+TEST(C2g0Limit, RegularPatchIsItsBezierTableByDegreeRaising) {
+    // An independent evaluation of the table's polynomials: c2g0_patch_weights writes each
+    // Bernstein function and its derivatives in powers of the barycentrics; here they come from the
+    // recurrence B^n_ijk = l0 B^(n−1)_(i−1)jk + l1 B^(n−1)_i(j−1)k + l2 B^(n−1)_ij(k−1), and the
+    // derivatives from differences of the Bézier coefficients (a derivative along the barycentric
+    // direction d is of degree n − 1 with coefficients n Σ_x d_x c_(γ+e_x)).
+    using power_form::c2g0_bernstein;
+    using power_form::c2g0_coefficients;
+    const auto index = [](int n, int j, int k) { return k * (n + 1) - k * (k - 1) / 2 + j; };
+    // bernstein[n][index(n, j, k)] at barycentrics (1 − u − v, u, v), n = 0..7.
+    const auto bernstein = [&](double u, double v) {
+        const double l[3] = {1.0 - u - v, u, v};
+        std::vector<std::vector<double>> b{{1.0}};
+        for (int n = 1; n <= 7; ++n) {
+            std::vector<double> next(static_cast<std::size_t>((n + 1) * (n + 2) / 2), 0.0);
+            for (int k = 0; k <= n; ++k) {
+                for (int j = 0; j + k <= n; ++j) {
+                    const std::vector<double>& lower = b.back();
+                    double sum = j + k < n ? l[0] * lower[static_cast<std::size_t>(index(n - 1, j, k))] : 0.0;
+                    sum += j > 0 ? l[1] * lower[static_cast<std::size_t>(index(n - 1, j - 1, k))] : 0.0;
+                    sum += k > 0 ? l[2] * lower[static_cast<std::size_t>(index(n - 1, j, k - 1))] : 0.0;
+                    next[static_cast<std::size_t>(index(n, j, k))] = sum;
+                }
+            }
+            b.push_back(std::move(next));
+        }
+        return b;
+    };
+    std::mt19937_64 random(20261207);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Eigen::Vector2d> points{{0, 0}, {1, 0}, {0, 1}, {1.0 / 3, 1.0 / 3}, {0.5, 0.5}};
+    for (int n = 0; n < 20; ++n) {
+        Eigen::Vector2d p(unit(random), unit(random));
+        if (p.sum() > 1) {
+            p = Eigen::Vector2d(1, 1) - p;
+        }
+        points.push_back(p);
+    }
+    double worst = 0.0;
+    Eigen::Matrix<double, 6, 27> w;
+    for (const Eigen::Vector2d& p : points) {
+        detail::c2g0_patch_weights(p.x(), p.y(), w);
+        const auto b = bernstein(p.x(), p.y());
+        for (int f = 0; f < 27; ++f) {
+            double c[8][8] = {};  // c[j][k]: the coefficient of B^7 with exponents (7 − j − k, j, k)
+            for (int q = 0; q < 36; ++q) {
+                c[c2g0_bernstein[q][0]][c2g0_bernstein[q][1]] =
+                    static_cast<double>(c2g0_coefficients[f][q][0]) / static_cast<double>(c2g0_coefficients[f][q][1]);
+            }
+            double expected[6] = {};
+            for (int k = 0; k <= 7; ++k) {
+                for (int j = 0; j + k <= 7; ++j) {
+                    expected[0] += c[j][k] * b[7][static_cast<std::size_t>(index(7, j, k))];
+                    if (j + k <= 6) {
+                        const double b6 = b[6][static_cast<std::size_t>(index(6, j, k))];
+                        expected[1] += 7.0 * (c[j + 1][k] - c[j][k]) * b6;  // d = (−1, 1, 0)
+                        expected[2] += 7.0 * (c[j][k + 1] - c[j][k]) * b6;  // d = (−1, 0, 1)
+                    }
+                    if (j + k <= 5) {
+                        const double b5 = b[5][static_cast<std::size_t>(index(5, j, k))];
+                        expected[3] += 42.0 * (c[j + 2][k] - 2.0 * c[j + 1][k] + c[j][k]) * b5;
+                        expected[4] += 42.0 * (c[j + 1][k + 1] - c[j + 1][k] - c[j][k + 1] + c[j][k]) * b5;
+                        expected[5] += 42.0 * (c[j][k + 2] - 2.0 * c[j][k + 1] + c[j][k]) * b5;
+                    }
+                }
+            }
+            for (int r = 0; r < 6; ++r) {
+                worst = std::max(worst, std::abs(w(r, f) - expected[r]));
+            }
+        }
+    }
+    EXPECT_LT(worst, 1e-13);
+    RecordProperty("degree_raising_difference", format(worst));
+}
+
 TEST(C2g0Limit, VertexLimitsAndSnappingMatrix) {
     const ControlMesh mesh = load("tetra_2");
     const Topology& t = mesh.topology();
@@ -335,8 +414,12 @@ TEST(C2g0Limit, CurvatureConvergesAtValence3Vertices) {
     // faces and along different directions, H and K converge to common values (spread like the
     // distance h); on the sphere-like tetra_3 the limit has K > 0 (not a flat spot). The ptex
     // derivatives at distance h from the vertex scale like h (λ = 1/4 per halving): |∂u| halves.
-    // (The ptex chart is singular there, so curvature from ptex derivatives loses about 4^k ε:
-    // checked up to h = 2^-16.)
+    // (The ptex chart is singular there, so curvature from ptex derivatives loses about 4^k ε: the
+    // normal part of the second derivatives shrinks like h² while their rounding does not. The
+    // spread of K shrinks about 8× from 2^-8 to 2^-11 to 2^-14 (truncation), then grows again by
+    // 2^-16, where rounding is as large as the truncation (6.8e-5 → 1.7e-4; 6.5e-5 → 2.3e-4 with
+    // patch weights that differ from these in their last bits). So its decrease is asserted
+    // through 2^-14, and the bound 64 h |K| up to 2^-16.)
     const ControlMesh mesh = load("tetra_3");
     const Topology& t = mesh.topology();
     const LimitBasis basis(t, SchemeKind::C2g0);
@@ -349,7 +432,7 @@ TEST(C2g0Limit, CurvatureConvergesAtValence3Vertices) {
         const auto faces = t.vertex_faces(v);
         const auto corners = t.vertex_face_corners(v);
         double previous_spread = 1e300;
-        for (const int k : {8, 12, 16}) {
+        for (const int k : {8, 11, 14, 16}) {
             std::vector<double> H;
             std::vector<double> K;
             const double h = std::ldexp(1.0, -k);
@@ -374,7 +457,9 @@ TEST(C2g0Limit, CurvatureConvergesAtValence3Vertices) {
             const auto [kmin, kmax] = std::minmax_element(K.begin(), K.end());
             EXPECT_LT(*hmax - *hmin, 64 * h * std::abs(*hmax)) << "vertex " << v << " at 2^-" << k;
             EXPECT_LT(*kmax - *kmin, 64 * h * std::abs(*kmax)) << "vertex " << v << " at 2^-" << k;
-            EXPECT_LT(*kmax - *kmin, previous_spread) << "vertex " << v << " at 2^-" << k;
+            if (k <= 14) {
+                EXPECT_LT(*kmax - *kmin, previous_spread) << "vertex " << v << " at 2^-" << k;
+            }
             previous_spread = *kmax - *kmin;
             EXPECT_GT(*kmin, 0.0) << "vertex " << v << " at 2^-" << k;
         }

@@ -19,6 +19,8 @@
 
 #include "limsurf/core/error.h"
 #include "limsurf/detail/c2g0_stencils.h"
+#include "limsurf/detail/target_clones.h"
+#include "limsurf/detail/vector_lanes.h"
 #include "limsurf/refine/refine.h"
 #include "limsurf/scheme/c2g0.h"
 #include "parameter_maps.h"
@@ -281,64 +283,176 @@ std::array<std::array<int, 2>, 27> c2g0_patch_offsets() {
     return out;
 }
 
-void c2g0_patch_weights(double u, double v, Eigen::Matrix<double, 6, 27>& out) {
-    static const Eigen::Matrix<double, 27, 36> Q = [] {
-        Eigen::Matrix<double, 27, 36> q;
-        for (int i = 0; i < 27; ++i) {
-            for (int b = 0; b < 36; ++b) {
-                q(i, b) =
-                    static_cast<double>(c2g0_coefficients[i][b][0]) / static_cast<double>(c2g0_coefficients[i][b][1]);
+namespace {
+
+/// The 27 functions of the regular patch, padded with a zero 28th: whole vector registers.
+constexpr int padded_functions = 28;
+
+/// What the power form of each degree-7 Bernstein function b (c2g0_bernstein) and of its
+/// derivatives needs: b = c l0^e0 l1^e1 l2^e2, ∂b/∂l_x = (c e_x) l_x^(e_x − 1) Π_(z≠x) l_z^e_z, and
+/// ∂²b/∂l_x∂l_y = c Π_z f_z l_z^(e_z − [z=x] − [z=y]) with f_z the falling factor (e_z(e_z − 1),
+/// e_z or 1; 0 where the power would be negative). Powers are read as power[z][exponent + 1]
+/// (power[z][0] = 0 stands for a negative one).
+struct PowerForm {
+    struct Function {
+        double c = 0.0;
+        int e[3] = {};
+        double de[3] = {};         // c e_x
+        double factor[6][3] = {};  // of the pairs (1,1), (0,1), (0,0), (1,2), (0,2), (2,2)
+        int power_index[6][3] = {};
+    };
+    Function b[36];
+    static constexpr int pairs[6][2] = {{1, 1}, {0, 1}, {0, 0}, {1, 2}, {0, 2}, {2, 2}};
+
+    PowerForm() {
+        constexpr double factorial[8] = {1, 1, 2, 6, 24, 120, 720, 5040};
+        for (int n = 0; n < 36; ++n) {
+            Function& f = b[n];
+            f.e[1] = c2g0_bernstein[n][0];
+            f.e[2] = c2g0_bernstein[n][1];
+            f.e[0] = 7 - f.e[1] - f.e[2];
+            f.c = factorial[7] / (factorial[f.e[0]] * factorial[f.e[1]] * factorial[f.e[2]]);
+            for (int x = 0; x < 3; ++x) {
+                f.de[x] = f.c * f.e[x];
             }
-        }
-        return q;
-    }();
-    // Powers of the barycentrics l0 = 1 - u - v, l1 = u, l2 = v.
-    const double l[3] = {1.0 - u - v, u, v};
-    double pw[3][8];
-    for (int c = 0; c < 3; ++c) {
-        pw[c][0] = 1.0;
-        for (int e = 1; e < 8; ++e) {
-            pw[c][e] = pw[c][e - 1] * l[c];
-        }
-    }
-    const auto power = [&](int c, int e) { return e < 0 ? 0.0 : pw[c][e]; };
-    constexpr double factorial[8] = {1, 1, 2, 6, 24, 120, 720, 5040};
-    Eigen::Matrix<double, 36, 6> basis;
-    for (int b = 0; b < 36; ++b) {
-        const int j = c2g0_bernstein[b][0];
-        const int k = c2g0_bernstein[b][1];
-        const int i = 7 - j - k;
-        const int e[3] = {i, j, k};
-        const double c = factorial[7] / (factorial[i] * factorial[j] * factorial[k]);
-        // d[x] = ∂/∂l_x, dd[x][y] = ∂²/∂l_x∂l_y of c · l0^i l1^j l2^k.
-        double d[3];
-        double dd[3][3];
-        for (int x = 0; x < 3; ++x) {
-            double p = c * e[x] * power(x, e[x] - 1);
-            for (int z = 0; z < 3; ++z) {
-                if (z != x) {
-                    p *= power(z, e[z]);
-                }
-            }
-            d[x] = p;
-            for (int y = 0; y < 3; ++y) {
-                double q = c;
+            for (int p = 0; p < 6; ++p) {
+                const int x = pairs[p][0];
+                const int y = pairs[p][1];
                 for (int z = 0; z < 3; ++z) {
-                    const int ez = e[z] - (z == x ? 1 : 0) - (z == y ? 1 : 0);
-                    const int factor = x == y ? (z == x ? e[z] * (e[z] - 1) : 1) : (z == x || z == y ? e[z] : 1);
-                    q *= factor == 0 ? 0.0 : factor * power(z, ez);
+                    const int ez = f.e[z] - (z == x ? 1 : 0) - (z == y ? 1 : 0);
+                    const int factor = x == y ? (z == x ? f.e[z] * (f.e[z] - 1) : 1) : (z == x || z == y ? f.e[z] : 1);
+                    f.factor[p][z] = factor;
+                    f.power_index[p][z] = factor == 0 ? 0 : ez + 1;  // factor 0: any finite power
                 }
-                dd[x][y] = q;
             }
         }
-        basis(b, 0) = c * power(0, i) * power(1, j) * power(2, k);
-        basis(b, 1) = d[1] - d[0];
-        basis(b, 2) = d[2] - d[0];
-        basis(b, 3) = dd[1][1] - 2.0 * dd[0][1] + dd[0][0];
-        basis(b, 4) = dd[1][2] - dd[0][1] - dd[0][2] + dd[0][0];
-        basis(b, 5) = dd[2][2] - 2.0 * dd[0][2] + dd[0][0];
     }
-    out.noalias() = (Q * basis).transpose();
+};
+
+/// The patch's Bézier table as a 28 × 36 matrix (function × Bernstein function), by columns.
+Eigen::Matrix<double, padded_functions, 36> bezier_table() {
+    Eigen::Matrix<double, padded_functions, 36> q = Eigen::Matrix<double, padded_functions, 36>::Zero();
+    for (int i = 0; i < 27; ++i) {
+        for (int b = 0; b < 36; ++b) {
+            q(i, b) = static_cast<double>(c2g0_coefficients[i][b][0]) / static_cast<double>(c2g0_coefficients[i][b][1]);
+        }
+    }
+    return q;
+}
+
+/// basis[r][b]: row r (value, ∂u, ∂v, ∂uu, ∂uv, ∂vv) of Bernstein function b at barycentrics
+/// (l0, l1, l2) = (1 − u − v, u, v); ∂u = ∂l1 − ∂l0 and ∂v = ∂l2 − ∂l0.
+void bernstein_rows(const PowerForm& form, double u, double v, double (&basis)[6][36]) {
+    const double l[3] = {1.0 - u - v, u, v};
+    double power[3][9];  // power[z][e + 1] = l_z^e, power[z][0] = 0
+    for (int z = 0; z < 3; ++z) {
+        power[z][0] = 0.0;
+        power[z][1] = 1.0;
+        for (int e = 1; e < 8; ++e) {
+            power[z][e + 1] = power[z][e] * l[z];
+        }
+    }
+    for (int n = 0; n < 36; ++n) {
+        const PowerForm::Function& f = form.b[n];
+        const double* p0 = power[0];
+        const double* p1 = power[1];
+        const double* p2 = power[2];
+        const double d0 = f.de[0] * p0[f.e[0]] * p1[f.e[1] + 1] * p2[f.e[2] + 1];
+        const double d1 = f.de[1] * p1[f.e[1]] * p0[f.e[0] + 1] * p2[f.e[2] + 1];
+        const double d2 = f.de[2] * p2[f.e[2]] * p0[f.e[0] + 1] * p1[f.e[1] + 1];
+        double dd[6];
+        for (int p = 0; p < 6; ++p) {
+            dd[p] = f.c * (f.factor[p][0] * p0[f.power_index[p][0]]) * (f.factor[p][1] * p1[f.power_index[p][1]]) *
+                    (f.factor[p][2] * p2[f.power_index[p][2]]);
+        }
+        basis[0][n] = f.c * p0[f.e[0] + 1] * p1[f.e[1] + 1] * p2[f.e[2] + 1];
+        basis[1][n] = d1 - d0;
+        basis[2][n] = d2 - d0;
+        basis[3][n] = dd[0] - 2.0 * dd[1] + dd[2];
+        basis[4][n] = dd[3] - dd[1] - dd[4] + dd[2];
+        basis[5][n] = dd[5] - 2.0 * dd[4] + dd[2];
+    }
+}
+
+/// sums[r][i] = Σ_b table(i, b) basis[r][b], each a sum over b in order, the 28 functions side by
+/// side in Lanes<N> vectors (detail/vector_lanes.h): the same bits for every N (this file is
+/// compiled without contraction).
+template <int N>
+[[gnu::always_inline]] inline void table_products(const double* table, const double (&basis)[6][36],
+                                                  double (&sums)[6][padded_functions]) {
+    using Vector = typename Lanes<N, N>::Native;
+    constexpr int parts = padded_functions / N;
+    for (int r = 0; r < 6; ++r) {
+        Vector sum[parts] = {};  // fully unrolled below, so held in registers
+        for (int b = 0; b < 36; ++b) {
+            const double x = basis[r][b];
+#pragma GCC unroll 16
+            for (int p = 0; p < parts; ++p) {
+                Vector column;
+                __builtin_memcpy(&column, table + padded_functions * b + N * p, sizeof column);
+                sum[p] += column * x;
+            }
+        }
+#pragma GCC unroll 16
+        for (int p = 0; p < parts; ++p) {
+            __builtin_memcpy(sums[r] + N * p, &sum[p], sizeof sum[p]);
+        }
+    }
+}
+
+#ifdef LIMSURF_ISA_VARIANTS
+// AVX2 (4 doubles) also on AVX-512 machines: 28 sums are 7 of its registers, not whole ones of 8.
+LIMSURF_TARGET_AVX2 void table_products_avx2(const double* table, const double (&basis)[6][36],
+                                             double (&sums)[6][padded_functions]) {
+    table_products<4>(table, basis, sums);
+}
+#endif
+
+}  // namespace
+
+void c2g0_patch_weights(double u, double v, Eigen::Matrix<double, 6, 27>& out) {
+    static const PowerForm form;
+    static const Eigen::Matrix<double, padded_functions, 36> table = bezier_table();
+    double basis[6][36];
+    bernstein_rows(form, u, v, basis);
+    double sums[6][padded_functions];
+#ifdef LIMSURF_ISA_VARIANTS
+    if (vector_doubles() >= 4) {
+        table_products_avx2(table.data(), basis, sums);
+    } else {
+        table_products<2>(table.data(), basis, sums);
+    }
+#else
+    table_products<2>(table.data(), basis, sums);
+#endif
+    // Functions 24 and 25 in rows 0–3 are summed as Eigen's product (table · basis) summed them
+    // when this function used it (its 2 × 4 corner block takes the even and the odd b < 32 apart,
+    // then the rest): the same bits as before, so that no result moves in its last bits. The
+    // membrane solves are chaotic in them (docs/membrane.md, "(3.12) is not convex").
+    double even[2][4] = {};  // the eight sums side by side: independent chains, not one after another
+    double odd[2][4] = {};
+    for (int b = 0; b < 32; b += 2) {
+        for (int i = 0; i < 2; ++i) {
+            for (int r = 0; r < 4; ++r) {
+                even[i][r] += table(24 + i, b) * basis[r][b];
+                odd[i][r] += table(24 + i, b + 1) * basis[r][b + 1];
+            }
+        }
+    }
+    for (int i = 0; i < 2; ++i) {
+        for (int r = 0; r < 4; ++r) {
+            double sum = even[i][r] + odd[i][r];
+            for (int b = 32; b < 36; ++b) {
+                sum += table(24 + i, b) * basis[r][b];
+            }
+            sums[r][24 + i] = sum;
+        }
+    }
+    for (int r = 0; r < 6; ++r) {
+        for (int i = 0; i < 27; ++i) {
+            out(r, i) = sums[r][i];
+        }
+    }
 }
 
 // --- the evaluator -----------------------------------------------------------------------------
@@ -373,6 +487,7 @@ struct C2g0Limit::Impl {
     struct Face {
         int star = -1;                          ///< -1: type 0
         std::array<Index, 27> points{};         ///< type 0: vertices of `mesh`
+        bool distinct_points = false;           ///< type 0: no vertex twice among `points`
         int sector = 0;                         ///< near: the sector of the face
         std::array<Eigen::Vector2d, 3> corner;  ///< near: sector coordinates of v0, v1, v2
     };
@@ -535,9 +650,14 @@ void C2g0Limit::Impl::evaluate_mesh(Index f, double u, double v, std::vector<Ind
     Eigen::Matrix<double, 6, 27> r;
     if (face.star < 0) {
         c2g0_patch_weights(u, v, b);
+        if (face.distinct_points) {
+            support.assign(face.points.begin(), face.points.end());
+            rows = b;
+            return;
+        }
         support.clear();
         rows.setZero(6, 27);
-        for (int k = 0; k < 27; ++k) {
+        for (int k = 0; k < 27; ++k) {  // a small closed mesh: a point stands for several lattice points
             const Index x = face.points[at(k)];
             auto it = std::find(support.begin(), support.end(), x);
             if (it == support.end()) {
@@ -677,6 +797,9 @@ C2g0Limit::C2g0Limit(const Topology& topology, LimitEvaluation evaluation) : imp
         Impl::Face& face = m.faces[at(f)];
         face.points.fill(invalid_index);
         if (gather_lattice(m.mesh, v[0], v[1], face.points, bad)) {
+            std::array<Index, 27> sorted = face.points;
+            std::sort(sorted.begin(), sorted.end());
+            face.distinct_points = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
             continue;
         }
         face.points.fill(invalid_index);
