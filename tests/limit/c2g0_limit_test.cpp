@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/LU>
@@ -383,6 +385,78 @@ TEST(C2g0Limit, RegularPatchIsItsBezierTableByDegreeRaising) {
     }
     EXPECT_LT(worst, 1e-13);
     RecordProperty("degree_raising_difference", format(worst));
+}
+
+TEST(C2g0Limit, RepeatedPointsGiveTheBitsOfTheFirstEvaluation) {
+    // The evaluator keeps the regular patch's weights of the points it has met (a fixed table,
+    // filled by whichever thread comes first): a point met again, on any face and from any
+    // thread, must give the bits of a fresh computation. On a regular torus (every face a type-0
+    // patch whose 27 lattice points are distinct vertices) each point's rows are
+    // c2g0_patch_weights' over the face's lattice. The points: a quadrature rule's on every face
+    // (repeated on every face, as the sampler places them) and 3000 random ones (more than the
+    // table holds), through four threads at once on a fresh evaluator.
+    constexpr Index n = 12;
+    const auto id = [](Index i, Index j) { return ((i + n) % n) * n + (j + n) % n; };
+    std::vector<std::vector<Index>> faces;
+    for (Index i = 0; i < n; ++i) {
+        for (Index j = 0; j < n; ++j) {
+            faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    }
+    const Topology t = Topology::from_polygons(n * n, faces);
+    std::vector<SurfacePoint> points;
+    const std::array<Eigen::Vector2d, 4> rule{Eigen::Vector2d(1.0 / 3, 1.0 / 3), Eigen::Vector2d(0.6, 0.2),
+                                              Eigen::Vector2d(0.2, 0.6), Eigen::Vector2d(0.2, 0.2)};
+    for (Index f = 0; f < t.num_faces(); ++f) {
+        for (const Eigen::Vector2d& p : rule) {
+            points.push_back({f, p.x(), p.y()});
+        }
+    }
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::uniform_int_distribution<Index> face(0, t.num_faces() - 1);
+    for (int k = 0; k < 3000; ++k) {
+        double u = unit(random);
+        double v = unit(random);
+        if (u + v > 1) {
+            u = 1 - u;
+            v = 1 - v;
+        }
+        points.push_back({face(random), u, v});
+    }
+    const auto evaluate_all = [&](const LimitBasis& basis, std::vector<LimitWeights>& out, std::size_t first,
+                                  std::size_t step) {
+        for (std::size_t i = first; i < points.size(); i += step) {
+            basis.evaluate(points[i], out[i], DerivativeOrder::Second);
+        }
+    };
+    const LimitBasis first(t, SchemeKind::C2g0);
+    std::vector<LimitWeights> expected(points.size());
+    evaluate_all(first, expected, 0, 1);
+    std::vector<LimitWeights> again(points.size());
+    evaluate_all(first, again, 0, 1);
+    const LimitBasis fresh(t, SchemeKind::C2g0);
+    std::vector<LimitWeights> threaded(points.size());
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < 4; ++k) {
+        threads.emplace_back([&, k] { evaluate_all(fresh, threaded, k, 4); });
+    }
+    for (std::thread& thread : threads) {
+        thread.join();
+    }
+    const auto same_bits = [](const LimitWeights& a, const LimitWeights& b) {
+        return a.vertices == b.vertices && a.w.cols() == b.w.cols() &&
+               std::memcmp(a.w.data(), b.w.data(), sizeof(double) * static_cast<std::size_t>(a.w.size())) == 0;
+    };
+    Eigen::Matrix<double, 6, 27> computed;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        detail::c2g0_patch_weights(points[i].u, points[i].v, computed);
+        ASSERT_EQ(expected[i].w.cols(), 27) << "point " << i;
+        ASSERT_EQ(std::memcmp(expected[i].w.data(), computed.data(), sizeof(double) * 6 * 27), 0) << "point " << i;
+        ASSERT_TRUE(same_bits(expected[i], again[i])) << "point " << i;
+        ASSERT_TRUE(same_bits(expected[i], threaded[i])) << "point " << i;
+    }
 }
 
 TEST(C2g0Limit, VertexLimitsAndSnappingMatrix) {
