@@ -308,9 +308,9 @@ TEST(C2g0Limit, RegularPatchReproducesPolynomials) {
     }
 }
 
-namespace power_form {
+namespace patch_table {
 #include "limsurf/limit/c2g0_patch_table.inc"
-}  // namespace power_form
+}  // namespace patch_table
 
 TEST(C2g0Limit, RegularPatchIsItsBezierTableByDegreeRaising) {
     // An independent evaluation of the table's polynomials: c2g0_patch_weights writes each
@@ -318,8 +318,8 @@ TEST(C2g0Limit, RegularPatchIsItsBezierTableByDegreeRaising) {
     // recurrence B^n_ijk = l0 B^(n−1)_(i−1)jk + l1 B^(n−1)_i(j−1)k + l2 B^(n−1)_ij(k−1), and the
     // derivatives from differences of the Bézier coefficients (a derivative along the barycentric
     // direction d is of degree n − 1 with coefficients n Σ_x d_x c_(γ+e_x)).
-    using power_form::c2g0_bernstein;
-    using power_form::c2g0_coefficients;
+    using patch_table::c2g0_bernstein;
+    using patch_table::c2g0_coefficients;
     const auto index = [](int n, int j, int k) { return k * (n + 1) - k * (k - 1) / 2 + j; };
     // bernstein[n][index(n, j, k)] at barycentrics (1 − u − v, u, v), n = 0..7.
     const auto bernstein = [&](double u, double v) {

@@ -655,7 +655,7 @@ void C2g0Limit::Impl::evaluate_mesh(Index f, double u, double v, std::vector<Ind
     Eigen::Matrix<double, 6, 27> b;
     Eigen::Matrix<double, 6, 27> r;
     if (face.star < 0) {
-        patch_weights.weights(u, v, 0, b, c2g0_patch_weights);
+        patch_weights.weights(u, v, b, c2g0_patch_weights);
         if (face.distinct_points) {
             support.assign(face.points.begin(), face.points.end());
             rows = b;
@@ -730,7 +730,7 @@ void C2g0Limit::Impl::evaluate_mesh(Index f, double u, double v, std::vector<Ind
     const Eigen::Matrix2d Mi = M.inverse();
     const Eigen::Vector2d st = Mi * (xm - Eigen::Vector2d(q0[0], q0[1]));
     const Eigen::Matrix2d L = std::ldexp(1.0, m) * Mi * J;
-    patch_weights.weights(st.x(), st.y(), 0, b, c2g0_patch_weights);
+    patch_weights.weights(st.x(), st.y(), b, c2g0_patch_weights);
     chain(b, L, r);
     const auto found =
         patches.find({complex_id(6, face.sector, q0[0], q0[1]), complex_id(6, face.sector, q1[0], q1[1])});

@@ -1,8 +1,7 @@
 // A patch's weights at the parameter points met before, for the limit evaluators (internal to the
 // limit layer). Most evaluations repeat a handful of points — a quadrature rule's on every face,
-// as the sampler places them — so a fixed table of slots keyed by the bits of (u, v) and a tag
-// (which patch function: a rotation of the regular patch, say), filled first come first served and
-// never emptied, spares recomputing them. Entries are published through atomic pointers: readers
+// as the sampler places them — so a fixed table of slots keyed by the bits of (u, v), filled first
+// come first served and never emptied, spares recomputing them. Entries are published through atomic pointers: readers
 // take no lock, and a thread that finds no entry computes the weights itself. A hit returns the
 // bits the computation would: no result depends on which thread filled the table, or when.
 #pragma once
@@ -22,13 +21,12 @@ namespace limsurf::detail {
 template <class Weights>
 class PointWeightCache {
   public:
-    /// @brief @p out = the weights at (@p u, @p v) under @p tag: the table's, or compute(u, v, out)'s
-    ///   (then kept while the slots last).
+    /// @brief @p out = the weights at (@p u, @p v): the table's, or compute(u, v, out)'s (then kept
+    ///   while the slots last).
     template <class Compute>
-    void weights(double u, double v, int tag, Weights& out, Compute&& compute) const {
-        const Key key{std::bit_cast<std::uint64_t>(u), std::bit_cast<std::uint64_t>(v),
-                      static_cast<std::uint64_t>(tag)};
-        std::uint64_t hash = (key.u * 0x9E3779B97F4A7C15ull) ^ (key.v + 0x632BE59BD9B4E019ull + (key.u << 6) + key.tag);
+    void weights(double u, double v, Weights& out, Compute&& compute) const {
+        const Key key{std::bit_cast<std::uint64_t>(u), std::bit_cast<std::uint64_t>(v)};
+        std::uint64_t hash = (key.u * 0x9E3779B97F4A7C15ull) ^ (key.v + 0x632BE59BD9B4E019ull + (key.u << 6));
         hash ^= hash >> 29;
         Slot* empty = nullptr;
         for (std::size_t probe = 0; probe < max_probes; ++probe) {
@@ -58,7 +56,6 @@ class PointWeightCache {
     struct Key {
         std::uint64_t u = 0;
         std::uint64_t v = 0;
-        std::uint64_t tag = 0;
         bool operator==(const Key&) const = default;
     };
     // The key beside the pointer: a probe that misses reads no entry (on random points a probe

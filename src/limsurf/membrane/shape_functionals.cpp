@@ -6,7 +6,9 @@
 #include "limsurf/membrane/shape_functionals.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <numbers>
@@ -342,20 +344,17 @@ std::size_t ShapeFunctionals::Impl::intern(const ElementKernel& kernel, KernelIn
     const auto bytes = [](const double* data, Eigen::Index size) {
         return std::string_view(reinterpret_cast<const char*>(data), sizeof(double) * static_cast<std::size_t>(size));
     };
-    // The hash reads every 61st entry of the rows (a prime stride, so not always the same row or
-    // slot): hashing all of them took a fifth of the set-up. Kernels that only share the entries
-    // read are told apart by the comparison below.
+    // The hash mixes the bits of every 61st entry of the rows (a prime stride, so not always the
+    // same row or slot): hashing all of them took a fifth of the set-up. Kernels that only share the
+    // entries read are told apart by the comparison below.
     constexpr Eigen::Index stride = 61;
-    std::vector<double> sampled;
-    sampled.reserve(static_cast<std::size_t>(kernel.rows.size() / stride + 1));
+    std::size_t sampled =
+        static_cast<std::size_t>(kernel.rows.rows()) * 131 + static_cast<std::size_t>(kernel.rows.cols());
     for (Eigen::Index i = 0; i < kernel.rows.size(); i += stride) {
-        sampled.push_back(kernel.rows.data()[i]);
+        sampled = (sampled ^ std::bit_cast<std::uint64_t>(kernel.rows.data()[i])) * 1099511628211ull;  // FNV-1a step
     }
     const std::hash<std::string_view> hash_of;
-    const std::size_t hash =
-        hash_of(bytes(sampled.data(), static_cast<Eigen::Index>(sampled.size()))) ^
-        (31 * hash_of(bytes(kernel.weights.data(), kernel.num_samples())) +
-         static_cast<std::size_t>(kernel.rows.cols()) + 131 * static_cast<std::size_t>(kernel.rows.rows()));
+    const std::size_t hash = sampled ^ (31 * hash_of(bytes(kernel.weights.data(), kernel.num_samples())));
     const auto [begin, end] = index.equal_range(hash);
     for (auto it = begin; it != end; ++it) {  // equal hashes: compared entry by entry
         const ElementKernel& other = kernels[it->second];
