@@ -48,6 +48,8 @@ COMMANDS = [
     ["membrane", "{m}", "--scheme", "{s}", "--evaluate-only", "--json"],
     ["membrane", "{m}", "--scheme", "{s}", "--area", "12.566", "--reduced-volume", "0.9", "--max-iterations", "5",
      "--json", "-o", "{w}/mb.obj"],
+    ["membrane", "{m}", "--scheme", "{s}", "--area", "12.566", "--reduced-volume", "0.7", "--max-iterations", "3",
+     "--continuation", "2", "--json", "-o", "{w}/mb.obj"],
     ["plate", "{m}", "--json"], ["shell", "{m}", "--scheme", "{s}", "--pressure", "1", "--json"],
     ["elasticity", "{m}", "--json"], ["reverse", "{m}", "-o", "{w}/rv.obj"],
 ]

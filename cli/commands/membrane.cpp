@@ -1,7 +1,7 @@
 // limsurf membrane MESH --scheme c2g0|loop|catmull-clark --area A0 (--volume V0 | --reduced-volume v0)
 //   [--mean-curvature M0 | --reduced-mean-curvature m0] [--spontaneous-curvature H0]
 //   [--regularize-harmonic EPS [--regularization-hessian H]] [--max-iterations K] [--tolerance T]
-//   [--hessian limited-memory|exact] [--degree D] [--threads N]
+//   [--hessian limited-memory|exact] [--continuation K] [--degree D] [--threads N]
 //   -o OUT.obj [--field-output OUT.vtk] [--resolution N] [--intersection-resolution N] [--json]
 // limsurf membrane MESH --scheme S --evaluate-only [--spontaneous-curvature H0] [--field-output OUT.vtk] [--json]:
 // biomembrane shapes (c2g0-sphere-scheme-biomembranes §3; apps/membrane.h, docs/guide/membrane.md):
@@ -59,6 +59,7 @@ struct MembraneCommandOptions {
     double objective_tolerance = 1e-7;
     std::string hessian = "limited-memory";
     std::string regularization_hessian;  // empty: --hessian's
+    int continuation_steps = 1;
     int degree = 8;
     int threads = 0;
     bool evaluate_only = false;
@@ -166,6 +167,7 @@ MembraneRequest request_of(const MembraneCommandOptions& options) {
     request.tolerance = options.tolerance;
     request.objective_tolerance = options.objective_tolerance;
     request.hessian = parse_membrane_hessian(options.hessian);
+    request.continuation_steps = options.continuation_steps;
     if (!options.regularization_hessian.empty()) {
         request.regularization_hessian = parse_membrane_hessian(options.regularization_hessian);
     }
@@ -232,9 +234,9 @@ void write_outputs(const MembraneCommandOptions& options, const ControlMesh& mes
 void print_progress(MembraneStage stage, const MembraneIteration& it) {
     std::ostringstream line;
     line << std::setprecision(10) << to_string(stage) << " iteration " << std::setw(4) << it.iteration
-         << (it.restoration ? "r" : " ") << " objective " << it.objective << std::setprecision(3) << std::scientific
-         << "  violation " << it.constraint_violation << "  dual " << it.dual_infeasibility << "  step " << it.step
-         << '\n';
+         << (it.restoration ? "r" : (it.watchdog ? "w" : " ")) << " objective " << it.objective << std::setprecision(3)
+         << std::scientific << "  violation " << it.constraint_violation << "  dual " << it.dual_infeasibility
+         << "  step " << it.step << '\n';
     std::cerr << line.str() << std::flush;
 }
 
@@ -307,6 +309,10 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
                        {"scale", run.scale},
                        {"spontaneous_curvature", optional_json(request.spontaneous_curvature)}};
     out.update(stage_json(run.problem, run.shape, request.spontaneous_curvature));
+    out["continuation"] = nlohmann::json::array();
+    for (const MembraneContinuationStep& step : run.continuation) {
+        out["continuation"].push_back(stage_json(step.problem, step.result, request.spontaneous_curvature));
+    }
     out["regularization"] = nullptr;
     if (run.regularization) {
         out["regularization"] =
@@ -351,6 +357,14 @@ int solve_and_report(const MembraneCommandOptions& options, const MembraneReques
     std::cout << "membrane    " << options.scheme << ", " << mesh.num_vertices() << " vertices ("
               << 3 * mesh.num_vertices() << " unknowns), initial guess scaled by " << std::setprecision(6) << run.scale
               << '\n';
+    if (!run.continuation.empty()) {
+        int iterations = 0;
+        for (const MembraneContinuationStep& step : run.continuation) {
+            iterations += step.result.iterations;
+        }
+        std::cout << "continued   in " << run.continuation.size() + 1 << " steps, the first " << run.continuation.size()
+                  << " taking " << iterations << " iterations\n";
+    }
     print_stage_text("shape      ", out);
     if (run.regularization) {
         print_stage_text("regularized", out["regularization"]);
@@ -440,6 +454,11 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
                         "The same for the regularisation (3.12) only (default: --hessian's)")
             ->check(CLI::IsMember({"limited-memory", "exact"}));
     regularization_hessian->needs(regularize);
+    CLI::Option* continuation =
+        cmd->add_option("--continuation", options->continuation_steps,
+                        "Reach the volume (and mean curvature) targets in K steps from the start's, each a solve "
+                        "from the last (default 1: at once; docs/guide/membrane.md)")
+            ->check(CLI::Range(1, max_continuation_steps));
     cmd->add_option("--degree", options->degree, "Quadrature degree per tile (default 8)");
     cmd->add_flag("--no-sum-factorisation", options->dense_kernels,
                   "Evaluate regular Catmull-Clark faces through their dense kernels as every other face (for "
@@ -461,7 +480,7 @@ void add_membrane_command(CLI::App& app, CommandStatus& status) {
                     "(1..256; default: about 40000 points)")
         ->check(CLI::Range(1, 256));
     for (CLI::Option* solve_only : {area, volume, reduced_volume, mean, reduced_mean, regularize, iterations, tolerance,
-                                    objective_tolerance, hessian, regularization_hessian, output}) {
+                                    objective_tolerance, hessian, regularization_hessian, continuation, output}) {
         evaluate->excludes(solve_only);
     }
     cmd->add_flag("--json", options->json, "Print JSON on stdout (progress still goes to stderr)");

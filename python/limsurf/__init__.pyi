@@ -331,13 +331,14 @@ class ShapeFunctionals(TypedDict, total=False):
     gradient: dict[str, FloatArray]
 
 class MembraneIterationReport(TypedDict):
-    stage: Literal["shape", "regularization"]
+    stage: Literal["continuation", "shape", "regularization"]
     iteration: int
     objective: float
     constraint_violation: float
     dual_infeasibility: float
     step: float
     restoration: bool  # Ipopt's restoration phase; the regular iteration leaving it repeats its last number
+    watchdog: bool  # a trial step of Ipopt's watchdog procedure (not tested by the filter)
 
 @overload
 def shape_functionals(mesh: Mesh, scheme: MembraneScheme, *, X: ArrayLike | None = None, gradients: bool = True,
@@ -355,7 +356,7 @@ def minimize_membrane(mesh: Mesh, scheme: MembraneScheme, *, area: float, volume
                       reduced_mean_curvature: float | None = None, spontaneous_curvature: float | None = None,
                       regularize_harmonic: float | None = None, max_iterations: int = 1000, tolerance: float = 1e-8,
                       objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
-                      regularization_hessian: MembraneHessian | None = None,
+                      regularization_hessian: MembraneHessian | None = None, continuation_steps: int = 1,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0,
                       sum_factorisation: bool = True) -> dict[str, object]: ...
@@ -366,7 +367,7 @@ def minimize_membrane(V: ArrayLike, F: ArrayLike | list[ArrayLike], scheme: Memb
                       spontaneous_curvature: float | None = None, regularize_harmonic: float | None = None,
                       max_iterations: int = 1000, tolerance: float = 1e-8,
                       objective_tolerance: float = 1e-7, hessian: MembraneHessian = "limited-memory",
-                      regularization_hessian: MembraneHessian | None = None,
+                      regularization_hessian: MembraneHessian | None = None, continuation_steps: int = 1,
                       callback: Callable[[MembraneIterationReport], bool | None] | None = None, degree: int = 8,
                       subdivide_near_extraordinary: int = 3, threads: int = 0,
                       sum_factorisation: bool = True) -> dict[str, object]: ...

@@ -258,6 +258,11 @@ py::dict run_dict(const std::string& scheme, const Mesh& mesh, const ShapeFuncti
     for (const auto& [key, value] : stage_dict(run.problem, run.shape, request.spontaneous_curvature)) {
         out[key] = value;
     }
+    py::list continuation;
+    for (const MembraneContinuationStep& step : run.continuation) {
+        continuation.append(stage_dict(step.problem, step.result, request.spontaneous_curvature));
+    }
+    out["continuation"] = continuation;
     out["regularization"] = py::none();
     if (run.regularization) {
         py::dict stage = stage_dict(*run.regularization_problem, *run.regularization, request.spontaneous_curvature);
@@ -282,7 +287,7 @@ MembraneProgress progress_of(const std::optional<py::function>& callback, std::e
             const py::object answer = (*callback)(py::dict(
                 "stage"_a = to_string(stage), "iteration"_a = it.iteration, "objective"_a = it.objective,
                 "constraint_violation"_a = it.constraint_violation, "dual_infeasibility"_a = it.dual_infeasibility,
-                "step"_a = it.step, "restoration"_a = it.restoration));
+                "step"_a = it.step, "restoration"_a = it.restoration, "watchdog"_a = it.watchdog));
             return answer.is_none() || static_cast<bool>(py::bool_(answer));
         } catch (...) {
             error = std::current_exception();
@@ -317,7 +322,7 @@ MembraneRequest request_of(double area, std::optional<double> volume, std::optio
                            std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
                            std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
                            int max_iterations, double tolerance, double objective_tolerance, const std::string& hessian,
-                           const std::optional<std::string>& regularization_hessian) {
+                           const std::optional<std::string>& regularization_hessian, int continuation_steps) {
     const auto parse = [](const std::string& name, const char* argument) {
         LIMSURF_CHECK(name == "limited-memory" || name == "exact", InputError, argument,
                       ": 'limited-memory' or 'exact', not '", name, "'");
@@ -335,6 +340,7 @@ MembraneRequest request_of(double area, std::optional<double> volume, std::optio
     request.tolerance = tolerance;
     request.objective_tolerance = objective_tolerance;
     request.hessian = parse(hessian, "hessian");
+    request.continuation_steps = continuation_steps;
     if (regularization_hessian) {
         LIMSURF_CHECK(regularize_harmonic.has_value(), InputError,
                       "regularization_hessian needs regularize_harmonic (there is no regularisation to solve)");
@@ -364,10 +370,14 @@ minimize_membrane(mesh, scheme, area=..., ...) or minimize_membrane(V, F, scheme
 Returns the dict of `limsurf membrane --json` plus 'positions' (#V × 3, the last stage's control points).
 hessian: 'limited-memory' (BFGS from the gradients, the default) or 'exact' (Newton steps with
 shape_hessian's matrices; fewer iterations, each dearer: docs/guide/membrane.md);
-regularization_hessian: the same for (3.12) only (None: hessian's); sum_factorisation=False: every face
+regularization_hessian: the same for (3.12) only (None: hessian's); continuation_steps=K: reach the
+volume (and mean-curvature) targets in K steps from the start's, each a solve from the last
+(`--continuation`; 'continuation' lists the K − 1 intermediate stages); sum_factorisation=False: every face
 through its dense kernel (`--no-sum-factorisation`; for checking).
-callback(dict) is called after every iteration with 'stage', 'iteration', 'objective',
-'constraint_violation', 'dual_infeasibility', 'step'; returning False stops the solve (converged False);
+callback(dict) is called after every iteration with 'stage' ('continuation', 'shape' or
+'regularization'), 'iteration', 'objective',
+'constraint_violation', 'dual_infeasibility', 'step', 'restoration', 'watchdog' (a trial step
+of Ipopt's watchdog, outside the filter's test); returning False stops the solve (converged False);
 an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
 has 'projected' True when the points returned hold the constraints: the lowest objective met near them,
 or its last iterate, projected onto them (a feasible point, not a minimiser; 'status' says which). Raises limsurf.InputError for an infeasible request
@@ -514,12 +524,13 @@ void bind_membrane(py::module_& m) {
                              std::optional<double> reduced_mean_curvature, std::optional<double> spontaneous_curvature,
                              std::optional<double> regularize_harmonic, int max_iterations, double tolerance,
                              double objective_tolerance, const std::string& hessian,
-                             const std::optional<std::string>& regularization_hessian,
+                             const std::optional<std::string>& regularization_hessian, int continuation_steps,
                              std::optional<py::function> callback, int degree, int subdivide_near_extraordinary,
                              int threads, bool sum_factorisation) {
-        const MembraneRequest request = request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature,
-                                                   spontaneous_curvature, regularize_harmonic, max_iterations,
-                                                   tolerance, objective_tolerance, hessian, regularization_hessian);
+        const MembraneRequest request =
+            request_of(area, volume, reduced_volume, mean_curvature, reduced_mean_curvature, spontaneous_curvature,
+                       regularize_harmonic, max_iterations, tolerance, objective_tolerance, hessian,
+                       regularization_hessian, continuation_steps);
         return minimize_membrane(mesh, scheme, request, callback,
                                  {degree, subdivide_near_extraordinary, threads, sum_factorisation});
     };
@@ -527,8 +538,9 @@ void bind_membrane(py::module_& m) {
           "reduced_volume"_a = py::none(), "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
           "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
           "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
-          "regularization_hessian"_a = py::none(), "callback"_a = py::none(), "degree"_a = 8,
-          "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, "sum_factorisation"_a = true, minimize_doc);
+          "regularization_hessian"_a = py::none(), "continuation_steps"_a = 1, "callback"_a = py::none(),
+          "degree"_a = 8, "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, "sum_factorisation"_a = true,
+          minimize_doc);
     m.def(
         "minimize_membrane",
         [minimize](const py::object& V, const py::object& F, const std::string& scheme, double area,
@@ -536,18 +548,19 @@ void bind_membrane(py::module_& m) {
                    std::optional<double> mean_curvature, std::optional<double> reduced_mean_curvature,
                    std::optional<double> spontaneous_curvature, std::optional<double> regularize_harmonic,
                    int max_iterations, double tolerance, double objective_tolerance, const std::string& hessian,
-                   const std::optional<std::string>& regularization_hessian, std::optional<py::function> callback,
-                   int degree, int subdivide_near_extraordinary, int threads, bool sum_factorisation) {
+                   const std::optional<std::string>& regularization_hessian, int continuation_steps,
+                   std::optional<py::function> callback, int degree, int subdivide_near_extraordinary, int threads,
+                   bool sum_factorisation) {
             return minimize(mesh_from(V, F), scheme, area, volume, reduced_volume, mean_curvature,
                             reduced_mean_curvature, spontaneous_curvature, regularize_harmonic, max_iterations,
-                            tolerance, objective_tolerance, hessian, regularization_hessian, std::move(callback),
-                            degree, subdivide_near_extraordinary, threads, sum_factorisation);
+                            tolerance, objective_tolerance, hessian, regularization_hessian, continuation_steps,
+                            std::move(callback), degree, subdivide_near_extraordinary, threads, sum_factorisation);
         },
         "V"_a, "F"_a, "scheme"_a, py::kw_only(), "area"_a, "volume"_a = py::none(), "reduced_volume"_a = py::none(),
         "mean_curvature"_a = py::none(), "reduced_mean_curvature"_a = py::none(),
         "spontaneous_curvature"_a = py::none(), "regularize_harmonic"_a = py::none(), "max_iterations"_a = 1000,
         "tolerance"_a = 1e-8, "objective_tolerance"_a = 1e-7, "hessian"_a = "limited-memory",
-        "regularization_hessian"_a = py::none(), "callback"_a = py::none(), "degree"_a = 8,
+        "regularization_hessian"_a = py::none(), "continuation_steps"_a = 1, "callback"_a = py::none(), "degree"_a = 8,
         "subdivide_near_extraordinary"_a = 3, "threads"_a = 0, "sum_factorisation"_a = true);
 
     const auto hessian = [](const Mesh& mesh, const std::string& scheme, const py::dict& coefficients,

@@ -429,6 +429,69 @@ TEST(CliMembrane, RegularisationWithASmallMarginKeepsItsConstraints) {
                 1e-9 * number(reg, "harmonic"));
 }
 
+// --continuation K: K − 1 intermediate solves whose targets lie on the straight line from the
+// start's v and m (scaling leaves them unchanged) to v0 and m0, each holding its constraints, then the
+// problem itself. On the octahedron's Canham problem (one minimum on 6 vertices) it ends where the
+// direct solve does. (Not on its Helfrich problem: there the intermediate (v, m) lie outside what 6
+// control points can reach, Ipopt reports them infeasible and the last stage still solves — the
+// steps' points are handed on all the same.)
+TEST(CliMembrane, ContinuationReachesTheTargetsInEqualSteps) {
+    const fs::path obj = temp_dir() / "continued.obj";
+    const auto solve = [&obj](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args{
+            "membrane",         mesh(name), "--scheme", "loop",       "--area", "12.566370614359172",
+            "--reduced-volume", "0.9",      "-o",       obj.string(), "--json"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return limsurf(args);
+    };
+    const auto direct = nlohmann::json::parse(solve("octahedron", {}).out);
+    EXPECT_TRUE(direct.at("continuation").empty());
+    const auto canham = nlohmann::json::parse(solve("octahedron", {"--continuation", "3"}).out);
+    ASSERT_EQ(canham.at("continuation").size(), 2u);
+    ASSERT_TRUE(canham.at("converged").get<bool>()) << canham.at("status");
+    EXPECT_NEAR(number(canham, "willmore"), number(direct, "willmore"), 1e-9 * number(direct, "willmore"));
+
+    const auto start = evaluate(mesh("icosahedron"), "loop");
+    const double v_start = number(start, "reduced_volume");
+    const double m_start = number(start, "reduced_mean_curvature");
+    const CliRun run = solve(
+        "icosahedron", {"--reduced-mean-curvature", "1.06", "--spontaneous-curvature", "0.5", "--continuation", "3"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("continuation iteration"), std::string::npos) << "no progress lines of the steps";
+    const auto out = nlohmann::json::parse(run.out);
+    const auto& steps = out.at("continuation");
+    ASSERT_EQ(steps.size(), 2u);
+    for (int k = 1; k <= 2; ++k) {
+        SCOPED_TRACE(testing::Message() << "step " << k);
+        const auto& step = steps.at(k - 1);
+        const auto& targets = step.at("targets");
+        EXPECT_NEAR(targets.at("reduced_volume").get<double>(), v_start + (0.9 - v_start) * k / 3.0, 1e-12);
+        EXPECT_NEAR(targets.at("reduced_mean_curvature").get<double>(), m_start + (1.06 - m_start) * k / 3.0, 1e-12);
+        ASSERT_TRUE(step.at("converged").get<bool>()) << step.at("status");
+        EXPECT_LE(number(step, "max_relative_residual"), 1e-8);
+        EXPECT_NEAR(number(step, "reduced_mean_curvature"), targets.at("reduced_mean_curvature").get<double>(), 1e-8);
+    }
+    ASSERT_TRUE(out.at("converged").get<bool>()) << out.at("status");
+    EXPECT_NEAR(number(out, "reduced_volume"), 0.9, 1e-8);
+    EXPECT_NEAR(number(out, "reduced_mean_curvature"), 1.06, 1e-8);
+    // Out of range: refused before any work.
+    for (const char* bad : {"0", "-2", "1001"}) {
+        const CliRun refused = solve("octahedron", {"--continuation", bad});
+        EXPECT_EQ(refused.exit_code, 2) << bad;
+        EXPECT_NE(refused.err.find("--continuation"), std::string::npos) << refused.err;
+    }
+    // A start that encloses a negative volume (reflected through the origin: its faces face inwards)
+    // has no line to continue along; the direct solve turns it inside out, the continuation refuses it.
+    fs::remove(obj);
+    const fs::path inverted = transformed_copy(mesh("octahedron"), -1.0, {0.0, 0.0, 0.0}, "inverted.obj");
+    const CliRun refused = limsurf({"membrane", inverted.string(), "--scheme", "loop", "--area", "12.566370614359172",
+                                    "--reduced-volume", "0.9", "--continuation", "2", "-o", obj.string()});
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_NE(refused.err.find("needs it positive"), std::string::npos) << refused.err;
+    EXPECT_EQ(refused.err.find('\n'), refused.err.size() - 1) << "one line";
+    EXPECT_FALSE(fs::exists(obj));
+}
+
 TEST(CliMembrane, BadInputExitsWithOneClearLineAndNoFile) {
     const fs::path obj = temp_dir() / "refused.obj";
     const std::string area = "12.566370614359172";

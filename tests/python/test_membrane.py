@@ -239,7 +239,7 @@ def test_callback_sees_every_iteration_and_can_stop_the_solve(mesh_path):
         assert it["iteration"] == before["iteration"] + (0 if leaving_restoration else 1)
     assert all(it["stage"] == "shape" for it in seen)
     assert set(seen[0]) == {"stage", "iteration", "objective", "constraint_violation", "dual_infeasibility", "step",
-                            "restoration"}
+                            "restoration", "watchdog"}
     assert done["iterations"] <= len(seen)
     stopped = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8,
                                         callback=lambda it: it["iteration"] < 3)
@@ -264,6 +264,39 @@ def test_callback_sees_every_iteration_and_can_stop_the_solve(mesh_path):
 
     with pytest.raises(KeyError, match="from the callback"):
         limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.8, callback=fail)
+
+
+def test_continuation_equals_the_cli_and_stops_when_asked(mesh_path, cli, tmp_path):
+    mesh = limsurf.read_mesh(mesh_path("octahedron"))
+    stages = []
+    ours = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.9, continuation_steps=3,
+                                     callback=lambda it: stages.append(it["stage"]))
+    theirs = cli("membrane", mesh_path("octahedron"), "--scheme", "loop", "--area", repr(A0), "--reduced-volume", 0.9,
+                 "--continuation", 3, "-o", tmp_path / "continued.obj", "--json")
+    assert ours["converged"] and len(ours["continuation"]) == 2
+    for key in set(theirs) - {"seconds", "output", "continuation"}:
+        assert ours[key] == theirs[key], key
+    for step, cli_step in zip(ours["continuation"], theirs["continuation"]):
+        assert {k: v for k, v in step.items() if k != "seconds"} == {k: v for k, v in cli_step.items() if k != "seconds"}
+    v_start = limsurf.shape_functionals(mesh, "loop", gradients=False)["reduced_volume"]
+    for k, step in enumerate(ours["continuation"], start=1):
+        assert step["targets"]["reduced_volume"] == pytest.approx(v_start + (0.9 - v_start) * k / 3, abs=1e-12)
+    assert stages[0] == "continuation" and stages[-1] == "shape"
+    assert stages.count("shape") >= ours["iterations"] + 1  # iterations 0 … n
+    # A stop asked for in a step stops the whole solve, and the callback is not called again.
+    calls = []
+
+    def stop_in_the_second_step(it):
+        calls.append(it["stage"])
+        return not (it["stage"] == "continuation" and calls.count("continuation") > ours["continuation"][0]["iterations"] + 2)
+
+    stopped = limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.9, continuation_steps=3,
+                                        callback=stop_in_the_second_step)
+    assert not stopped["converged"] and stopped["status"] == "stopped by the caller"
+    assert len(stopped["continuation"]) == 2 and stopped["continuation"][1]["status"] == "stopped by the caller"
+    assert calls[-1] == "continuation" and "shape" not in calls
+    with pytest.raises(limsurf.InputError, match="continuation steps = 0"):
+        limsurf.minimize_membrane(mesh, "loop", area=A0, reduced_volume=0.9, continuation_steps=0)
 
 
 def test_regularization_reports_both_stages(mesh_path):

@@ -8,7 +8,9 @@
 //      is A0 (A is homogeneous of degree 2 in X, so by sqrt(A0 / A)): the area constraint holds at
 //      the start and the solver's steps are measured at the target's scale;
 //   2. minimises W (Canham), or the Helfrich energy ∫(H − H0)² dA with H0, under A = A0, V = V0
-//      [and M = M0] (problem (3.1));
+//      [and M = M0] (problem (3.1)); with continuation_steps = K > 1, first under the targets
+//      V_k = V_s + (V0 − V_s) k/K [and M_k likewise], k = 1 … K − 1, V_s and M_s the scaled
+//      start's, each solve starting from the previous one's shape;
 //   3. with regularize_harmonic = ε, and when step 2 converged, minimises the harmonic energy E of
 //      the parameterisation under the same constraints and W ≤ W0 + ε, W0 the W of step 2 — the
 //      post-processing (3.12) of §3.3, with the paper's absolute ε (not a factor 1 + ε).
@@ -17,12 +19,19 @@
 
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "limsurf/core/types.h"
 #include "limsurf/membrane/shape_functionals.h"
 #include "limsurf/membrane/shape_optimization.h"
 
 namespace limsurf {
+
+/// The most continuation steps a request may ask for (each is a solve).
+inline constexpr int max_continuation_steps = 1000;
+/// The objective tolerance (MembraneOptions::objective_tolerance) of the continuation's intermediate
+/// steps, unless the request's is looser: they need only keep near the branch, not reach its minimum.
+inline constexpr double continuation_objective_tolerance = 1e-4;
 
 /// A membrane problem as a user states it.
 struct MembraneRequest {
@@ -45,26 +54,41 @@ struct MembraneRequest {
     /// meshes where quasi-Newton ones do not, but crawl on a first stage that starts far from its
     /// shape (docs/membrane.md, "Exact Hessians"): BFGS then Newton is the pair for that.
     std::optional<MembraneHessian> regularization_hessian;
+    /// Steps in which the volume (and mean-curvature) targets are reached, >= 1: a homotopy from
+    /// the start's V and M, whose intermediate solves keep each step short. A start far from its
+    /// targets (a round sphere asked for v0 = 0.5) otherwise takes long first steps that can end
+    /// in a shape passing through itself (docs/membrane.md, "Continuation"). 1: at once.
+    int continuation_steps = 1;
 };
 
 /// Which stage of solve_membrane_problem() an iteration belongs to.
 enum class MembraneStage {
+    Continuation,   ///< an intermediate step of the continuation (MembraneRequest::continuation_steps)
     Shape,          ///< the Canham or Helfrich problem (3.1)
     Regularization  ///< the harmonic-energy post-processing (3.12)
 };
 
-/// "shape" or "regularization".
+/// "continuation", "shape" or "regularization".
 [[nodiscard]] const char* to_string(MembraneStage stage) noexcept;
 
 /// Called after each solver iteration; returning false stops the solve (converged = false).
 using MembraneProgress = std::function<bool(MembraneStage, const MembraneIteration&)>;
 
+/// One intermediate step of the continuation: its targets and its result.
+struct MembraneContinuationStep {
+    MembraneProblem problem;
+    MembraneResult result;
+};
+
 /// The outcome of solve_membrane_problem().
 struct MembraneRun {
     double initial_area = 0.0;  ///< limit area of the initial guess as given
     double scale = 1.0;         ///< factor the initial guess was scaled by (about its centroid)
-    MembraneProblem problem;    ///< the problem (3.1) solved, targets absolute
-    MembraneResult shape;       ///< its result
+    /// The continuation's K − 1 intermediate steps, in order (empty for continuation_steps = 1).
+    /// A step that stops short hands its point on all the same: the last stage decides convergence.
+    std::vector<MembraneContinuationStep> continuation;
+    MembraneProblem problem;  ///< the problem (3.1) solved, targets absolute
+    MembraneResult shape;     ///< its result
     /// Problem (3.12) and its result, when regularize_harmonic was given and the first stage converged.
     std::optional<MembraneProblem> regularization_problem;
     std::optional<MembraneResult> regularization;
@@ -81,8 +105,8 @@ struct MembraneRun {
 /// @throws InputError naming the option for A0 outside [min_membrane_area, max_membrane_area], both or
 ///   neither of volume and reduced volume, V0 <= 0, v0 (given, or V0's) above 1 (no closed surface of
 ///   area A0 encloses more than the sphere) or below min_reduced_volume,
-///   both mean curvature options, a negative ε, max_iterations < 1, tolerance <= 0, or a value
-///   that is not finite
+///   both mean curvature options, a negative ε, max_iterations < 1, tolerance <= 0,
+///   continuation_steps outside [1, max_continuation_steps], or a value that is not finite
 [[nodiscard]] MembraneProblem membrane_problem(const MembraneRequest& request);
 
 /// @brief @p X scaled about the mean of its rows so that the limit area under @p functionals is
@@ -97,7 +121,8 @@ struct MembraneRun {
 
 /// @brief Solves @p request from the control points @p initial (#V × 3) of @p functionals' topology:
 ///   scaling, problem (3.1), and (3.12) when asked for (see the file comment).
-/// @throws InputError as membrane_problem() and minimize_membrane(); UnsupportedError without
+/// @throws InputError as membrane_problem() and minimize_membrane(), and with continuation_steps > 1
+///   when the scaled start encloses a volume <= 0 (faces oriented inwards); UnsupportedError without
 ///   Ipopt; NumericalError when the initial guess is degenerate
 [[nodiscard]] MembraneRun solve_membrane_problem(const ShapeFunctionals& functionals, const Points& initial,
                                                  const MembraneRequest& request, const MembraneProgress& progress = {});

@@ -64,6 +64,10 @@ struct MembraneIteration {
     /// acceptable step. Its iterations continue the numbering; the regular iteration that leaves it
     /// repeats the number of its last one (Ipopt's own log: "8r", then "8").
     bool restoration = false;
+    /// A step of Ipopt's watchdog procedure: after several shortened steps, full steps are taken on
+    /// trial without the filter's test (so beyond its cap on the constraint violation); when they
+    /// make no progress within a few iterations, Ipopt returns to the point before them.
+    bool watchdog = false;
 };
 
 /// How the solver takes the second derivatives of the Lagrangian.

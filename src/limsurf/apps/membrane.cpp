@@ -28,10 +28,56 @@ MembraneOptions stage_options(const MembraneRequest& request, MembraneStage stag
     return options;
 }
 
+/// The continuation's intermediate steps (MembraneRequest::continuation_steps), appended to
+/// @p steps; returns the point the last of them reached (@p start when there are none). No step
+/// starts once @p stopped (the caller said stop).
+Points continue_towards(const ShapeFunctionals& functionals, const Points& start, const MembraneProblem& problem,
+                        const MembraneRequest& request, const MembraneProgress& progress, const bool& stopped,
+                        std::vector<MembraneContinuationStep>& steps) {
+    const int k_steps = request.continuation_steps;
+    if (k_steps == 1) {
+        return start;
+    }
+    const ShapeValues from = functionals.evaluate(start);
+    LIMSURF_CHECK(std::isfinite(from.volume) && std::isfinite(from.mean_curvature), NumericalError,
+                  "a shape functional of the initial guess is not finite: cannot continue from it");
+    LIMSURF_CHECK(from.volume > 0.0, InputError, "the initial guess encloses the volume ", from.volume,
+                  ": the continuation starts from it and needs it positive (are its faces oriented inwards?)");
+    const auto towards = [k_steps](double a, double b, int k) { return a + (b - a) * k / k_steps; };
+    // A start whose quadrature volume exceeds the sphere's by rounding must not ask for more.
+    const double sphere_volume = volume_from_reduced(1.0, problem.area);
+    // A step need only stay near the branch, not finish its minimum: it stops once W settles to
+    // continuation_objective_tolerance (or the request's, when looser).
+    MembraneOptions options = stage_options(request, MembraneStage::Continuation, progress);
+    if (options.objective_tolerance == 0.0 || options.objective_tolerance < continuation_objective_tolerance) {
+        options.objective_tolerance = continuation_objective_tolerance;
+    }
+    Points at = start;
+    for (int k = 1; k < k_steps && !stopped; ++k) {
+        MembraneContinuationStep step{problem, {}};
+        step.problem.volume = std::min(towards(from.volume, *problem.volume, k), sphere_volume);
+        if (problem.mean_curvature) {
+            step.problem.mean_curvature = towards(from.mean_curvature, *problem.mean_curvature, k);
+        }
+        step.result = minimize_membrane(functionals, at, step.problem, options);
+        at = step.result.positions;
+        steps.push_back(std::move(step));
+    }
+    return at;
+}
+
 }  // namespace
 
 const char* to_string(MembraneStage stage) noexcept {
-    return stage == MembraneStage::Shape ? "shape" : "regularization";
+    switch (stage) {
+    case MembraneStage::Continuation:
+        return "continuation";
+    case MembraneStage::Shape:
+        return "shape";
+    case MembraneStage::Regularization:
+        return "regularization";
+    }
+    return "unknown";
 }
 
 bool MembraneRun::converged(const MembraneRequest& request) const noexcept {
@@ -65,6 +111,9 @@ MembraneProblem membrane_problem(const MembraneRequest& request) {
                   "tolerance = ", request.tolerance, ": must be positive");
     LIMSURF_CHECK(std::isfinite(request.objective_tolerance) && request.objective_tolerance >= 0.0, InputError,
                   "objective tolerance = ", request.objective_tolerance, ": must not be negative");
+    LIMSURF_CHECK(request.continuation_steps >= 1 && request.continuation_steps <= max_continuation_steps, InputError,
+                  "continuation steps = ", request.continuation_steps, ": must lie in [1, ", max_continuation_steps,
+                  "]");
     MembraneProblem problem;
     problem.area = request.area;
     if (request.reduced_volume) {
@@ -139,8 +188,20 @@ MembraneRun solve_membrane_problem(const ShapeFunctionals& functionals, const Po
                   "membrane problems need Ipopt: rebuild limsurf with coinor-libipopt-dev installed");
     const Points start = scale_to_area(functionals, initial, request.area, &run.scale);
     run.initial_area = request.area / (run.scale * run.scale);
+    // Once the caller said stop, every later stage is stopped at its first iteration without asking
+    // again: the caller is not called back after it said stop (or, from Python, raised).
+    bool stopped = false;
+    MembraneProgress latched;
+    if (progress) {
+        latched = [&progress, &stopped](MembraneStage stage, const MembraneIteration& it) {
+            stopped = stopped || !progress(stage, it);
+            return !stopped;
+        };
+    }
+    const Points reached =
+        continue_towards(functionals, start, run.problem, request, latched, stopped, run.continuation);
     run.shape =
-        minimize_membrane(functionals, start, run.problem, stage_options(request, MembraneStage::Shape, progress));
+        minimize_membrane(functionals, reached, run.problem, stage_options(request, MembraneStage::Shape, latched));
     if (!request.regularize_harmonic || !run.shape.converged) {
         return run;  // (3.12) starts from a minimiser of (3.1): not from wherever an unfinished solve stopped
     }
@@ -149,7 +210,7 @@ MembraneRun solve_membrane_problem(const ShapeFunctionals& functionals, const Po
     harmonic.willmore_bound = run.shape.values.willmore + *request.regularize_harmonic;
     run.regularization_problem = harmonic;
     run.regularization = minimize_membrane(functionals, run.shape.positions, harmonic,
-                                           stage_options(request, MembraneStage::Regularization, progress));
+                                           stage_options(request, MembraneStage::Regularization, latched));
     return run;
 }
 
