@@ -427,29 +427,6 @@ void c2g0_patch_weights(double u, double v, Eigen::Matrix<double, 6, 27>& out) {
 #else
     table_products<2>(table.data(), basis, sums);
 #endif
-    // Functions 24 and 25 in rows 0–3 are summed as Eigen's product (table · basis) summed them
-    // when this function used it (its 2 × 4 corner block takes the even and the odd b < 32 apart,
-    // then the rest): the same bits as before, so that no result moves in its last bits. The
-    // membrane solves are chaotic in them (docs/membrane.md, "(3.12) is not convex").
-    double even[2][4] = {};  // the eight sums side by side: independent chains, not one after another
-    double odd[2][4] = {};
-    for (int b = 0; b < 32; b += 2) {
-        for (int i = 0; i < 2; ++i) {
-            for (int r = 0; r < 4; ++r) {
-                even[i][r] += table(24 + i, b) * basis[r][b];
-                odd[i][r] += table(24 + i, b + 1) * basis[r][b + 1];
-            }
-        }
-    }
-    for (int i = 0; i < 2; ++i) {
-        for (int r = 0; r < 4; ++r) {
-            double sum = even[i][r] + odd[i][r];
-            for (int b = 32; b < 36; ++b) {
-                sum += table(24 + i, b) * basis[r][b];
-            }
-            sums[r][24 + i] = sum;
-        }
-    }
     for (int r = 0; r < 6; ++r) {
         for (int i = 0; i < 27; ++i) {
             out(r, i) = sums[r][i];
