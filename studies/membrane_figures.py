@@ -360,7 +360,7 @@ def main(argv=None) -> int:
     for initial in guesses:
         # Fig. 12 is the round start's solve followed by (3.12); its first stage is the Fig. 11 row.
         case, epsilon = ("fig12", 0.003) if initial == "round" else ("fig11", None)
-        # The starts near the sphere (v ≈ 1) reach v0 = 0.5 in FIG11_CONTINUATION steps: in one, their
+        # The starts near the sphere (v ≈ 1) reach v0 = 0.5 in FIG11_CONTINUATION steps: solved at once, their
         # first long steps can end in a shape that passes through itself (docs/membrane.md, "Continuation").
         steps = 1 if initial.startswith("prolate") else FIG11_CONTINUATION
         tasks.append(lambda i=initial, c=case, e=epsilon, k=steps: run_membrane(

@@ -374,10 +374,10 @@ regularization_hessian: the same for (3.12) only (None: hessian's); continuation
 volume (and mean-curvature) targets in K steps from the start's, each a solve from the last
 (`--continuation`; 'continuation' lists the K − 1 intermediate stages); sum_factorisation=False: every face
 through its dense kernel (`--no-sum-factorisation`; for checking).
-callback(dict) is called after every iteration with 'stage' ('continuation', 'shape' or
-'regularization'), 'iteration', 'objective',
-'constraint_violation', 'dual_infeasibility', 'step', 'restoration', 'watchdog' (a trial step
-of Ipopt's watchdog, outside the filter's test); returning False stops the solve (converged False);
+callback(dict) is called after every iteration with 'stage' ('continuation', 'shape' or 'regularization'),
+'iteration', 'objective', 'constraint_violation', 'dual_infeasibility', 'step', 'restoration' and
+'watchdog' (a trial step of Ipopt's watchdog, outside the filter's test); returning False stops the
+solve (converged False) and no later stage calls it again;
 an exception in it stops the solve and is raised. A stage that stops short otherwise (max_iterations)
 has 'projected' True when the points returned hold the constraints: the lowest objective met near them,
 or its last iterate, projected onto them (a feasible point, not a minimiser; 'status' says which). Raises limsurf.InputError for an infeasible request

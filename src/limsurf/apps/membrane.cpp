@@ -49,9 +49,7 @@ Points continue_towards(const ShapeFunctionals& functionals, const Points& start
     // A step need only stay near the branch, not finish its minimum: it stops once W settles to
     // continuation_objective_tolerance (or the request's, when looser).
     MembraneOptions options = stage_options(request, MembraneStage::Continuation, progress);
-    if (options.objective_tolerance == 0.0 || options.objective_tolerance < continuation_objective_tolerance) {
-        options.objective_tolerance = continuation_objective_tolerance;
-    }
+    options.objective_tolerance = std::max(options.objective_tolerance, continuation_objective_tolerance);
     Points at = start;
     for (int k = 1; k < k_steps && !stopped; ++k) {
         MembraneContinuationStep step{problem, {}};
